@@ -1,0 +1,1 @@
+//! Planar Euler–Bernoulli beam finite elements (being written).

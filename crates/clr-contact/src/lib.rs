@@ -1,0 +1,28 @@
+//! Contact force laws, friction laws and planar clearance-joint kinematics.
+//!
+//! `clr-contact` is meant to be embedded in other codes as much as used inside clr: plain `f64`
+//! functions and small validated structs, SI units everywhere, no allocation in force
+//! evaluations, and no dependency on the other clr crates.
+//!
+//! Conventions (see `docs/contact.md`):
+//! - δ is the penetration in m, positive in contact;
+//! - δ̇ is the penetration rate in m/s, positive while approaching (compression);
+//! - δ̇⁻ is δ̇ at the onset of the current contact (stored per contact, see [`memory`]);
+//! - σ_k = (1 − ν_k²)/E_k and the composite modulus E* = 1/(σ_i + σ_j), in Pa.
+
+pub mod error;
+
+// Normal-force and friction laws.
+pub mod damping;
+pub mod elastic;
+pub mod friction;
+pub mod normal;
+pub mod restitution;
+
+// Geometry, kinematics and contact state.
+pub mod memory;
+pub mod multipoint;
+pub mod revolute;
+pub mod translational;
+
+pub use error::ContactError;

@@ -1,0 +1,1 @@
+//! ODE and index-1 DAE integrators for clr (being written).

@@ -1,0 +1,29 @@
+//! `cargo xtask figures`: regenerate the figures embedded in `docs/`.
+
+use std::path::Path;
+use std::process::ExitCode;
+
+/// A figure maker: writes its files into the given directory.
+type Maker = fn(&Path) -> Result<(), String>;
+
+/// Every figure of the docs, by name. Each crate's verification module contributes its own.
+const MAKERS: &[(&str, Maker)] = &[];
+
+pub fn run(_args: &[String]) -> ExitCode {
+    let dir = crate::workspace_root().join("docs").join("figures");
+    let mut ok = true;
+    for (name, make) in MAKERS {
+        match make(&dir) {
+            Ok(()) => println!("figure {name}: written"),
+            Err(e) => {
+                ok = false;
+                eprintln!("figure {name}: {e}");
+            }
+        }
+    }
+    if ok {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}

@@ -1,0 +1,53 @@
+//! Project automation for clr, run as `cargo xtask <command>` (alias in `.cargo/config.toml`).
+//!
+//! - `cargo xtask verify [ID-PREFIX...]`: run verification cases, write `target/verify/report.{json,md}`,
+//!   exit non-zero when a case fails;
+//! - `cargo xtask bench [GROUP]`: side-by-side benchmarks against peer solvers, written to
+//!   `target/bench/`;
+//! - `cargo xtask figures`: regenerate the figures under `docs/figures/`.
+
+mod bench;
+mod figures;
+mod report;
+mod verify;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Root of the workspace (parent of the xtask crate).
+pub fn workspace_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .expect("xtask lives inside the workspace")
+        .to_path_buf()
+}
+
+/// The cargo target directory (honours `CARGO_TARGET_DIR`).
+pub fn target_dir() -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| workspace_root().join("target"))
+}
+
+const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures>
+  verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
+  bench    benchmarks against peers (groups: ode); writes target/bench/<group>.json
+  figures  regenerate docs/figures/";
+
+fn main() -> ExitCode {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let rest = args.get(1..).unwrap_or(&[]);
+    match args.first().map(String::as_str) {
+        Some("verify") => verify::run(rest),
+        Some("bench") => bench::run(rest),
+        Some("figures") => figures::run(rest),
+        Some("-h") | Some("--help") | Some("help") => {
+            println!("{USAGE}");
+            ExitCode::SUCCESS
+        }
+        _ => {
+            eprintln!("{USAGE}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -1,0 +1,80 @@
+//! `cargo xtask verify`: every verification case of the workspace, grouped by crate.
+
+mod beam;
+mod contact;
+mod ode;
+
+use std::process::ExitCode;
+use std::time::Instant;
+
+use crate::report::{self, Case};
+
+/// A group of cases: its id prefix and the function computing them. The function receives the
+/// requested prefixes so that it can skip expensive cases nobody asked for.
+struct Group {
+    name: &'static str,
+    run: fn(&Filter) -> Vec<Case>,
+}
+
+/// Which case ids were requested (`cargo xtask verify ode.hires contact`).
+pub struct Filter {
+    prefixes: Vec<String>,
+}
+
+impl Filter {
+    /// True when a case with this id (or any case under this id prefix) was requested.
+    pub fn wants(&self, id: &str) -> bool {
+        self.prefixes.is_empty()
+            || self
+                .prefixes
+                .iter()
+                .any(|p| id.starts_with(p.as_str()) || p.starts_with(id))
+    }
+}
+
+const GROUPS: &[Group] = &[
+    Group { name: "ode", run: ode::cases },
+    Group { name: "contact", run: contact::cases },
+    Group { name: "beam", run: beam::cases },
+];
+
+pub fn run(args: &[String]) -> ExitCode {
+    let filter = Filter {
+        prefixes: args.to_vec(),
+    };
+    let start = Instant::now();
+    let mut cases = Vec::new();
+    for g in GROUPS.iter().filter(|g| filter.wants(g.name)) {
+        println!("== {} ==", g.name);
+        for c in (g.run)(&filter) {
+            if filter.prefixes.is_empty() || filter.prefixes.iter().any(|p| c.id.starts_with(p.as_str())) {
+                report::print_case(&c);
+                cases.push(c);
+            }
+        }
+    }
+    let wall_s = start.elapsed().as_secs_f64();
+    let dir = crate::target_dir().join("verify");
+    if let Err(e) = report::write(&dir, &cases, wall_s) {
+        eprintln!("cannot write the report in {}: {e}", dir.display());
+        return ExitCode::FAILURE;
+    }
+    let failed = cases.iter().filter(|c| !c.pass).count();
+    println!(
+        "\n{} cases, {} passed, {} failed, {:.1} s; report in {}",
+        cases.len(),
+        cases.len() - failed,
+        failed,
+        wall_s,
+        dir.join("report.md").display()
+    );
+    if cases.is_empty() {
+        eprintln!("no case matches {:?}", filter.prefixes);
+        return ExitCode::from(2);
+    }
+    if failed > 0 {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
