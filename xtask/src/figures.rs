@@ -7,7 +7,11 @@ use std::process::ExitCode;
 type Maker = fn(&Path) -> Result<(), String>;
 
 /// Every figure of the docs, by name. Each crate's verification module contributes its own.
-const MAKERS: &[(&str, Maker)] = &[];
+const MAKERS: &[(&str, Maker)] = &[
+    ("ode", crate::verify::ode::figures),
+    ("contact", crate::verify::contact::figures),
+    ("beam", crate::verify::beam::figures),
+];
 
 pub fn run(_args: &[String]) -> ExitCode {
     let dir = crate::workspace_root().join("docs").join("figures");

@@ -156,7 +156,12 @@ impl Figure {
     }
 
     /// Add a series with an explicit style.
-    pub fn series(mut self, label: impl Into<String>, points: Vec<(f64, f64)>, style: Style) -> Self {
+    pub fn series(
+        mut self,
+        label: impl Into<String>,
+        points: Vec<(f64, f64)>,
+        style: Style,
+    ) -> Self {
         self.series.push(Series {
             label: label.into(),
             points,
@@ -186,7 +191,10 @@ impl Figure {
             .collect()
     }
 
-    fn ranges(&self, data: &[(String, Vec<(f64, f64)>, Style)]) -> Option<((f64, f64), (f64, f64))> {
+    fn ranges(
+        &self,
+        data: &[(String, Vec<(f64, f64)>, Style)],
+    ) -> Option<((f64, f64), (f64, f64))> {
         let mut xr = (f64::INFINITY, f64::NEG_INFINITY);
         let mut yr = (f64::INFINITY, f64::NEG_INFINITY);
         for (_, pts, _) in data {
@@ -200,7 +208,11 @@ impl Figure {
         }
         let pad = |r: (f64, f64)| {
             let span = r.1 - r.0;
-            let m = if span > 0.0 { 0.05 * span } else { 0.5 * r.0.abs().max(1e-12) };
+            let m = if span > 0.0 {
+                0.05 * span
+            } else {
+                0.5 * r.0.abs().max(1e-12)
+            };
             (r.0 - m, r.1 + m)
         };
         let (mut xr, mut yr) = (pad(xr), pad(yr));
@@ -291,10 +303,11 @@ impl Figure {
         let path = path.as_ref();
         let (data, xr, yr) = self.prepare(path)?;
         let root = SVGBackend::new(path, self.size).into_drawing_area();
-        self.draw(root, &data, xr, yr).map_err(|message| PlotError::Backend {
-            path: path.to_path_buf(),
-            message,
-        })
+        self.draw(root, &data, xr, yr)
+            .map_err(|message| PlotError::Backend {
+                path: path.to_path_buf(),
+                message,
+            })
     }
 
     /// Write a PNG file.
@@ -302,17 +315,25 @@ impl Figure {
         let path = path.as_ref();
         let (data, xr, yr) = self.prepare(path)?;
         let root = BitMapBackend::new(path, self.size).into_drawing_area();
-        self.draw(root, &data, xr, yr).map_err(|message| PlotError::Backend {
-            path: path.to_path_buf(),
-            message,
-        })
+        self.draw(root, &data, xr, yr)
+            .map_err(|message| PlotError::Backend {
+                path: path.to_path_buf(),
+                message,
+            })
     }
 
     #[allow(clippy::type_complexity)]
     fn prepare(
         &self,
         path: &Path,
-    ) -> Result<(Vec<(String, Vec<(f64, f64)>, Style)>, (f64, f64), (f64, f64)), PlotError> {
+    ) -> Result<
+        (
+            Vec<(String, Vec<(f64, f64)>, Style)>,
+            (f64, f64),
+            (f64, f64),
+        ),
+        PlotError,
+    > {
         register_font();
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             std::fs::create_dir_all(dir).map_err(|source| PlotError::Io {
@@ -345,8 +366,18 @@ mod tests {
         let (svg, png) = Figure::new("sine")
             .x_label("t (s)")
             .y_label("y (m)")
-            .line("sin", (0..50).map(|i| (i as f64, (i as f64 * 0.2).sin())).collect())
-            .points("cos", (0..50).map(|i| (i as f64, (i as f64 * 0.2).cos())).collect())
+            .line(
+                "sin",
+                (0..50)
+                    .map(|i| (i as f64, (i as f64 * 0.2).sin()))
+                    .collect(),
+            )
+            .points(
+                "cos",
+                (0..50)
+                    .map(|i| (i as f64, (i as f64 * 0.2).cos()))
+                    .collect(),
+            )
             .save(dir.join("fig"))
             .unwrap();
         let text = std::fs::read_to_string(&svg).unwrap();
@@ -357,13 +388,18 @@ mod tests {
 
     #[test]
     fn empty_figure_is_an_error() {
-        let err = Figure::new("empty").save_svg("/tmp/never-written.svg").unwrap_err();
+        let err = Figure::new("empty")
+            .save_svg("/tmp/never-written.svg")
+            .unwrap_err();
         assert!(matches!(err, PlotError::NoData(_)));
     }
 
     #[test]
     fn log_axes_skip_non_positive_values() {
-        let fig = Figure::new("log").log_x().log_y().line("a", vec![(0.0, 1.0), (10.0, 100.0)]);
+        let fig = Figure::new("log")
+            .log_x()
+            .log_y()
+            .line("a", vec![(0.0, 1.0), (10.0, 100.0)]);
         let data = fig.transformed();
         assert_eq!(data[0].1, vec![(1.0, 2.0)]);
     }

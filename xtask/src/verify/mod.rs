@@ -1,8 +1,9 @@
 //! `cargo xtask verify`: every verification case of the workspace, grouped by crate.
 
-mod beam;
-mod contact;
-mod ode;
+pub mod beam;
+pub mod contact;
+mod contact_geometry;
+pub mod ode;
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -33,9 +34,22 @@ impl Filter {
 }
 
 const GROUPS: &[Group] = &[
-    Group { name: "ode", run: ode::cases },
-    Group { name: "contact", run: contact::cases },
-    Group { name: "beam", run: beam::cases },
+    Group {
+        name: "ode",
+        run: ode::cases,
+    },
+    Group {
+        name: "contact",
+        run: contact::cases,
+    },
+    Group {
+        name: "contact",
+        run: contact_geometry::cases,
+    },
+    Group {
+        name: "beam",
+        run: beam::cases,
+    },
 ];
 
 pub fn run(args: &[String]) -> ExitCode {
@@ -47,7 +61,9 @@ pub fn run(args: &[String]) -> ExitCode {
     for g in GROUPS.iter().filter(|g| filter.wants(g.name)) {
         println!("== {} ==", g.name);
         for c in (g.run)(&filter) {
-            if filter.prefixes.is_empty() || filter.prefixes.iter().any(|p| c.id.starts_with(p.as_str())) {
+            if filter.prefixes.is_empty()
+                || filter.prefixes.iter().any(|p| c.id.starts_with(p.as_str()))
+            {
                 report::print_case(&c);
                 cases.push(c);
             }

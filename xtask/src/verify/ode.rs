@@ -6,3 +6,8 @@ use crate::report::Case;
 pub fn cases(_filter: &Filter) -> Vec<Case> {
     Vec::new()
 }
+
+/// Figures of clr-ode for `docs/figures/` (called by `cargo xtask figures`).
+pub fn figures(_dir: &std::path::Path) -> Result<(), String> {
+    Err("no figure yet".into())
+}
