@@ -1,1 +1,323 @@
-//! (being written: normal-force and friction laws)
+//! Friction laws (contact-laws.md §2).
+//!
+//! Convention: v_T is the relative tangential (slip) velocity (m/s) of body j with respect to
+//! body i along the tangent t; the returned friction force F_T (N) is the component along t of
+//! the force on body j, so it opposes the slip: F_T·v_T ≤ 0. F_N (N) is the normal force; a
+//! negative F_N is treated as 0.
+//!
+//! [`FrictionLaw`] holds the stateless laws; [`LuGre`] carries one bristle state z per contact,
+//! which the caller integrates with [`LuGre::z_dot`].
+
+use crate::elastic::positive;
+use crate::error::ContactError;
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kind {
+    Coulomb {
+        mu: f64,
+        v_reg: f64,
+    },
+    Ambrosio {
+        mu: f64,
+        v0: f64,
+        v1: f64,
+    },
+    Threlfall {
+        mu: f64,
+        v0: f64,
+    },
+    Stribeck {
+        mu_s: f64,
+        mu_d: f64,
+        v_s: f64,
+        v_d: f64,
+    },
+}
+
+/// A stateless friction law F_T = μ(v_T)·F_N, validated at construction.
+///
+/// Cheap to copy; [`force`](Self::force) allocates nothing.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FrictionLaw {
+    kind: Kind,
+}
+
+fn coefficient(law: &'static str, name: &'static str, mu: f64) -> Result<f64, ContactError> {
+    if mu >= 0.0 && mu.is_finite() {
+        Ok(mu)
+    } else {
+        Err(ContactError::invalid(
+            law,
+            name,
+            mu,
+            "must be ≥ 0 and finite",
+        ))
+    }
+}
+
+fn ordered(
+    law: &'static str,
+    name: &'static str,
+    lower: f64,
+    upper: f64,
+) -> Result<(), ContactError> {
+    if lower < upper {
+        Ok(())
+    } else {
+        Err(ContactError::invalid(
+            law,
+            name,
+            upper,
+            format!("must be greater than the lower velocity {lower:e} m/s"),
+        ))
+    }
+}
+
+/// Smoothstep s²(3 − 2s) of s ∈ [0, 1].
+#[inline]
+fn step3(s: f64) -> f64 {
+    s * s * (3.0 - 2.0 * s)
+}
+
+impl FrictionLaw {
+    /// Coulomb friction F_T = −μF_N sgn(v_T), regularized linearly below the stated velocity
+    /// v_reg (m/s): F_T = −μF_N·clamp(v_T/v_reg, −1, 1), exact Coulomb for |v_T| ≥ v_reg.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for μ < 0 or v_reg ≤ 0.
+    pub fn coulomb(mu: f64, v_reg: f64) -> Result<Self, ContactError> {
+        const LAW: &str = "Coulomb friction";
+        Ok(Self {
+            kind: Kind::Coulomb {
+                mu: coefficient(LAW, "friction coefficient μ (-)", mu)?,
+                v_reg: positive(LAW, "regularization velocity (m/s)", v_reg)?,
+            },
+        })
+    }
+
+    /// Ambrósio's modified Coulomb law (J. Ambrósio, NATO ASI Virtual Nonlinear Multibody
+    /// Systems II (2002) 15–33; Flores & Ambrósio 2004): F_T = −μ c_d(|v_T|) F_N sgn(v_T) with the
+    /// dynamic correction coefficient c_d = 0 below v0, (|v_T| − v0)/(v1 − v0) between v0 and
+    /// v1, 1 above v1. Friction is switched off near zero slip (not a stiction model).
+    /// Typical v0 = 1e-4 m/s, v1 = 1e-3 m/s.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for μ < 0, v0 < 0 or v1 ≤ v0.
+    pub fn ambrosio(mu: f64, v0: f64, v1: f64) -> Result<Self, ContactError> {
+        const LAW: &str = "Ambrósio friction";
+        let mu = coefficient(LAW, "friction coefficient μ (-)", mu)?;
+        if !(v0 >= 0.0 && v0.is_finite()) {
+            return Err(ContactError::invalid(
+                LAW,
+                "v0 (m/s)",
+                v0,
+                "must be ≥ 0 and finite",
+            ));
+        }
+        positive(LAW, "v1 (m/s)", v1)?;
+        ordered(LAW, "v1 (m/s)", v0, v1)?;
+        Ok(Self {
+            kind: Kind::Ambrosio { mu, v0, v1 },
+        })
+    }
+
+    /// Threlfall's law (D.C. Threlfall, Mech. Mach. Theory 13 (1978) 475–483):
+    /// F_T = −μF_N(1 − e^{−3|v_T|/v0}) sgn(v_T); v0 (m/s) is where friction reaches 95 % of μF_N.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for μ < 0 or v0 ≤ 0.
+    pub fn threlfall(mu: f64, v0: f64) -> Result<Self, ContactError> {
+        const LAW: &str = "Threlfall friction";
+        Ok(Self {
+            kind: Kind::Threlfall {
+                mu: coefficient(LAW, "friction coefficient μ (-)", mu)?,
+                v0: positive(LAW, "v0 (m/s)", v0)?,
+            },
+        })
+    }
+
+    /// Bai & Zhao / ADAMS-STEP Stribeck-type law with static μ_s and dynamic μ_d coefficients and
+    /// critical velocities v_s < v_d (m/s) (Bai & Zhao 2012, 2013; contact-laws.md §2). Signed
+    /// μ(v), continuous at ±v_s and ±v_d:
+    /// - |v| > v_d: μ = −μ_d sgn v;
+    /// - v_s ≤ |v| ≤ v_d: μ = −[μ_d + (μ_s − μ_d)s²(3 − 2s)] sgn v, s = (|v| − v_d)/(v_s − v_d);
+    /// - |v| < v_s: μ = μ_s − 2μ_s u²(3 − 2u), u = (v + v_s)/(2v_s).
+    ///
+    /// The spacecraft paper uses μ_s = 0.2, μ_d = 0.1, v_s = 0.01 m/s, v_d = 0.1 m/s.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for negative coefficients or v_d ≤ v_s ≤ 0.
+    pub fn stribeck(mu_s: f64, mu_d: f64, v_s: f64, v_d: f64) -> Result<Self, ContactError> {
+        const LAW: &str = "Bai/Stribeck friction";
+        let mu_s = coefficient(LAW, "static coefficient μ_s (-)", mu_s)?;
+        let mu_d = coefficient(LAW, "dynamic coefficient μ_d (-)", mu_d)?;
+        positive(LAW, "static velocity v_s (m/s)", v_s)?;
+        positive(LAW, "dynamic velocity v_d (m/s)", v_d)?;
+        ordered(LAW, "dynamic velocity v_d (m/s)", v_s, v_d)?;
+        Ok(Self {
+            kind: Kind::Stribeck {
+                mu_s,
+                mu_d,
+                v_s,
+                v_d,
+            },
+        })
+    }
+
+    /// Signed friction coefficient μ(v_T) (–): F_T = μ(v_T)·F_N, with μ(v)·v ≤ 0.
+    #[inline]
+    pub fn signed_coefficient(&self, v_t: f64) -> f64 {
+        if v_t.is_nan() {
+            return 0.0;
+        }
+        let a = v_t.abs();
+        let sgn = sign(v_t);
+        match self.kind {
+            Kind::Coulomb { mu, v_reg } => -mu * (v_t / v_reg).clamp(-1.0, 1.0),
+            Kind::Ambrosio { mu, v0, v1 } => {
+                let cd = if a < v0 {
+                    0.0
+                } else if a > v1 {
+                    1.0
+                } else {
+                    (a - v0) / (v1 - v0)
+                };
+                -mu * cd * sgn
+            }
+            Kind::Threlfall { mu, v0 } => -mu * (-(-3.0 * a / v0).exp_m1()) * sgn,
+            Kind::Stribeck {
+                mu_s,
+                mu_d,
+                v_s,
+                v_d,
+            } => {
+                if a > v_d {
+                    -mu_d * sgn
+                } else if a >= v_s {
+                    let s = (a - v_d) / (v_s - v_d);
+                    -(mu_d + (mu_s - mu_d) * step3(s)) * sgn
+                } else {
+                    let u = (v_t + v_s) / (2.0 * v_s);
+                    mu_s - 2.0 * mu_s * step3(u)
+                }
+            }
+        }
+    }
+
+    /// Friction force F_T (N) along t on body j for slip v_T (m/s) and normal force F_N (N):
+    /// opposes v_T, |F_T| ≤ μ_max·F_N; 0 for F_N ≤ 0.
+    #[inline]
+    pub fn force(&self, v_t: f64, f_n: f64) -> f64 {
+        if f_n.is_nan() || f_n <= 0.0 {
+            return 0.0;
+        }
+        self.signed_coefficient(v_t) * f_n
+    }
+
+    /// Largest |μ| the law can produce (–).
+    pub fn mu_max(&self) -> f64 {
+        match self.kind {
+            Kind::Coulomb { mu, .. } | Kind::Ambrosio { mu, .. } | Kind::Threlfall { mu, .. } => mu,
+            Kind::Stribeck { mu_s, mu_d, .. } => mu_s.max(mu_d),
+        }
+    }
+}
+
+/// The LuGre friction model (C. Canudas de Wit, H. Olsson, K.J. Åström, P. Lischinsky, IEEE
+/// Trans. Autom. Control 40 (1995) 419–425), in friction-coefficient form:
+///
+/// μ = σ₀z + σ₁ż + σ₂v,  ż = v − σ₀|v|z/g(v),  g(v) = μ_c + (μ_s − μ_c)e^{−(v/v_s)²},
+/// F_T = −μ F_N.
+///
+/// z is the mean bristle deflection (m), one state per contact that the caller integrates.
+/// σ₀ in 1/m, σ₁ and σ₂ in s/m.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LuGre {
+    sigma0: f64,
+    sigma1: f64,
+    sigma2: f64,
+    mu_s: f64,
+    mu_c: f64,
+    v_s: f64,
+}
+
+impl LuGre {
+    /// A validated LuGre model: bristle stiffness σ₀ (1/m), bristle damping σ₁ (s/m), viscous
+    /// coefficient σ₂ (s/m), static μ_s and Coulomb μ_c coefficients, Stribeck velocity v_s
+    /// (m/s).
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for σ₀ ≤ 0, σ₁ or σ₂ < 0, μ_c ≤ 0, μ_s < 0 or v_s ≤ 0.
+    pub fn new(
+        sigma0: f64,
+        sigma1: f64,
+        sigma2: f64,
+        mu_s: f64,
+        mu_c: f64,
+        v_s: f64,
+    ) -> Result<Self, ContactError> {
+        const LAW: &str = "LuGre friction";
+        Ok(Self {
+            sigma0: positive(LAW, "bristle stiffness σ0 (1/m)", sigma0)?,
+            sigma1: coefficient(LAW, "bristle damping σ1 (s/m)", sigma1)?,
+            sigma2: coefficient(LAW, "viscous coefficient σ2 (s/m)", sigma2)?,
+            mu_s: coefficient(LAW, "static coefficient μ_s (-)", mu_s)?,
+            mu_c: positive(LAW, "Coulomb coefficient μ_c (-)", mu_c)?,
+            v_s: positive(LAW, "Stribeck velocity v_s (m/s)", v_s)?,
+        })
+    }
+
+    /// Stribeck curve g(v) = μ_c + (μ_s − μ_c)e^{−(v/v_s)²} (–).
+    #[inline]
+    pub fn g(&self, v: f64) -> f64 {
+        let r = v / self.v_s;
+        self.mu_c + (self.mu_s - self.mu_c) * (-r * r).exp()
+    }
+
+    /// Bristle rate ż = v − σ₀|v|z/g(v) (m/s) for slip v (m/s) and state z (m).
+    #[inline]
+    pub fn z_dot(&self, v: f64, z: f64) -> f64 {
+        v - self.sigma0 * v.abs() * z / self.g(v)
+    }
+
+    /// Friction coefficient μ = σ₀z + σ₁ż + σ₂v (–), positive along the slip.
+    #[inline]
+    pub fn coefficient(&self, v: f64, z: f64, z_dot: f64) -> f64 {
+        self.sigma0 * z + self.sigma1 * z_dot + self.sigma2 * v
+    }
+
+    /// Friction force F_T = −μF_N (N) along t for slip v (m/s), state z (m), its rate ż (m/s)
+    /// and normal force F_N (N); 0 for F_N ≤ 0.
+    #[inline]
+    pub fn force(&self, v: f64, z: f64, z_dot: f64, f_n: f64) -> f64 {
+        if f_n.is_nan() || f_n <= 0.0 {
+            return 0.0;
+        }
+        -self.coefficient(v, z, z_dot) * f_n
+    }
+
+    /// Steady-state bristle deflection z_ss = g(v) sgn(v)/σ₀ (m).
+    pub fn steady_state_z(&self, v: f64) -> f64 {
+        self.g(v) * sign(v) / self.sigma0
+    }
+
+    /// Steady-state coefficient μ_ss = g(v) sgn(v) + σ₂v (–).
+    pub fn steady_state_coefficient(&self, v: f64) -> f64 {
+        self.g(v) * sign(v) + self.sigma2 * v
+    }
+
+    /// Largest steady-state |μ| for slips up to |v| (–): max(μ_s, μ_c) + σ₂|v|.
+    pub fn mu_max(&self, v: f64) -> f64 {
+        self.mu_s.max(self.mu_c) + self.sigma2 * v.abs()
+    }
+}
+
+fn sign(v: f64) -> f64 {
+    if v > 0.0 {
+        1.0
+    } else if v < 0.0 {
+        -1.0
+    } else {
+        0.0
+    }
+}

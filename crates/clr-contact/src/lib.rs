@@ -20,9 +20,21 @@ pub mod normal;
 pub mod restitution;
 
 // Geometry, kinematics and contact state.
+pub mod body;
 pub mod memory;
 pub mod multipoint;
 pub mod revolute;
 pub mod translational;
 
 pub use error::ContactError;
+
+pub use body::{BodyState, GeneralizedForce};
+pub use memory::ContactMemory;
+pub use multipoint::{ContactClass, GuideSurface, MultipointDetector, SliderShape, StraightGuide};
+pub use revolute::{RevoluteClearance, RevoluteContact};
+pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
+
+pub use damping::DampingFactor;
+pub use elastic::{ElasticLaw, Material};
+pub use friction::{FrictionLaw, LuGre};
+pub use normal::{GuideFace, JournalBearing, NormalLaw};
