@@ -1,1 +1,604 @@
-//! (being written: geometry and contact state)
+//! Multipoint contact of a rigid rectangular slider against a deformable guide surface.
+//!
+//! Method of `contact-laws.md` §3.2 (a generalization of the corner contacts of Flores, Ambrósio,
+//! Claro, Lankarani, J. Comput. Nonlinear Dyn. 3 (2008) 011007 to a flexible guide):
+//!
+//! 1. **Candidate points on the slider**: the 4 corners plus N equally spaced points on each face.
+//! 2. **Closest-point projection** of each candidate P onto the guide curve r(s): the root of
+//!    g(s) = (P − r(s))·r′(s) by Gauss–Newton steps Δs = (P − r)·**t**/|r′| (curvature term
+//!    dropped, which only slows convergence when the gap times the curvature is not small), warm
+//!    started from the previous evaluation and clamped to the arc range.
+//! 3. **Signed gap** (P − r(s*))·**n**_g with **n**_g the guide normal into the gap; the
+//!    penetration is δ = −gap when positive. A point whose projection is clamped at an end of the
+//!    guide and lies beyond it is not in contact.
+//! 4. **Reverse check**: M guide sample points spread over the arc interval under the slider are
+//!    tested against the slider rectangle. A guide point inside the slider is a contact whose
+//!    depth is measured along **n**_g to the slider face facing the guide. This finds penetrations
+//!    *between* slider candidate points when the guide bends (§7.8: a hogging guide touching the
+//!    middle of the slider face while the corners barely touch). A guide sample within half a
+//!    sample spacing of an active slider candidate (in arc coordinate) duplicates it and is
+//!    dropped.
+//! 5. **Classification**: area contact when every candidate of one slider face (both corners and
+//!    the N face points) is active — the face lies on the guide; line contact otherwise (a corner,
+//!    an edge region or a patch shorter than a face). The contact length is the arc extent of the
+//!    active points.
+//! 6. **Forces**: a caller-supplied rule gives (F_N, F_T) per active point; they are summed into
+//!    the slider's generalized force and returned as point loads at arc coordinates for the guide
+//!    (a beam maps them with its shape functions, Q += S(s)ᵀ f).
+//!
+//! Conventions as in [`crate::revolute`] and [`crate::translational`]: the contact normal **n**
+//! points in the direction the slider penetrates (**n** = −**n**_g), **t** = k̂ × **n**, δ̇ = v_N =
+//! (ṙ_slider − ṙ_guide)·**n** (> 0 approaching), v_T = (ṙ_slider − ṙ_guide)·**t**, force on the
+//! slider −F_N **n** + F_T **t**, on the guide the opposite.
+//!
+//! [`MultipointDetector`] owns every buffer; after construction no evaluation allocates.
+
+use nalgebra::Vector2;
+
+use crate::body::{
+    check_finite, check_positive, perp, rotate, BodyState, GeneralizedForce, PointContact,
+};
+use crate::error::ContactError;
+
+/// A guide surface parametrized by an arc coordinate s (m), e.g. the top face of a deformed beam.
+///
+/// s need not be the exact arc length of the deformed curve (a beam's undeformed axial coordinate
+/// is fine): [`GuideSurface::speed`] gives |dr/ds|, 1 by default.
+pub trait GuideSurface {
+    /// The admissible interval (s_min, s_max) of the arc coordinate, m, s_min < s_max.
+    fn arc_range(&self) -> (f64, f64);
+    /// Surface point r(s) in the world frame, m.
+    fn point(&self, s: f64) -> Vector2<f64>;
+    /// Unit tangent dr/ds / |dr/ds| at s.
+    fn tangent(&self, s: f64) -> Vector2<f64>;
+    /// Unit normal at s pointing out of the guide material, into the gap where the slider is.
+    fn normal(&self, s: f64) -> Vector2<f64>;
+    /// Velocity of the guide's material point at s, m/s.
+    fn velocity(&self, s: f64) -> Vector2<f64>;
+    /// |dr/ds| (dimensionless); 1 when s is the arc length.
+    fn speed(&self, _s: f64) -> f64 {
+        1.0
+    }
+}
+
+/// A straight guide surface fixed on a (possibly moving) rigid body: the segment of the body-frame
+/// line through `origin` along the direction at `angle`, s ∈ [0, length], normal to the left of
+/// the tangent (`gap_on_left = true`) or to the right.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StraightGuide {
+    body: BodyState,
+    origin: Vector2<f64>,
+    tangent: Vector2<f64>,
+    normal: Vector2<f64>,
+    length: f64,
+}
+
+impl StraightGuide {
+    /// The guide on `body` from local point `origin` (m), local direction `angle` (rad), of length
+    /// `length` (m, > 0), with the gap on the left of the direction of increasing s when
+    /// `gap_on_left`.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for a non-positive length or non-finite data.
+    pub fn new(
+        body: BodyState,
+        origin: Vector2<f64>,
+        angle: f64,
+        length: f64,
+        gap_on_left: bool,
+    ) -> Result<Self, ContactError> {
+        check_positive("straight guide", &[("length (m)", length)])?;
+        check_finite(
+            "straight guide",
+            &[
+                ("origin, local x (m)", origin.x),
+                ("origin, local y (m)", origin.y),
+                ("angle (rad)", angle),
+            ],
+        )?;
+        let tangent = body.rotate(rotate(angle, Vector2::new(1.0, 0.0)));
+        let left = perp(tangent);
+        Ok(Self {
+            body,
+            origin: body.point(origin),
+            tangent,
+            normal: if gap_on_left { left } else { -left },
+            length,
+        })
+    }
+}
+
+impl GuideSurface for StraightGuide {
+    fn arc_range(&self) -> (f64, f64) {
+        (0.0, self.length)
+    }
+    fn point(&self, s: f64) -> Vector2<f64> {
+        self.origin + s * self.tangent
+    }
+    fn tangent(&self, _s: f64) -> Vector2<f64> {
+        self.tangent
+    }
+    fn normal(&self, _s: f64) -> Vector2<f64> {
+        self.normal
+    }
+    fn velocity(&self, s: f64) -> Vector2<f64> {
+        self.body.point_velocity(self.point(s))
+    }
+}
+
+/// The rigid rectangular slider: length L along its local x axis, height h along y, centred at
+/// `centre` (local coordinates on its body) and rotated by `angle` from the body's x axis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SliderShape {
+    length: f64,
+    height: f64,
+    centre: Vector2<f64>,
+    angle: f64,
+}
+
+impl SliderShape {
+    /// A slider of length L and height h (m, both > 0) at local `centre` (m), rotated by `angle`
+    /// (rad) on its body.
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for a non-positive dimension or non-finite data.
+    pub fn new(
+        length: f64,
+        height: f64,
+        centre: Vector2<f64>,
+        angle: f64,
+    ) -> Result<Self, ContactError> {
+        check_positive(
+            "slider",
+            &[
+                ("slider length L (m)", length),
+                ("slider height h (m)", height),
+            ],
+        )?;
+        check_finite(
+            "slider",
+            &[
+                ("centre, local x (m)", centre.x),
+                ("centre, local y (m)", centre.y),
+                ("angle (rad)", angle),
+            ],
+        )?;
+        Ok(Self {
+            length,
+            height,
+            centre,
+            angle,
+        })
+    }
+
+    /// Slider length L, m.
+    pub fn length(&self) -> f64 {
+        self.length
+    }
+
+    /// Slider height h, m.
+    pub fn height(&self) -> f64 {
+        self.height
+    }
+
+    /// Corner k (0..4, counter-clockwise from (−L/2, −h/2)) in the slider frame, m.
+    pub(crate) fn corner(&self, k: usize) -> Vector2<f64> {
+        let (a, b) = (0.5 * self.length, 0.5 * self.height);
+        match k % 4 {
+            0 => Vector2::new(-a, -b),
+            1 => Vector2::new(a, -b),
+            2 => Vector2::new(a, b),
+            _ => Vector2::new(-a, b),
+        }
+    }
+
+    /// Slider-frame point → world point on `body`.
+    pub(crate) fn world_point(&self, body: &BodyState, p: Vector2<f64>) -> Vector2<f64> {
+        body.point(self.centre + rotate(self.angle, p))
+    }
+
+    /// World point → slider-frame point on `body`.
+    fn slider_point(&self, body: &BodyState, w: Vector2<f64>) -> Vector2<f64> {
+        rotate(-self.angle, body.to_local(w) - self.centre)
+    }
+}
+
+/// Where a contact point comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PointSource {
+    /// Slider corner 0..4 (counter-clockwise from (−L/2, −h/2)).
+    Corner(usize),
+    /// Point `index` (0..N) on slider face `face` (face f runs from corner f to corner f+1).
+    Face {
+        /// Face 0..4 (0 bottom, 1 right, 2 top, 3 left in the slider frame).
+        face: usize,
+        /// Position along the face, 0..N.
+        index: usize,
+    },
+    /// Guide sample `0..M` of the reverse check.
+    GuideSample(usize),
+}
+
+/// One active contact point (SI units, world frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ContactPoint {
+    /// Stable index of the candidate (corners 0..4, face points 4..4+4N, guide samples after);
+    /// use it to index a [`crate::memory::ContactMemory`] of [`MultipointDetector::point_count`]
+    /// entries. Guide samples move with the slider, so their memory is approximate.
+    pub id: usize,
+    /// Origin of the point.
+    pub source: PointSource,
+    /// Arc coordinate of the contact on the guide, m.
+    pub arc: f64,
+    /// Penetration, normal **n** = −**n**_g, tangent, contact points (r(s) on the guide) and
+    /// relative velocities.
+    pub contact: PointContact,
+    /// Half the arc distance to each neighbouring active point of the same contact region, m
+    /// (0 for an isolated point): the length a distributed (per unit length) law should multiply.
+    pub tributary_length: f64,
+}
+
+/// A point load on the guide at an arc coordinate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PointLoad {
+    /// Arc coordinate s, m.
+    pub arc: f64,
+    /// Application point r(s), m.
+    pub point: Vector2<f64>,
+    /// Force on the guide, N.
+    pub force: Vector2<f64>,
+}
+
+/// Kind of contact found by [`MultipointDetector::detect`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactClass {
+    /// No point penetrates.
+    Separated,
+    /// Localized contact: a corner, an edge region or a patch shorter than a face.
+    Line {
+        /// Arc extent of the active points, m (0 for a single point).
+        length: f64,
+    },
+    /// A whole slider face lies on the guide (all its candidates active).
+    Area {
+        /// The face 0..4 (0 bottom, 1 right, 2 top, 3 left).
+        face: usize,
+        /// Arc extent of the active points, m.
+        length: f64,
+    },
+}
+
+/// Reusable multipoint contact detector for one slider against one guide surface.
+#[derive(Debug, Clone)]
+pub struct MultipointDetector {
+    shape: SliderShape,
+    face_points: usize,
+    guide_samples: usize,
+    max_iterations: usize,
+    /// Warm starts of the projections of the slider candidates (NaN: none yet).
+    warm: Vec<f64>,
+    /// Projection of every slider candidate at the last evaluation: (s*, active).
+    projected: Vec<(f64, bool)>,
+    points: Vec<ContactPoint>,
+    loads: Vec<PointLoad>,
+    class: ContactClass,
+    slider_reference: Vector2<f64>,
+}
+
+impl MultipointDetector {
+    /// A detector for `shape` with `face_points` (N) candidates on each face besides the corners
+    /// and `guide_samples` (M) guide points for the reverse check (0 disables it).
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] when N or M exceeds 100 000 (the buffers are
+    /// preallocated; such counts are almost surely a mistake).
+    pub fn new(
+        shape: SliderShape,
+        face_points: usize,
+        guide_samples: usize,
+    ) -> Result<Self, ContactError> {
+        const MAX: usize = 100_000;
+        for (name, v) in [
+            ("points per face N", face_points),
+            ("guide samples M", guide_samples),
+        ] {
+            if v > MAX {
+                return Err(ContactError::invalid(
+                    "multipoint detector",
+                    name,
+                    v as f64,
+                    format!("must be at most {MAX}"),
+                ));
+            }
+        }
+        let candidates = 4 + 4 * face_points;
+        let total = candidates + guide_samples;
+        Ok(Self {
+            shape,
+            face_points,
+            guide_samples,
+            max_iterations: 50,
+            warm: vec![f64::NAN; candidates],
+            projected: vec![(f64::NAN, false); candidates],
+            points: Vec::with_capacity(total),
+            loads: Vec::with_capacity(total),
+            class: ContactClass::Separated,
+            slider_reference: Vector2::zeros(),
+        })
+    }
+
+    /// The slider shape.
+    pub fn shape(&self) -> &SliderShape {
+        &self.shape
+    }
+
+    /// Number of distinct point ids (4 + 4N + M), the size of a matching contact memory.
+    pub fn point_count(&self) -> usize {
+        self.warm.len() + self.guide_samples
+    }
+
+    /// Active contact points of the last [`detect`](Self::detect), sorted by arc coordinate.
+    pub fn points(&self) -> &[ContactPoint] {
+        &self.points
+    }
+
+    /// Guide point loads of the last [`apply_forces`](Self::apply_forces).
+    pub fn loads(&self) -> &[PointLoad] {
+        &self.loads
+    }
+
+    /// Classification of the last [`detect`](Self::detect).
+    pub fn class(&self) -> ContactClass {
+        self.class
+    }
+
+    /// Forget the warm starts (e.g. after a jump of the slider).
+    pub fn reset(&mut self) {
+        self.warm.iter_mut().for_each(|s| *s = f64::NAN);
+    }
+
+    /// Slider-frame position of candidate `id` (< 4 + 4N).
+    fn candidate(&self, id: usize) -> (Vector2<f64>, PointSource) {
+        if id < 4 {
+            return (self.shape.corner(id), PointSource::Corner(id));
+        }
+        let n = self.face_points;
+        let (face, index) = ((id - 4) / n, (id - 4) % n);
+        let a = self.shape.corner(face);
+        let b = self.shape.corner(face + 1);
+        let f = (index + 1) as f64 / (n + 1) as f64;
+        (a + f * (b - a), PointSource::Face { face, index })
+    }
+
+    /// Find every penetrating point of the slider (body state `slider`) against `guide`, classify
+    /// the contact and return the classification. Results are in [`points`](Self::points).
+    pub fn detect<G: GuideSurface + ?Sized>(
+        &mut self,
+        guide: &G,
+        slider: &BodyState,
+    ) -> ContactClass {
+        self.points.clear();
+        self.loads.clear();
+        self.slider_reference = slider.position;
+        let (s_min, s_max) = guide.arc_range();
+        let candidates = self.warm.len();
+        let mut corner_span = (f64::INFINITY, f64::NEG_INFINITY);
+        for id in 0..candidates {
+            let (local, source) = self.candidate(id);
+            let p = self.shape.world_point(slider, local);
+            let start = if self.warm[id].is_finite() {
+                self.warm[id]
+            } else {
+                coarse_start(guide, p)
+            };
+            let (s, beyond) = project(guide, p, start, self.max_iterations);
+            self.warm[id] = s;
+            if id < 4 {
+                corner_span = (corner_span.0.min(s), corner_span.1.max(s));
+            }
+            let ng = guide.normal(s);
+            let r = guide.point(s);
+            let delta = -(p - r).dot(&ng);
+            let active = delta > 0.0 && !beyond;
+            self.projected[id] = (s, active);
+            if active {
+                self.push_point(guide, slider, id, source, s, delta, p, r, ng);
+            }
+        }
+        // Reverse check from guide samples spread over the arc interval under the slider corners.
+        let m = self.guide_samples;
+        if m > 0 {
+            let (lo, hi) = (corner_span.0.max(s_min), corner_span.1.min(s_max));
+            let spacing = if m > 1 {
+                (hi - lo) / (m - 1) as f64
+            } else {
+                hi - lo
+            };
+            for k in 0..m {
+                let s = if m > 1 {
+                    lo + k as f64 * spacing
+                } else {
+                    0.5 * (lo + hi)
+                };
+                let duplicate = self.projected.iter().any(|&(sp, active)| {
+                    active && (sp - s).abs() <= 0.5 * spacing.max(f64::MIN_POSITIVE)
+                });
+                if duplicate {
+                    continue;
+                }
+                let g = guide.point(s);
+                let ng = guide.normal(s);
+                if let Some(delta) = self.depth_inside(slider, g, ng) {
+                    let p = g - delta * ng;
+                    let id = candidates + k;
+                    self.push_point(
+                        guide,
+                        slider,
+                        id,
+                        PointSource::GuideSample(k),
+                        s,
+                        delta,
+                        p,
+                        g,
+                        ng,
+                    );
+                }
+            }
+        }
+        self.points
+            .sort_unstable_by(|a, b| a.arc.total_cmp(&b.arc).then(a.id.cmp(&b.id)));
+        self.assign_tributary_lengths(m);
+        self.class = self.classify();
+        self.class
+    }
+
+    /// Depth (along **n**_g) of guide point `g` inside the slider, measured to the slider face
+    /// that faces the guide; `None` when `g` is outside the rectangle.
+    fn depth_inside(&self, slider: &BodyState, g: Vector2<f64>, ng: Vector2<f64>) -> Option<f64> {
+        let q = self.shape.slider_point(slider, g);
+        let (a, b) = (0.5 * self.shape.length, 0.5 * self.shape.height);
+        if !(q.x.abs() < a && q.y.abs() < b) {
+            return None;
+        }
+        // Guide normal in the slider frame.
+        let nl = rotate(-(slider.angle + self.shape.angle), ng);
+        // (m·n_g, distance of q inside the face) for the outward normals m of the four faces.
+        let faces = [
+            (-nl.y, q.y + b),
+            (nl.x, a - q.x),
+            (nl.y, b - q.y),
+            (-nl.x, q.x + a),
+        ];
+        let (dot, dist) = faces
+            .into_iter()
+            .min_by(|x, y| x.0.total_cmp(&y.0))
+            .unwrap_or((-1.0, 0.0));
+        (dot < 0.0).then(|| dist / -dot)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn push_point<G: GuideSurface + ?Sized>(
+        &mut self,
+        guide: &G,
+        slider: &BodyState,
+        id: usize,
+        source: PointSource,
+        arc: f64,
+        penetration: f64,
+        slider_point: Vector2<f64>,
+        guide_point: Vector2<f64>,
+        guide_normal: Vector2<f64>,
+    ) {
+        let v = slider.point_velocity(slider_point) - guide.velocity(arc);
+        self.points.push(ContactPoint {
+            id,
+            source,
+            arc,
+            contact: PointContact::new(penetration, -guide_normal, slider_point, guide_point, v),
+            tributary_length: 0.0,
+        });
+    }
+
+    /// Neighbouring active points (sorted by arc) belong to one region when they are at most one
+    /// candidate spacing apart; each gets half the distance to each neighbour of its region.
+    fn assign_tributary_lengths(&mut self, guide_samples: usize) {
+        let n = self.face_points as f64 + 1.0;
+        let mut spacing = self.shape.length.max(self.shape.height) / n;
+        if guide_samples > 1 {
+            let (lo, hi) = self.projected[..4]
+                .iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+                    (lo.min(p.0), hi.max(p.0))
+                });
+            spacing = spacing.max((hi - lo) / (guide_samples - 1) as f64);
+        }
+        let limit = 1.05 * spacing;
+        for i in 1..self.points.len() {
+            let d = self.points[i].arc - self.points[i - 1].arc;
+            if d <= limit {
+                self.points[i - 1].tributary_length += 0.5 * d;
+                self.points[i].tributary_length += 0.5 * d;
+            }
+        }
+    }
+
+    fn classify(&self) -> ContactClass {
+        let (Some(first), Some(last)) = (self.points.first(), self.points.last()) else {
+            return ContactClass::Separated;
+        };
+        let length = last.arc - first.arc;
+        let n = self.face_points;
+        for face in 0..4 {
+            let corners = self.projected[face].1 && self.projected[(face + 1) % 4].1;
+            let interior = (0..n).all(|i| self.projected[4 + face * n + i].1);
+            if corners && interior {
+                return ContactClass::Area { face, length };
+            }
+        }
+        ContactClass::Line { length }
+    }
+
+    /// Apply a force rule `force(point) -> (F_N, F_T)` (N) at every active point of the last
+    /// [`detect`](Self::detect): −F_N **n** + F_T **t** on the slider at its contact point, the
+    /// opposite on the guide as a [`PointLoad`] (see [`loads`](Self::loads)). Returns the
+    /// generalized force on the slider body about its reference point.
+    pub fn apply_forces(
+        &mut self,
+        mut force: impl FnMut(&ContactPoint) -> (f64, f64),
+    ) -> GeneralizedForce {
+        self.loads.clear();
+        let mut total = GeneralizedForce::zero();
+        for p in &self.points {
+            let (f_n, f_t) = force(p);
+            let f = p.contact.slider_force(f_n, f_t);
+            total += GeneralizedForce::at(self.slider_reference, p.contact.slider_point, f);
+            self.loads.push(PointLoad {
+                arc: p.arc,
+                point: p.contact.guide_point,
+                force: -f,
+            });
+        }
+        total
+    }
+}
+
+/// Initial arc coordinate for a point without warm start: the closest of 65 uniform samples.
+fn coarse_start<G: GuideSurface + ?Sized>(guide: &G, p: Vector2<f64>) -> f64 {
+    let (lo, hi) = guide.arc_range();
+    let n = 64;
+    (0..=n)
+        .map(|k| lo + (hi - lo) * k as f64 / n as f64)
+        .map(|s| (s, (guide.point(s) - p).norm_squared()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(lo, |(s, _)| s)
+}
+
+/// Closest-point projection of `p` on the guide by Gauss–Newton from `start`, clamped to the arc
+/// range. Returns (s*, beyond) where `beyond` flags a projection clamped at an end with the point
+/// lying past that end (not over the guide).
+fn project<G: GuideSurface + ?Sized>(
+    guide: &G,
+    p: Vector2<f64>,
+    start: f64,
+    max_iterations: usize,
+) -> (f64, bool) {
+    let (lo, hi) = guide.arc_range();
+    let tol = 1e-13 * (hi - lo).abs().max(f64::MIN_POSITIVE);
+    let mut s = start.clamp(lo, hi);
+    let mut along = 0.0;
+    for _ in 0..max_iterations {
+        along = (p - guide.point(s)).dot(&guide.tangent(s));
+        let speed = guide.speed(s);
+        let step = if speed > 0.0 { along / speed } else { 0.0 };
+        let next = (s + step).clamp(lo, hi);
+        let moved = (next - s).abs();
+        s = next;
+        if moved <= tol {
+            break;
+        }
+    }
+    let clamped = s <= lo || s >= hi;
+    // Past an end the tangential offset stays finite; accept rounding-level offsets only.
+    let beyond = clamped && along.abs() > 1e-9 * (hi - lo).abs().max(1.0);
+    (s, beyond)
+}
