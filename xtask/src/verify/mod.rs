@@ -3,6 +3,7 @@
 pub mod beam;
 pub mod contact;
 mod contact_geometry;
+mod mbd;
 pub mod ode;
 
 use std::process::ExitCode;
