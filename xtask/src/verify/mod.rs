@@ -51,6 +51,10 @@ const GROUPS: &[Group] = &[
         name: "beam",
         run: beam::cases,
     },
+    Group {
+        name: "mbd",
+        run: mbd::cases,
+    },
 ];
 
 pub fn run(args: &[String]) -> ExitCode {
