@@ -23,17 +23,25 @@
 //! println!("{} steps, {} f evaluations", sol.stats.accepted, sol.stats.f_evals);
 //! ```
 
+// Numerical kernels index several arrays in lock-step; iterator chains would obscure them.
+#![allow(clippy::needless_range_loop)]
+
 pub mod dopri5;
 pub mod linalg;
+pub mod ndf;
 pub mod options;
 pub mod solution;
 pub mod solver;
 pub mod system;
+pub mod test_models;
 
 pub use options::{Atol, Formula, Options, Output};
 pub use solution::{EventRecord, OdeError, Solution, Stats, StopReason};
 pub use solver::{Control, NoObserver, Observer, Solver};
 pub use system::{Direction, MassKind, OdeFn, OdeSystem};
+
+/// NDF/BDF solver of the ode15s family (stiff problems and index-1 DAEs).
+pub type Ndf = Solver<ndf::NdfMethod>;
 
 /// Dormand–Prince 5(4) solver (non-stiff problems).
 pub type Dopri5 = Solver<dopri5::Dopri5Method>;

@@ -207,7 +207,7 @@ fn nonneg_finite(x: f64) -> bool {
     x.is_finite() && x >= 0.0
 }
 
-fn invalid(what: impl Into<String>) -> OdeError {
+pub(crate) fn invalid(what: impl Into<String>) -> OdeError {
     OdeError::InvalidInput {
         what: what.into(),
         solution: Box::default(),
@@ -714,6 +714,10 @@ impl<M: Method> Solver<M> {
     /// The method (for method-specific queries, e.g. the current NDF order).
     pub fn method(&self) -> &M {
         &self.method
+    }
+
+    pub(crate) fn method_mut(&mut self) -> &mut M {
+        &mut self.method
     }
 }
 

@@ -97,41 +97,49 @@ pub trait OdeSystem {
     }
 }
 
-impl<S: OdeSystem + ?Sized> OdeSystem for &mut S {
-    fn dim(&self) -> usize {
-        (**self).dim()
-    }
-    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        (**self).rhs(t, y, dydt)
-    }
-    fn has_jacobian(&self) -> bool {
-        (**self).has_jacobian()
-    }
-    fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut [f64]) {
-        (**self).jacobian(t, y, jac)
-    }
-    fn mass_kind(&self) -> MassKind {
-        (**self).mass_kind()
-    }
-    fn mass(&mut self, t: f64, y: &[f64], m: &mut [f64]) {
-        (**self).mass(t, y, m)
-    }
-    fn n_events(&self) -> usize {
-        (**self).n_events()
-    }
-    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
-        (**self).events(t, y, g)
-    }
-    fn event_direction(&self, i: usize) -> Direction {
-        (**self).event_direction(i)
-    }
-    fn event_terminal(&self, i: usize) -> bool {
-        (**self).event_terminal(i)
-    }
-    fn validate(&self) -> Result<(), String> {
-        (**self).validate()
-    }
+/// Forward every method of [`OdeSystem`] through a pointer type.
+macro_rules! forward_ode_system {
+    ($ptr:ty) => {
+        impl<S: OdeSystem + ?Sized> OdeSystem for $ptr {
+            fn dim(&self) -> usize {
+                (**self).dim()
+            }
+            fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+                (**self).rhs(t, y, dydt)
+            }
+            fn has_jacobian(&self) -> bool {
+                (**self).has_jacobian()
+            }
+            fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut [f64]) {
+                (**self).jacobian(t, y, jac)
+            }
+            fn mass_kind(&self) -> MassKind {
+                (**self).mass_kind()
+            }
+            fn mass(&mut self, t: f64, y: &[f64], m: &mut [f64]) {
+                (**self).mass(t, y, m)
+            }
+            fn n_events(&self) -> usize {
+                (**self).n_events()
+            }
+            fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+                (**self).events(t, y, g)
+            }
+            fn event_direction(&self, i: usize) -> Direction {
+                (**self).event_direction(i)
+            }
+            fn event_terminal(&self, i: usize) -> bool {
+                (**self).event_terminal(i)
+            }
+            fn validate(&self) -> Result<(), String> {
+                (**self).validate()
+            }
+        }
+    };
 }
+
+forward_ode_system!(&mut S);
+forward_ode_system!(Box<S>);
 
 /// Signature of a Jacobian closure: `(t, y, jac)` with `jac` column-major n × n.
 pub type JacFn = fn(f64, &[f64], &mut [f64]);
