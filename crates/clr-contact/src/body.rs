@@ -7,7 +7,9 @@
 //! Prentice Hall 1988, ch. 4; Flores et al., *Kinematics and Dynamics of Multibody Systems with
 //! Imperfect Joints*, Springer 2008, eqs. 2.1–2.10).
 
-use nalgebra::Vector2;
+/// Re-export of the planar vector type used throughout the API, so that users need not depend on
+/// the same nalgebra version themselves.
+pub use nalgebra::Vector2;
 
 /// State of a planar rigid body in absolute coordinates (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]

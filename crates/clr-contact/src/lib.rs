@@ -30,7 +30,9 @@ pub use error::ContactError;
 
 pub use body::{BodyState, GeneralizedForce};
 pub use memory::ContactMemory;
-pub use multipoint::{ContactClass, GuideSurface, MultipointDetector, SliderShape, StraightGuide};
+pub use multipoint::{
+    ContactClass, GuideSurface, MultipointDetector, SineGuide, SliderShape, StraightGuide,
+};
 pub use revolute::{RevoluteClearance, RevoluteContact};
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
 

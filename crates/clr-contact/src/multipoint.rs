@@ -126,6 +126,57 @@ impl GuideSurface for StraightGuide {
     }
 }
 
+/// A static guide bent in a half sine, r(s) = (s, A sin(πs/ℓ)) for s ∈ [0, ℓ], gap above it
+/// (normal to the left of the tangent): the shape of a simply supported beam in its first mode,
+/// and the hogging guide of `contact-laws.md` §7.8 (A = 40 µm, ℓ = 1 m). s is the x coordinate,
+/// so [`GuideSurface::speed`] is √(1 + y′²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SineGuide {
+    amplitude: f64,
+    span: f64,
+}
+
+impl SineGuide {
+    /// The guide of amplitude A (m, any sign: positive hogs upward) and span ℓ (m, > 0).
+    ///
+    /// # Errors
+    /// [`ContactError::InvalidParameter`] for a non-positive span or non-finite amplitude.
+    pub fn new(amplitude: f64, span: f64) -> Result<Self, ContactError> {
+        check_positive("sine guide", &[("span (m)", span)])?;
+        check_finite("sine guide", &[("amplitude (m)", amplitude)])?;
+        Ok(Self { amplitude, span })
+    }
+
+    /// y′(s) = (Aπ/ℓ) cos(πs/ℓ).
+    fn slope(&self, s: f64) -> f64 {
+        let k = std::f64::consts::PI / self.span;
+        self.amplitude * k * (k * s).cos()
+    }
+}
+
+impl GuideSurface for SineGuide {
+    fn arc_range(&self) -> (f64, f64) {
+        (0.0, self.span)
+    }
+    fn point(&self, s: f64) -> Vector2<f64> {
+        let k = std::f64::consts::PI / self.span;
+        Vector2::new(s, self.amplitude * (k * s).sin())
+    }
+    fn tangent(&self, s: f64) -> Vector2<f64> {
+        let dy = self.slope(s);
+        Vector2::new(1.0, dy) / (1.0 + dy * dy).sqrt()
+    }
+    fn normal(&self, s: f64) -> Vector2<f64> {
+        perp(self.tangent(s))
+    }
+    fn velocity(&self, _s: f64) -> Vector2<f64> {
+        Vector2::zeros()
+    }
+    fn speed(&self, s: f64) -> f64 {
+        self.slope(s).hypot(1.0)
+    }
+}
+
 /// The rigid rectangular slider: length L along its local x axis, height h along y, centred at
 /// `centre` (local coordinates on its body) and rotated by `angle` from the body's x axis.
 #[derive(Debug, Clone, Copy, PartialEq)]

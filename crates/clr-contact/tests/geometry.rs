@@ -7,7 +7,8 @@ use clr_contact::damping::DampingFactor;
 use clr_contact::elastic::{ElasticLaw, Material};
 use clr_contact::friction::FrictionLaw;
 use clr_contact::multipoint::{
-    ContactClass, GuideSurface, MultipointDetector, PointSource, SliderShape, StraightGuide,
+    ContactClass, GuideSurface, MultipointDetector, PointSource, SineGuide, SliderShape,
+    StraightGuide,
 };
 use clr_contact::normal::NormalLaw;
 use clr_contact::revolute::RevoluteClearance;
@@ -301,36 +302,6 @@ fn translational_matches_multipoint_on_straight_guides() {
 
 // ---------------------------------------------------------------- multipoint (§7.8)
 
-/// The hogging guide of §7.8: top surface y(x) = A sin(πx/ℓ), A = 40 µm, ℓ = 1 m, parametrized
-/// by x (so |dr/dx| = √(1 + y′²)), static.
-struct SineGuide {
-    amplitude: f64,
-}
-
-impl GuideSurface for SineGuide {
-    fn arc_range(&self) -> (f64, f64) {
-        (0.0, 1.0)
-    }
-    fn point(&self, s: f64) -> Vector2<f64> {
-        v(s, self.amplitude * (std::f64::consts::PI * s).sin())
-    }
-    fn tangent(&self, s: f64) -> Vector2<f64> {
-        let dy = self.amplitude * std::f64::consts::PI * (std::f64::consts::PI * s).cos();
-        v(1.0, dy) / (1.0 + dy * dy).sqrt()
-    }
-    fn normal(&self, s: f64) -> Vector2<f64> {
-        let t = self.tangent(s);
-        v(-t.y, t.x)
-    }
-    fn velocity(&self, _s: f64) -> Vector2<f64> {
-        v(0.0, 0.0)
-    }
-    fn speed(&self, s: f64) -> f64 {
-        let dy = self.amplitude * std::f64::consts::PI * (std::f64::consts::PI * s).cos();
-        (1.0 + dy * dy).sqrt()
-    }
-}
-
 /// Slider of §7.8: length 0.1 m, height 0.02 m, bottom face at y = `bottom`, centred at x = 0.5.
 fn hogging_setup(bottom: f64) -> (SliderShape, BodyState) {
     let shape = SliderShape::new(0.1, 0.02, v(0.0, 0.0), 0.0).unwrap();
@@ -342,7 +313,7 @@ fn multipoint_worked_example_penetrations() {
     // §7.8: 3 face points + corners sample x = 0.45 … 0.55; penetrations 7.534e-9, 3.767e-7,
     // 5.000e-7, 3.767e-7, 7.534e-9 m (4 digits → 1e-3 relative); the closed form
     // A sin(πx) − 39.5 µm to 1e-6 (the normal-direction correction is O(slope²) ≈ 1e-9).
-    let guide = SineGuide { amplitude: 40e-6 };
+    let guide = SineGuide::new(40e-6, 1.0).unwrap();
     let (shape, slider) = hogging_setup(39.5e-6);
     let mut det = MultipointDetector::new(shape, 3, 0).unwrap();
     let class = det.detect(&guide, &slider);
@@ -368,7 +339,7 @@ fn multipoint_worked_example_penetrations() {
 fn multipoint_reverse_check_finds_the_mid_face_penetration() {
     // §7.8: corner-only detection sees 7.5 nm; the reverse check from 5 guide samples over the
     // slider span finds the true 0.5 µm at mid-face.
-    let guide = SineGuide { amplitude: 40e-6 };
+    let guide = SineGuide::new(40e-6, 1.0).unwrap();
     let (shape, slider) = hogging_setup(39.5e-6);
     let max = |det: &MultipointDetector| {
         det.points()
@@ -397,7 +368,7 @@ fn multipoint_line_contact_in_the_middle_of_the_face() {
     // Bottom at 39.9 µm: only |x − 0.5| < acos(39.9/40)/π = 0.02251 m touches (closed form); a
     // 41-sample reverse check (spacing 2.5 mm) must see a line contact of that extent to within
     // one spacing, and the corners are free.
-    let guide = SineGuide { amplitude: 40e-6 };
+    let guide = SineGuide::new(40e-6, 1.0).unwrap();
     let (shape, slider) = hogging_setup(39.9e-6);
     let mut det = MultipointDetector::new(shape, 3, 41).unwrap();
     let half = (39.9_f64 / 40.0).acos() / std::f64::consts::PI;
@@ -496,7 +467,7 @@ fn multipoint_ignores_points_beyond_the_guide_end() {
 #[test]
 fn multipoint_buffers_are_reused() {
     // No allocation after construction: the output buffers keep their address and capacity.
-    let guide = SineGuide { amplitude: 40e-6 };
+    let guide = SineGuide::new(40e-6, 1.0).unwrap();
     let (shape, slider) = hogging_setup(39.5e-6);
     let mut det = MultipointDetector::new(shape, 3, 11).unwrap();
     det.detect(&guide, &slider);
