@@ -137,3 +137,215 @@ fn non_finite_rhs_is_an_error() {
     let sol = r.unwrap_err().into_solution();
     assert!(sol.t_final < 1.0 && sol.t_final > 0.9);
 }
+
+/// y' = λ (y − cos t) − sin t, y(0) = 1: closed form y = cos t for any λ (stiff for λ = −1e4).
+fn stiff_cos(with_jac: bool) -> Box<dyn OdeSystem> {
+    let lam = -1e4;
+    let f = move |t: f64, y: &[f64], dy: &mut [f64]| dy[0] = lam * (y[0] - t.cos()) - t.sin();
+    if with_jac {
+        Box::new(OdeFn::new(1, f).jacobian(move |_t, _y: &[f64], j: &mut [f64]| j[0] = lam))
+    } else {
+        Box::new(OdeFn::new(1, f))
+    }
+}
+
+#[test]
+fn ndf_stiff_problem_matches_closed_form_with_and_without_jacobian() {
+    for with_jac in [true, false] {
+        let mut sys = stiff_cos(with_jac);
+        let sol = Ndf::new(Options::default().rtol(1e-8).atol(1e-10))
+            .solve(&mut sys, 0.0, &[1.0], 10.0)
+            .unwrap();
+        for (t, y) in sol.iter() {
+            assert!((y[0] - t.cos()).abs() < 1e-6, "jac {with_jac} t {t}");
+        }
+        assert!(sol.stats.jac_evals >= 1 && sol.stats.lu_factorizations >= 1);
+        // stiff: far fewer steps than the explicit stability limit 10 / (2/1e4) = 5e4
+        assert!(sol.stats.accepted < 2000, "{:?}", sol.stats);
+        if !with_jac {
+            // finite differences: one f for the base point and one per column
+            assert!(sol.stats.f_evals >= sol.stats.newton_iters + 2 * sol.stats.jac_evals);
+        }
+    }
+}
+
+#[test]
+fn ndf_bdf_variant_and_per_component_atol() {
+    let mut sys = oscillator();
+    for opts in [
+        Options::default()
+            .rtol(1e-8)
+            .atol_vec(vec![1e-10, 1e-10])
+            .bdf(),
+        Options::default().rtol(1e-8).atol(1e-10).max_order(2),
+    ] {
+        let sol = Ndf::new(opts)
+            .solve(&mut sys, 0.0, &[1.0, 0.0], 5.0)
+            .unwrap();
+        assert!((sol.y_final[0] - 5f64.cos()).abs() < 1e-5);
+    }
+}
+
+#[test]
+fn ndf_dense_output_and_h_max() {
+    let mut sys = oscillator();
+    let times: Vec<f64> = (0..=50).map(|k| 0.1 * k as f64).collect();
+    let sol = Ndf::new(
+        Options::default()
+            .rtol(1e-9)
+            .atol(1e-11)
+            .h_max(0.05)
+            .output(Output::Times(times.clone())),
+    )
+    .solve(&mut sys, 0.0, &[1.0, 0.0], 5.0)
+    .unwrap();
+    assert_eq!(sol.t, times);
+    for (t, y) in sol.iter() {
+        assert!(
+            (y[0] - t.cos()).abs() < 1e-6 && (y[1] + t.sin()).abs() < 1e-6,
+            "t={t}"
+        );
+    }
+    // h_max = 0.05 over 5 s: at least 100 steps
+    assert!(sol.stats.accepted >= 100);
+}
+
+#[test]
+fn ndf_robertson_dae_conserves_mass_and_matches_reference() {
+    use crate::test_models::{scd, Problem, Robertson};
+    let mut sys = Robertson::dae();
+    let sol = Ndf::new(Options::default().rtol(1e-6).atol(1e-10))
+        .solve(&mut sys, 0.0, &Robertson::Y0, Robertson::T_END)
+        .unwrap();
+    for (_, y) in sol.iter() {
+        assert!((y[0] + y[1] + y[2] - 1.0).abs() < 1e-9);
+    }
+    let s = scd(&sol.y_final, Problem::RobertsonDae.reference());
+    assert!(s > 5.0, "scd {s}");
+}
+
+#[test]
+fn ndf_state_dependent_mass() {
+    // (1 + y²) y' = −(1 + y²) y: the same solution as y' = −y, y = e^{−t}
+    let mut sys = OdeFn::new(1, |_t, y: &[f64], dy: &mut [f64]| {
+        dy[0] = -(1.0 + y[0] * y[0]) * y[0]
+    })
+    .mass_fn(|_t, y: &[f64], m: &mut [f64]| m[0] = 1.0 + y[0] * y[0]);
+    let sol = Ndf::new(Options::default().rtol(1e-8).atol(1e-10))
+        .solve(&mut sys, 0.0, &[2.0], 3.0)
+        .unwrap();
+    assert!((sol.y_final[0] - 2.0 * (-3f64).exp()).abs() < 1e-6);
+}
+
+#[test]
+fn non_terminal_events_are_recorded_in_order() {
+    // y1 = cos t crosses zero at π/2 + kπ; both directions, not terminal
+    for use_ndf in [true, false] {
+        let mut sys = oscillator().event(Direction::Both, false, |_t, y: &[f64]| y[0]);
+        let opts = Options::default().rtol(1e-10).atol(1e-12);
+        let sol = if use_ndf {
+            Ndf::new(opts).solve(&mut sys, 0.0, &[1.0, 0.0], 10.0)
+        } else {
+            Dopri5::new(opts).solve(&mut sys, 0.0, &[1.0, 0.0], 10.0)
+        }
+        .unwrap();
+        assert_eq!(sol.stop, StopReason::EndReached);
+        assert_eq!(sol.events.len(), 3);
+        assert_eq!(sol.stats.events, 3);
+        for (k, e) in sol.events.iter().enumerate() {
+            let exact = std::f64::consts::FRAC_PI_2 + k as f64 * std::f64::consts::PI;
+            assert!(
+                (e.t - exact).abs() < 1e-7,
+                "ndf {use_ndf}: {} vs {exact}",
+                e.t
+            );
+        }
+    }
+}
+
+#[test]
+fn ndf_bouncing_ball_restarts_without_reallocation() {
+    let (g, e, h0) = (9.81, 0.8, 1.0);
+    let mut sys = ball();
+    let mut s = Ndf::new(Options::default().rtol(1e-10).atol(1e-12));
+    s.start(&mut sys, 0.0, &[h0, 0.0], 10.0).unwrap();
+    let cap = s.work_capacity();
+    let mut t_exact = (2.0 * h0 / g).sqrt();
+    let mut v = (2.0 * g * h0).sqrt();
+    for _ in 0..5 {
+        assert_eq!(s.advance(&mut sys).unwrap(), StopReason::TerminalEvent(0));
+        let (t, vy) = (s.solution().t_final, s.solution().y_final[1]);
+        assert!((t - t_exact).abs() < 1e-9 * t_exact, "{t} vs {t_exact}");
+        s.restart(&mut sys, t, &[0.0, -e * vy]).unwrap();
+        assert_eq!(s.work_capacity(), cap);
+        v *= e;
+        t_exact += 2.0 * v / g;
+    }
+    assert_eq!(s.stats().events, 5);
+}
+
+#[test]
+fn ndf_newton_failure_is_typed_and_per_step() {
+    // 0 = y² + 1 has no real solution: Newton cannot converge
+    let mut sys =
+        OdeFn::new(1, |_t, y: &[f64], dy: &mut [f64]| dy[0] = y[0] * y[0] + 1.0).mass(vec![0.0]);
+    let r = Ndf::new(Options::default().max_newton_failures(5)).solve(&mut sys, 0.0, &[1.0], 1.0);
+    match r {
+        Err(OdeError::NewtonFailure {
+            failures, solution, ..
+        }) => {
+            assert_eq!(failures, 6);
+            assert_eq!(solution.stats.accepted, 0);
+            assert_eq!(solution.len(), 1);
+        }
+        other => panic!("expected NewtonFailure, got {other:?}"),
+    }
+}
+
+#[test]
+fn ndf_non_finite_jacobian_and_rhs() {
+    let mut sys = OdeFn::new(1, |_t, y: &[f64], dy: &mut [f64]| dy[0] = -y[0])
+        .jacobian(|_t, _y: &[f64], j: &mut [f64]| j[0] = f64::NAN);
+    let r = Ndf::new(Options::default()).solve(&mut sys, 0.0, &[1.0], 1.0);
+    assert!(
+        matches!(r, Err(OdeError::NonFiniteJacobian { .. })),
+        "{r:?}"
+    );
+    let mut sys = OdeFn::new(1, |_t, _y: &[f64], dy: &mut [f64]| dy[0] = f64::INFINITY);
+    let r = Ndf::new(Options::default()).solve(&mut sys, 0.0, &[1.0], 1.0);
+    assert!(matches!(r, Err(OdeError::NonFiniteRhs { .. })), "{r:?}");
+    let mut sys = OdeFn::new(2, |_t, _y: &[f64], dy: &mut [f64]| dy[0] = 0.0).mass(vec![1.0]);
+    let r = Ndf::new(Options::default()).solve(&mut sys, 0.0, &[1.0, 1.0], 1.0);
+    assert!(matches!(r, Err(OdeError::InvalidInput { .. })), "{r:?}");
+}
+
+/// Observed order of fixed-step, fixed-order runs on y' = −y (exact history e^{−t}):
+/// log2(err(h) / err(h/2)) within 0.2 of k.
+#[test]
+fn fixed_order_ndf_and_bdf_orders() {
+    for bdf in [false, true] {
+        for k in 1..=5usize {
+            let mut errs = [0.0; 2];
+            for (m, h) in [0.02, 0.01].into_iter().enumerate() {
+                let mut sys = OdeFn::new(1, |_t, y: &[f64], dy: &mut [f64]| dy[0] = -y[0])
+                    .jacobian(|_t, _y: &[f64], j: &mut [f64]| j[0] = -1.0);
+                let mut opts = Options::default()
+                    .rtol(1e-13)
+                    .atol(1e-15)
+                    .fixed_step(h)
+                    .max_order(k)
+                    .output(Output::End);
+                if bdf {
+                    opts = opts.bdf();
+                }
+                let past: Vec<f64> = (0..=k).map(|i| (i as f64 * h).exp()).collect();
+                let mut s = Ndf::new(opts);
+                s.start_with_history(&mut sys, 0.0, &past, h, 1.0).unwrap();
+                s.advance(&mut sys).unwrap();
+                errs[m] = (s.solution().y_final[0] - (-1f64).exp()).abs();
+            }
+            let p = (errs[0] / errs[1]).log2();
+            assert!((p - k as f64).abs() < 0.2, "bdf {bdf} k {k}: order {p}");
+        }
+    }
+}
