@@ -1,11 +1,25 @@
 //! `cargo xtask bench`: clr side by side with peer solvers, in one run.
 
+mod clr;
+mod ode;
+mod peers;
+
 use std::process::ExitCode;
+
+const USAGE: &str =
+    "usage: cargo xtask bench ode [--rtol R]... [--min-time SECONDS] [--no-scipy] [--no-diffsol]
+  ode   clr-ode NDF vs diffsol BDF vs SciPy solve_ivp BDF on HIRES, Robertson, stiff Van der Pol
+        and OREGO; writes target/bench/ode.json and target/bench/ode.md";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {
+        Some("ode") => ode::run(&args[1..]),
+        Some("-h") | Some("--help") | Some("help") => {
+            println!("{USAGE}");
+            ExitCode::SUCCESS
+        }
         _ => {
-            eprintln!("cargo xtask bench: no benchmark group is available yet");
+            eprintln!("{USAGE}");
             ExitCode::from(2)
         }
     }

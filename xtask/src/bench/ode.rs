@@ -1,0 +1,329 @@
+//! `cargo xtask bench ode`: clr-ode's NDF against diffsol's BDF and SciPy's `solve_ivp` BDF.
+//!
+//! Problems: HIRES, Robertson, stiff Van der Pol (ε = 1e-6) and OREGO of the *Test Set for IVP
+//! Solvers* (Mazzia, Magherini, Iavernaro), with their analytic Jacobians, at rtol 1e-6 and 1e-8.
+//! Absolute tolerance atol = rtol, except Robertson: atol = 1e-6·rtol (its y2 is ~1e-13 near
+//! t_end; 1e-12 at rtol 1e-6 as in verification.md's peer note). The same rule is used by all
+//! three solvers and checked on the peers' rows.
+//!
+//! Each solve is repeated (at least 5 times and `--min-time` seconds, 3 times and 4×`--min-time`
+//! for SciPy) and the median wall time is reported. clr-ode runs in this process; the peers run
+//! as child processes in the same invocation. Accuracy is the mixed-error number of significant
+//! correct digits `scd = −log10 max_i |y_i − ref_i| / (1 + |ref_i|)` of the state at t_end against
+//! the Test Set reference (`clr_ode::test_models`).
+//!
+//! Output: `target/bench/ode.json` `{"machine", "rows": [{problem, solver, rtol, atol, wall_s,
+//! f_evals, steps, scd, repeats}]}` and `target/bench/ode.md` (the table, with the time ratios
+//! diffsol/clr and SciPy/clr).
+
+use std::fmt::Write as _;
+use std::process::ExitCode;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::clr;
+use super::peers::{run_diffsol, run_scipy, PeerRow};
+
+/// One row of the benchmark table.
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    pub problem: String,
+    pub solver: String,
+    pub rtol: f64,
+    pub atol: f64,
+    /// Median wall time of one solve (s).
+    pub wall_s: f64,
+    pub f_evals: usize,
+    pub steps: usize,
+    /// Mixed-error significant correct digits at t_end against the Test Set reference.
+    pub scd: f64,
+    /// Number of timed solves behind the median.
+    pub repeats: usize,
+}
+
+#[derive(Serialize)]
+struct Report<'a> {
+    machine: String,
+    rows: &'a [Row],
+}
+
+struct Args {
+    rtols: Vec<f64>,
+    min_time: f64,
+    diffsol: bool,
+    scipy: bool,
+}
+
+fn parse_args(args: &[String]) -> Result<Args, String> {
+    let mut a = Args {
+        rtols: Vec::new(),
+        min_time: 0.5,
+        diffsol: true,
+        scipy: true,
+    };
+    let mut it = args.iter();
+    while let Some(arg) = it.next() {
+        let mut value = |flag: &str| -> Result<f64, String> {
+            let v = it
+                .next()
+                .ok_or_else(|| format!("{flag} needs a value, e.g. {flag} 1e-6"))?;
+            v.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite() && *x > 0.0)
+                .ok_or_else(|| format!("{flag} {v}: give a positive number"))
+        };
+        match arg.as_str() {
+            "--rtol" => a.rtols.push(value("--rtol")?),
+            "--min-time" => a.min_time = value("--min-time")?,
+            "--no-scipy" => a.scipy = false,
+            "--no-diffsol" => a.diffsol = false,
+            other => return Err(format!("unknown argument {other}")),
+        }
+    }
+    if a.rtols.is_empty() {
+        a.rtols = vec![1e-6, 1e-8];
+    }
+    Ok(a)
+}
+
+/// Absolute tolerance paired with `rtol` (module documentation).
+pub fn atol_for(problem: &str, rtol: f64) -> f64 {
+    if problem == "robertson" {
+        rtol * 1e-6
+    } else {
+        rtol
+    }
+}
+
+/// Median of a non-empty sample.
+pub fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    }
+}
+
+/// Repeat `solve` at least 5 times and `min_time` seconds (at most 100 000 times) and return the
+/// median wall time with the last result.
+pub fn timed<T>(
+    min_time: f64,
+    mut solve: impl FnMut() -> Result<T, String>,
+) -> Result<(f64, usize, T), String> {
+    let mut times = Vec::new();
+    let mut total = 0.0;
+    loop {
+        let start = Instant::now();
+        let out = solve()?;
+        let dt = start.elapsed().as_secs_f64();
+        total += dt;
+        times.push(dt);
+        if times.len() >= 100_000 || (times.len() >= 5 && total >= min_time) {
+            let n = times.len();
+            return Ok((median(times), n, out));
+        }
+    }
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split(':').nth(1))
+                .map(|m| m.trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".to_string());
+    let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    format!(
+        "{cpu}, {cores} cores, {} {}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
+}
+
+fn peer_rows(
+    who: &str,
+    rows: Result<Vec<PeerRow>, String>,
+    out: &mut Vec<Row>,
+    notes: &mut Vec<String>,
+) {
+    match rows {
+        Ok(rows) => {
+            for r in rows {
+                let Some(reference) = clr::reference(&r.problem) else {
+                    notes.push(format!("{who}: unknown problem {} ignored", r.problem));
+                    continue;
+                };
+                let expected = atol_for(&r.problem, r.rtol);
+                if (r.atol - expected).abs() > 1e-9 * expected {
+                    notes.push(format!(
+                        "{who}: {} at rtol {:e} used atol {:e}, not {expected:e}",
+                        r.problem, r.rtol, r.atol
+                    ));
+                }
+                out.push(Row {
+                    scd: clr::scd(&r.y_end, reference),
+                    problem: r.problem,
+                    solver: r.solver,
+                    rtol: r.rtol,
+                    atol: r.atol,
+                    wall_s: r.wall_s,
+                    f_evals: r.f_evals,
+                    steps: r.steps,
+                    repeats: r.repeats,
+                });
+            }
+        }
+        Err(e) => {
+            let msg = format!("{who} not measured: {e}");
+            eprintln!("bench ode: {msg}");
+            notes.push(msg);
+        }
+    }
+}
+
+fn fmt_ms(s: f64) -> String {
+    let ms = s * 1e3;
+    if ms >= 100.0 {
+        format!("{ms:.0}")
+    } else if ms >= 1.0 {
+        format!("{ms:.2}")
+    } else {
+        format!("{ms:.3}")
+    }
+}
+
+/// The Markdown table: one line per (problem, rtol, solver) with the time relative to clr.
+pub fn markdown(machine: &str, rows: &[Row], notes: &[String]) -> String {
+    let mut md = String::new();
+    let _ = writeln!(md, "Machine: {machine}. Median wall time of one solve (ms); `time / clr` is the solver's median time over clr-ode NDF's in the same run.\n");
+    let _ = writeln!(
+        md,
+        "| problem | rtol | atol | solver | time (ms) | steps | f evals | scd | time / clr |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|---|---|---|");
+    for r in rows {
+        let clr = rows
+            .iter()
+            .find(|c| c.solver == clr::SOLVER && c.problem == r.problem && c.rtol == r.rtol);
+        let ratio = clr.map_or("–".to_string(), |c| format!("{:.2}", r.wall_s / c.wall_s));
+        let _ = writeln!(
+            md,
+            "| {} | {:.0e} | {:.0e} | {} | {} | {} | {} | {:.2} | {} |",
+            r.problem,
+            r.rtol,
+            r.atol,
+            r.solver,
+            fmt_ms(r.wall_s),
+            r.steps,
+            r.f_evals,
+            r.scd,
+            ratio
+        );
+    }
+    for n in notes {
+        let _ = writeln!(md, "\nNote: {n}");
+    }
+    md
+}
+
+pub fn run(args: &[String]) -> ExitCode {
+    let args = match parse_args(args) {
+        Ok(a) => a,
+        Err(e) => {
+            eprintln!("cargo xtask bench ode: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    let root = crate::workspace_root();
+    let mut rows = Vec::new();
+    let mut notes = Vec::new();
+    let mut failed = false;
+
+    eprintln!("bench ode: clr-ode NDF (in process)");
+    for &rtol in &args.rtols {
+        for name in clr::PROBLEMS {
+            let atol = atol_for(name, rtol);
+            match clr::bench(name, rtol, atol, args.min_time) {
+                Ok(row) => rows.push(row),
+                Err(e) => {
+                    eprintln!("bench ode: clr-ode {name} at rtol {rtol:e}: {e}");
+                    notes.push(format!("clr-ode {name} at rtol {rtol:e} failed: {e}"));
+                    failed = true;
+                }
+            }
+        }
+    }
+    if args.diffsol {
+        peer_rows(
+            "diffsol",
+            run_diffsol(&root, &args.rtols, args.min_time),
+            &mut rows,
+            &mut notes,
+        );
+    } else {
+        notes.push("diffsol skipped (--no-diffsol)".to_string());
+    }
+    if args.scipy {
+        peer_rows(
+            "SciPy",
+            run_scipy(&root, &args.rtols, 4.0 * args.min_time),
+            &mut rows,
+            &mut notes,
+        );
+    } else {
+        notes.push("SciPy skipped (--no-scipy)".to_string());
+    }
+
+    // Group by rtol, then problem in the order of clr::PROBLEMS, then solver.
+    let order = |r: &Row| {
+        let p = clr::PROBLEMS
+            .iter()
+            .position(|p| *p == r.problem)
+            .unwrap_or(usize::MAX);
+        let s = [clr::SOLVER, "diffsol-bdf", "scipy-bdf"]
+            .iter()
+            .position(|s| *s == r.solver)
+            .unwrap_or(usize::MAX);
+        (p, s)
+    };
+    rows.sort_by(|a, b| {
+        b.rtol
+            .total_cmp(&a.rtol)
+            .then_with(|| order(a).cmp(&order(b)))
+    });
+
+    let machine = machine();
+    let md = markdown(&machine, &rows, &notes);
+    let dir = crate::target_dir().join("bench");
+    let report = Report {
+        machine: machine.clone(),
+        rows: &rows,
+    };
+    let written = serde_json::to_string_pretty(&report)
+        .map_err(std::io::Error::other)
+        .and_then(|json| {
+            std::fs::create_dir_all(&dir)?;
+            std::fs::write(dir.join("ode.json"), json)
+        })
+        .and_then(|()| std::fs::write(dir.join("ode.md"), &md));
+    print!("{md}");
+    if let Err(e) = written {
+        eprintln!("bench ode: could not write {}: {e}", dir.display());
+        return ExitCode::FAILURE;
+    }
+    eprintln!(
+        "bench ode: wrote {0}/ode.json and {0}/ode.md",
+        dir.display()
+    );
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
+    }
+}
