@@ -143,21 +143,25 @@ fn small_solve(n: usize, a: &[f64], piv: &[usize], b: &mut [f64]) {
     for (k, &p) in piv.iter().enumerate().take(n) {
         b.swap(k, p);
     }
-    // forward: L y = P b (unit lower)
+    // forward: L y = P b (unit lower), column by column
     for j in 0..n {
-        let bj = b[j];
+        let (head, tail) = b.split_at_mut(j + 1);
+        let bj = head[j];
         if bj != 0.0 {
-            for i in j + 1..n {
-                b[i] -= a[i + j * n] * bj;
+            let col = &a[j * n + j + 1..(j + 1) * n];
+            for (bi, l) in tail.iter_mut().zip(col) {
+                *bi -= l * bj;
             }
         }
     }
     // backward: U x = y
     for j in (0..n).rev() {
-        b[j] /= a[j + j * n];
-        let bj = b[j];
-        for i in 0..j {
-            b[i] -= a[i + j * n] * bj;
+        let (head, tail) = b.split_at_mut(j);
+        let bj = tail[0] / a[j * n + j];
+        tail[0] = bj;
+        let col = &a[j * n..j * n + j];
+        for (bi, u) in head.iter_mut().zip(col) {
+            *bi -= u * bj;
         }
     }
 }

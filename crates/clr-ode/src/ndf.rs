@@ -22,7 +22,15 @@ use crate::system::{MassKind, OdeSystem};
 pub const MAX_ORDER: usize = 5;
 const NEWTON_MAXITER: usize = 4;
 const MIN_FACTOR: f64 = 0.2;
+/// Newton stops when θ/(1 − θ)·‖Δ‖ < NEWTON_TOL (θ the observed contraction rate, ‖·‖ the RMS
+/// norm in units of atol + rtol|y|). ode15s uses 0.33 in its max-norm, SciPy
+/// max(10ε/rtol, min(0.03, √rtol)), diffsol 0.2; 0.1 keeps Robertson at 1e-7 and the other
+/// Test Set problems above 5 digits with about 2.2 iterations per step.
+const NEWTON_TOL: f64 = 0.1;
 const MAX_FACTOR: f64 = 10.0;
+/// Step increases below this factor (at unchanged order) are not taken: keeping h keeps the LU
+/// of M − (h/α_k) J valid (the same hysteresis as CVODE's η threshold).
+const MIN_INCREASE: f64 = 1.5;
 /// NDF κ_k, k = 1…5 (Shampine & Reichelt 1997, Table 1).
 const KAPPA_NDF: [f64; MAX_ORDER + 1] = [0.0, -0.1850, -1.0 / 9.0, -0.0823, -0.0415, 0.0];
 
@@ -53,6 +61,8 @@ pub struct NdfMethod {
     gamma: [f64; MAX_ORDER + 2],
     alpha: [f64; MAX_ORDER + 2],
     error_const: [f64; MAX_ORDER + 2],
+    /// U_k = R_k(1) for each order (constant).
+    u: [[[f64; MAX_ORDER + 1]; MAX_ORDER + 1]; MAX_ORDER + 1],
     newton_tol: f64,
     /// D_0 … D_{MAX_ORDER+2}, each of length n (row-major).
     d: Vec<f64>,
@@ -115,6 +125,9 @@ impl NdfMethod {
         for k in 1..=MAX_ORDER + 1 {
             self.gamma[k] = self.gamma[k - 1] + 1.0 / k as f64;
         }
+        for k in 1..=MAX_ORDER {
+            compute_r(k, 1.0, &mut self.u[k]);
+        }
         for k in 0..=MAX_ORDER + 1 {
             let kap = if k <= MAX_ORDER { kappa[k] } else { 0.0 };
             self.alpha[k] = (1.0 - kap) * self.gamma[k];
@@ -127,9 +140,8 @@ impl NdfMethod {
         let n = self.n;
         let k = self.order;
         let mut r = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
-        let mut u = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
         compute_r(k, factor, &mut r);
-        compute_r(k, 1.0, &mut u);
+        let u = &self.u[k];
         // RU = R · U
         let mut ru = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
         for i in 0..=k {
@@ -273,7 +285,7 @@ impl NdfMethod {
                 -1.0
             };
             if rate >= 0.0
-                && (rate >= 1.0
+                && (rate >= 0.9
                     || rate.powi((NEWTON_MAXITER - k) as i32) / (1.0 - rate) * dy_norm
                         > self.newton_tol)
             {
@@ -283,6 +295,7 @@ impl NdfMethod {
                 self.y_new[i] += self.dy[i];
                 self.dd[i] += self.dy[i];
             }
+            // converged when the remaining error θ/(1 − θ)·‖Δ‖ is below the tolerance
             if dy_norm == 0.0 || (rate >= 0.0 && rate / (1.0 - rate) * dy_norm < self.newton_tol) {
                 result = Ok(());
                 break;
@@ -371,7 +384,7 @@ impl Method for NdfMethod {
         let opts = ctx.opts;
         self.set_coefficients(opts.formula);
         self.max_order = opts.max_order.clamp(1, MAX_ORDER);
-        self.newton_tol = (10.0 * f64::EPSILON / ctx.rtol).max(0.03f64.min(ctx.rtol.sqrt()));
+        self.newton_tol = NEWTON_TOL;
         self.t = t;
         self.t_old = t;
         self.h_last = 0.0;
@@ -669,8 +682,14 @@ impl Method for NdfMethod {
                 best = i;
             }
         }
-        self.order = k + best - 1;
         let factor = MAX_FACTOR.min(self.last_safety * factors[best]);
+        if best == 1 && (1.0..MIN_INCREASE).contains(&factor) {
+            // a small increase does not pay for the rescaling and the new LU: keep h and k,
+            // and look again after k + 1 more steps
+            self.n_equal_steps = 0;
+            return;
+        }
+        self.order = k + best - 1;
         self.h_abs *= factor;
         self.change_d(factor);
         self.n_equal_steps = 0;
