@@ -6,8 +6,8 @@
 //! produces depends on χ only (§1.3), [`DampingFactor::effective_restitution`] is exact for every
 //! elastic part.
 //!
-//! Status tags (contact-laws.md): [V] verified in an independent implementation or by derivation,
-//! [L] as commonly quoted (primary paper not read), [?] not verified.
+//! Status tags (contact-laws.md): \[V\] verified in an independent implementation or by derivation,
+//! \[L\] as commonly quoted (primary paper not read), \[?\] not verified.
 
 use crate::error::ContactError;
 use crate::restitution::{
@@ -21,37 +21,37 @@ use crate::restitution::{
 pub enum DampingFactor {
     /// No damping, χ = 0: the purely elastic Hertz law (e_eff = 1 whatever c_e).
     None,
-    /// Hunt & Crossley, J. Appl. Mech. 42 (1975) 440–445: χ = 3(1 − c_e)/2 (0.75). [V]
+    /// Hunt & Crossley, J. Appl. Mech. 42 (1975) 440–445: χ = 3(1 − c_e)/2 (0.75). \[V\]
     /// Intended for c_e → 1.
     HuntCrossley,
-    /// Lankarani & Nikravesh, J. Mech. Des. 112 (1990) 369–376: χ = 3(1 − c_e²)/4 (0.5625). [V]
+    /// Lankarani & Nikravesh, J. Mech. Des. 112 (1990) 369–376: χ = 3(1 − c_e²)/4 (0.5625). \[V\]
     /// Derived for c_e ≈ 1; accurate for c_e ≳ 0.8 only (e_eff = 0.7252 at c_e = 0.5).
     LankaraniNikravesh,
     /// Flores, Machado, Silva, Martins, Multibody Syst. Dyn. 25 (2011) 357–375:
-    /// χ = 8(1 − c_e)/(5c_e) (1.6). [V] Claimed valid over the whole range, aimed at soft
+    /// χ = 8(1 − c_e)/(5c_e) (1.6). \[V\] Claimed valid over the whole range, aimed at soft
     /// materials.
     Flores,
     /// Gonthier, McPhee, Lange, Piedbœuf, Multibody Syst. Dyn. 11 (2004) 209–233:
-    /// χ = (1 − c_e²)/c_e (1.5). [L] Whole range.
+    /// χ = (1 − c_e²)/c_e (1.5). \[L\] Whole range.
     Gonthier,
     /// Zhiying & Qishao, J. Dyn. Control 4 (2006) 294–298: χ = 3(1 − c_e²)e^{2(1−c_e)}/4
-    /// (1.5290). [L] Whole range.
+    /// (1.5290). \[L\] Whole range.
     ZhiyingQishao,
-    /// Hu & Guo, Multibody Syst. Dyn. 35 (2015) 131–151: χ = 3(1 − c_e)/(2c_e) (1.5). [L]
+    /// Hu & Guo, Multibody Syst. Dyn. 35 (2015) 131–151: χ = 3(1 − c_e)/(2c_e) (1.5). \[L\]
     /// (one public code has half this value; the reviews and a two-phase energy balance give
     /// this one, contact-laws.md §1.2).
     HuGuo,
-    /// Gharib & Hurmuzlu, J. Appl. Mech. 79 (2012) 064506: χ = (1 − c_e)/c_e (1.0). [?]
+    /// Gharib & Hurmuzlu, J. Appl. Mech. 79 (2012) 064506: χ = (1 − c_e)/c_e (1.0). \[?\]
     /// Recalled from review tables, not verified against the paper. Low c_e.
     GharibHurmuzlu,
     /// Herbert & McWhannell, J. Eng. Ind. 99 (1977) 513–518: χ = 6(1 − c_e)/[(2c_e − 1)² + 3]
-    /// (1.0). [L] Intended for c_e → 1.
+    /// (1.0). \[L\] Intended for c_e → 1.
     HerbertMcWhannell,
     /// Lee & Wang, J. Mech. Transm. Autom. Des. 105 (1983) 534–540: χ = 3(1 − c_e)/4 (0.375).
-    /// [L] Intended for c_e → 1.
+    /// \[L\] Intended for c_e → 1.
     LeeWang,
     /// "HC-exact": χ solved from (1 + c_e)χ = ln[(1 + χ)/(1 − χc_e)] (contact-laws.md §1.3), so
-    /// that the law produces exactly c_e with any elastic part (1.432751). [V]
+    /// that the law produces exactly c_e with any elastic part (1.432751). \[V\]
     Exact,
 }
 
@@ -105,7 +105,7 @@ impl DampingFactor {
         }
     }
 
-    /// Status tag of contact-laws.md: `"[V]"`, `"[L]"` or `"[?]"`.
+    /// Status tag of contact-laws.md: `"\[V\]"`, `"\[L\]"` or `"\[?\]"`.
     pub fn status(&self) -> &'static str {
         match self {
             DampingFactor::None

@@ -336,7 +336,7 @@ impl ElasticLaw {
     /// F_e = (π/2)E* L δ √(δ/(2(ΔR + δ))) — an improved elastic-foundation law, valid for
     /// conformal contact including large contact angles (√(δ/(2(ΔR+δ))) = sin(ε/2), ε the
     /// contact half-angle). E* composite (Pa), ΔR radial clearance (m), L axial length (m).
-    /// Status [L]; E* is the composite modulus (contact-laws.md §5).
+    /// Status \[L\]; E* is the composite modulus (contact-laws.md §5).
     ///
     /// # Errors
     /// [`ContactError::InvalidParameter`] for non-positive inputs.
@@ -542,6 +542,47 @@ impl ElasticLaw {
                 k_per_length,
                 contact_length,
             } => power(k_line, n_line, delta) + k_per_length * contact_length * delta,
+        }
+    }
+
+    /// Tangent stiffness dF_e/dδ (N/m) at the penetration δ (m), for Jacobians of implicit
+    /// integrators; 0 for δ ≤ 0 or NaN. Closed forms: n K δ^{n−1} (power laws);
+    /// L·K_n(δ) for Liu (the Bai–Zhao identity, contact-laws.md §1.4);
+    /// K_n δ^{3/2}[(1/δ + 4/(3ΔR+2δ) − 3/(ΔR+δ))/2 + 3/(2δ)] for Bai–Zhao;
+    /// πLE*/(−ln x) with x = F/F* for Johnson (πLE* beyond δ*); n_l K_l δ^{n_l−1} + (E*/h)wl
+    /// for the area law.
+    #[inline]
+    pub fn stiffness(&self, delta: f64) -> f64 {
+        if delta.is_nan() || delta <= 0.0 {
+            return 0.0;
+        }
+        match self.kind {
+            Kind::Power { k, n, .. } => n * power(k, n, delta) / delta,
+            Kind::Liu {
+                e_star,
+                clearance,
+                length,
+            } => length * bai_zhao_stiffness(e_star, clearance, delta),
+            Kind::BaiZhao { e_star, clearance } => {
+                let f = bai_zhao_stiffness(e_star, clearance, delta) * delta * delta.sqrt();
+                let log_kn = 0.5
+                    * (1.0 / delta + 4.0 / (3.0 * clearance + 2.0 * delta)
+                        - 3.0 / (clearance + delta));
+                f * (log_kn + 1.5 / delta)
+            }
+            Kind::Johnson { a, delta_limit, .. } => {
+                if delta >= delta_limit {
+                    a
+                } else {
+                    a / -johnson_fraction(delta / delta_limit).ln()
+                }
+            }
+            Kind::Area {
+                k_line,
+                n_line,
+                k_per_length,
+                contact_length,
+            } => n_line * power(k_line, n_line, delta) / delta + k_per_length * contact_length,
         }
     }
 

@@ -149,6 +149,35 @@ impl NormalLaw {
         }
     }
 
+    /// [`force`](Self::force) with its partial derivatives, for Jacobians of implicit
+    /// integrators: (F_N (N), ∂F_N/∂δ (N/m), ∂F_N/∂δ̇ (N·s/m)), with δ̇⁻ held fixed (it is
+    /// contact state, not a function of the current state). Where the clamp F_N = 0 is active the
+    /// derivatives are 0. ∂F_N/∂δ = F_e'(δ)(1 + χδ̇/δ̇⁻), ∂F_N/∂δ̇ = F_e(δ)χ/δ̇⁻.
+    #[inline]
+    pub fn force_with_derivatives(
+        &self,
+        delta: f64,
+        delta_dot: f64,
+        delta_dot_minus: f64,
+    ) -> (f64, f64, f64) {
+        let fe = self.elastic.force(delta);
+        if fe == 0.0 {
+            return (0.0, 0.0, 0.0);
+        }
+        let v0 = delta_dot_minus.max(self.min_impact_velocity);
+        let factor = 1.0 + self.chi * delta_dot / v0;
+        let f = fe * factor;
+        if f > 0.0 {
+            (
+                f.min(f64::MAX),
+                self.elastic.stiffness(delta) * factor,
+                fe * self.chi / v0,
+            )
+        } else {
+            (0.0, 0.0, 0.0)
+        }
+    }
+
     /// Elastic part F_e(δ) (N).
     #[inline]
     pub fn elastic_force(&self, delta: f64) -> f64 {

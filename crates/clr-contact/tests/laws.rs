@@ -836,3 +836,43 @@ proptest! {
             "{} vs {}", r.e_eff, law.effective_restitution());
     }
 }
+
+// ---------------------------------------------------------------- derivatives for Jacobians
+
+#[test]
+fn stiffness_matches_central_differences() {
+    // Independent check: central difference of the force, truncation error O(h²).
+    let laws = [
+        internal_hertz(),
+        ElasticLaw::liu(e_star(), DR, L).unwrap(),
+        ElasticLaw::bai_zhao(e_star(), DR).unwrap(),
+        ElasticLaw::pereira_internal(e_star(), DR, L).unwrap(),
+        ElasticLaw::johnson(e_star(), DR, L).unwrap(),
+        ElasticLaw::linear(1e8).unwrap(),
+        NormalLaw::area(&guide(), 0.5, 0.02)
+            .unwrap()
+            .elastic()
+            .to_owned(),
+    ];
+    for law in laws {
+        for d in [1e-8, 1e-6, 1e-5, 3e-5] {
+            let h = d * 1e-5;
+            let fd = (law.force(d + h) - law.force(d - h)) / (2.0 * h);
+            assert_rel(law.stiffness(d), fd, 1e-7);
+        }
+        assert_eq!(law.stiffness(-1e-6), 0.0);
+    }
+    let law = NormalLaw::new(internal_hertz(), DampingFactor::Flores, 0.5).unwrap();
+    let (f, dd, dv) = law.force_with_derivatives(10e-6, 0.25, 0.5);
+    assert_eq!(f, law.force(10e-6, 0.25, 0.5));
+    let h = 1e-10;
+    let fd_d = (law.force(10e-6 + h, 0.25, 0.5) - law.force(10e-6 - h, 0.25, 0.5)) / (2.0 * h);
+    let fd_v = (law.force(10e-6, 0.25 + 1e-6, 0.5) - law.force(10e-6, 0.25 - 1e-6, 0.5)) / 2e-6;
+    assert_rel(dd, fd_d, 1e-7);
+    assert_rel(dv, fd_v, 1e-9);
+    // Clamped: F = 0 with zero derivatives.
+    assert_eq!(
+        law.force_with_derivatives(10e-6, -1.0, 0.5),
+        (0.0, 0.0, 0.0)
+    );
+}
