@@ -15,9 +15,11 @@
 //!    tested against the slider rectangle. A guide point inside the slider is a contact whose
 //!    depth is measured along **n**_g to the slider face facing the guide. This finds penetrations
 //!    *between* slider candidate points when the guide bends (§7.8: a hogging guide touching the
-//!    middle of the slider face while the corners barely touch). A guide sample within half a
-//!    sample spacing of an active slider candidate (in arc coordinate) duplicates it and is
-//!    dropped.
+//!    middle of the slider face while the corners barely touch). A sample adds a contact only
+//!    when it is deeper (by more than 0.1 %) than the gap linearly interpolated between the two
+//!    candidates of that face whose projections bracket it: where the guide is straight under
+//!    the face the candidates already describe the contact, and a sample on a candidate is a
+//!    duplicate.
 //! 5. **Classification**: area contact when every candidate of one slider face (both corners and
 //!    the N face points) is active — the face lies on the guide; line contact otherwise (a corner,
 //!    an edge region or a patch shorter than a face). The contact length is the arc extent of the
@@ -333,8 +335,8 @@ pub struct MultipointDetector {
     max_iterations: usize,
     /// Warm starts of the projections of the slider candidates (NaN: none yet).
     warm: Vec<f64>,
-    /// Projection of every slider candidate at the last evaluation: (s*, active).
-    projected: Vec<(f64, bool)>,
+    /// Projection of every slider candidate at the last evaluation: (s*, signed gap, active).
+    projected: Vec<(f64, f64, bool)>,
     points: Vec<ContactPoint>,
     loads: Vec<PointLoad>,
     class: ContactClass,
@@ -375,7 +377,7 @@ impl MultipointDetector {
             guide_samples,
             max_iterations: 50,
             warm: vec![f64::NAN; candidates],
-            projected: vec![(f64::NAN, false); candidates],
+            projected: vec![(f64::NAN, f64::NAN, false); candidates],
             points: Vec::with_capacity(total),
             loads: Vec::with_capacity(total),
             class: ContactClass::Separated,
@@ -457,7 +459,7 @@ impl MultipointDetector {
             let r = guide.point(s);
             let delta = -(p - r).dot(&ng);
             let active = delta > 0.0 && !beyond;
-            self.projected[id] = (s, active);
+            self.projected[id] = (s, -delta, active);
             if active {
                 self.push_point(guide, slider, id, source, s, delta, p, r, ng);
             }
@@ -477,15 +479,16 @@ impl MultipointDetector {
                 } else {
                     0.5 * (lo + hi)
                 };
-                let duplicate = self.projected.iter().any(|&(sp, active)| {
-                    active && (sp - s).abs() <= 0.5 * spacing.max(f64::MIN_POSITIVE)
-                });
-                if duplicate {
-                    continue;
-                }
                 let g = guide.point(s);
                 let ng = guide.normal(s);
-                if let Some(delta) = self.depth_inside(slider, g, ng) {
+                let Some((delta, face)) = self.depth_inside(slider, g, ng) else {
+                    continue;
+                };
+                // Already seen by the slider candidates: the depth their gaps interpolate to.
+                let seen = self
+                    .interpolated_gap(face, s)
+                    .is_some_and(|gap| delta + gap <= 1e-3 * delta + 1e-15);
+                if !seen {
                     let p = g - delta * ng;
                     let id = candidates + k;
                     self.push_point(
@@ -510,8 +513,13 @@ impl MultipointDetector {
     }
 
     /// Depth (along **n**_g) of guide point `g` inside the slider, measured to the slider face
-    /// that faces the guide; `None` when `g` is outside the rectangle.
-    fn depth_inside(&self, slider: &BodyState, g: Vector2<f64>, ng: Vector2<f64>) -> Option<f64> {
+    /// that faces the guide, with that face; `None` when `g` is outside the rectangle.
+    fn depth_inside(
+        &self,
+        slider: &BodyState,
+        g: Vector2<f64>,
+        ng: Vector2<f64>,
+    ) -> Option<(f64, usize)> {
         let q = self.shape.slider_point(slider, g);
         let (a, b) = (0.5 * self.shape.length, 0.5 * self.shape.height);
         if !(q.x.abs() < a && q.y.abs() < b) {
@@ -526,11 +534,35 @@ impl MultipointDetector {
             (nl.y, b - q.y),
             (-nl.x, q.x + a),
         ];
-        let (dot, dist) = faces
+        let (face, (dot, dist)) = faces
             .into_iter()
-            .min_by(|x, y| x.0.total_cmp(&y.0))
-            .unwrap_or((-1.0, 0.0));
-        (dot < 0.0).then(|| dist / -dot)
+            .enumerate()
+            .min_by(|x, y| x.1 .0.total_cmp(&y.1 .0))
+            .unwrap_or((0, (-1.0, 0.0)));
+        (dot < 0.0).then(|| (dist / -dot, face))
+    }
+
+    /// Signed gap at arc coordinate `s` linearly interpolated between the two consecutive
+    /// candidates of slider face `face` (corner, face points, corner) whose projections bracket
+    /// `s`; `None` when no pair brackets it.
+    fn interpolated_gap(&self, face: usize, s: f64) -> Option<f64> {
+        let n = self.face_points;
+        let ids = core::iter::once(face)
+            .chain((0..n).map(|i| 4 + face * n + i))
+            .chain(core::iter::once((face + 1) % 4));
+        let mut previous: Option<(f64, f64)> = None;
+        for id in ids {
+            let (sk, gk, _) = self.projected[id];
+            if let Some((sp, gp)) = previous {
+                let (lo, hi) = if sp <= sk { (sp, sk) } else { (sk, sp) };
+                if lo <= s && s <= hi {
+                    let w = if hi > lo { (s - sp) / (sk - sp) } else { 0.0 };
+                    return Some(gp + w * (gk - gp));
+                }
+            }
+            previous = Some((sk, gk));
+        }
+        None
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -586,8 +618,8 @@ impl MultipointDetector {
         let length = last.arc - first.arc;
         let n = self.face_points;
         for face in 0..4 {
-            let corners = self.projected[face].1 && self.projected[(face + 1) % 4].1;
-            let interior = (0..n).all(|i| self.projected[4 + face * n + i].1);
+            let corners = self.projected[face].2 && self.projected[(face + 1) % 4].2;
+            let interior = (0..n).all(|i| self.projected[4 + face * n + i].2);
             if corners && interior {
                 return ContactClass::Area { face, length };
             }

@@ -490,3 +490,26 @@ fn multipoint_rejects_bad_slider() {
     assert!(SliderShape::new(0.1, 0.02, o, f64::NAN).is_err());
     assert!(StraightGuide::new(BodyState::default(), o, 0.0, 0.0, true).is_err());
 }
+
+#[test]
+fn multipoint_uses_the_guide_velocity() {
+    // Guide and slider carried by the same rigid motion (translation + rotation about the
+    // guide body's reference point): v_N = 0 and v_T = ω δ (closed form); the reverse-check
+    // samples add nothing on a straight guide under a flat face.
+    let (vel, omega) = (v(0.7, -0.3), 2.0);
+    let guide_body = BodyState::new(v(0.1, 0.2), 0.3, vel, omega);
+    let guide = StraightGuide::new(guide_body, v(0.0, 0.0), 0.0, 1.0, true).unwrap();
+    let shape = SliderShape::new(0.1, 0.02, v(0.0, 0.0), 0.0).unwrap();
+    // Slider centre 0.4 m along the guide, 5 µm into it, same orientation.
+    let centre = guide_body.point(v(0.4, 0.01 - 5e-6));
+    let slider = BodyState::new(centre, 0.3, guide_body.point_velocity(centre), omega);
+    let mut det = MultipointDetector::new(shape, 3, 7).unwrap();
+    det.detect(&guide, &slider);
+    assert_eq!(det.points().len(), 5);
+    for p in det.points() {
+        assert_rel!(p.contact.penetration, 5e-6, 1e-6);
+        assert!(p.contact.normal_velocity.abs() < 1e-12);
+        // The contact points differ by δ n, so the common rotation leaves v_T = ω δ.
+        assert_rel!(p.contact.tangential_velocity, omega * 5e-6, 1e-6);
+    }
+}
