@@ -1,0 +1,178 @@
+//! Status codes, the thread-local last-error message and the panic guard of the C boundary.
+
+use std::cell::RefCell;
+use std::ffi::{c_char, CString};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+
+use clr_contact::ContactError;
+
+/// Result of every fallible C function. `CLR_STATUS_OK` (0) is success; on any other value the
+/// output arguments are left untouched and `clr_last_error_message()` says what to change.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ClrStatus {
+    /// Success.
+    Ok = 0,
+    /// A required pointer argument was NULL.
+    NullPointer = 1,
+    /// A numeric input (state, velocity, force) was NaN or infinite.
+    NonFinite = 2,
+    /// A kind code, a parameter count or a string argument was not valid.
+    InvalidArgument = 3,
+    /// A law parameter is out of its admissible range (e.g. c_e outside (0, 1], E ≤ 0).
+    InvalidParameter = 4,
+    /// A preset, damping factor or kind name is not known.
+    UnknownName = 5,
+    /// An input lies outside the validity range of an empirical law (Pereira's clearance range).
+    OutOfValidity = 6,
+    /// An iterative solve inside a law did not converge.
+    NoConvergence = 7,
+    /// An internal panic was caught at the boundary (a bug: please report the message).
+    Panic = 8,
+}
+
+/// Everything that can fail at the C boundary.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CapiError {
+    /// A law rejected its parameters or inputs.
+    #[error(transparent)]
+    Contact(#[from] ContactError),
+    /// A required pointer was NULL.
+    #[error("argument `{0}` is a NULL pointer; pass a valid pointer")]
+    Null(&'static str),
+    /// A numeric input was NaN or infinite.
+    #[error("argument `{name}` = {value} is not finite; pass a finite number")]
+    NonFinite {
+        /// Argument name with its unit.
+        name: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A kind code without a kind.
+    #[error("unknown {what} code {code}; valid codes are 0..={max} (see clr_contact.h)")]
+    UnknownCode {
+        /// What the code selects.
+        what: &'static str,
+        /// The code given.
+        code: u32,
+        /// Largest valid code.
+        max: usize,
+    },
+    /// A kind name without a kind.
+    #[error("unknown {what} `{name}`; valid names: {valid}")]
+    UnknownName {
+        /// What the name selects.
+        what: &'static str,
+        /// The name given.
+        name: String,
+        /// Comma-separated valid names.
+        valid: String,
+    },
+    /// A parameter list of the wrong length.
+    #[error("{law} takes {expected} parameter(s) ({names}), got {got}")]
+    ParameterCount {
+        /// Law name.
+        law: &'static str,
+        /// Number expected.
+        expected: usize,
+        /// Parameter names with units, in order.
+        names: String,
+        /// Number given.
+        got: usize,
+    },
+    /// A C string that is not UTF-8.
+    #[error("argument `{0}` is not valid UTF-8; pass an ASCII name such as \"LN\"")]
+    Utf8(&'static str),
+    /// A panic caught at the boundary.
+    #[error("internal error (caught panic: {0}); please report it with the inputs that caused it")]
+    Panic(String),
+}
+
+impl CapiError {
+    /// The status code of this error.
+    pub fn status(&self) -> ClrStatus {
+        match self {
+            CapiError::Contact(ContactError::InvalidParameter { .. }) => {
+                ClrStatus::InvalidParameter
+            }
+            CapiError::Contact(ContactError::OutOfValidity { .. }) => ClrStatus::OutOfValidity,
+            CapiError::Contact(ContactError::NoConvergence { .. }) => ClrStatus::NoConvergence,
+            CapiError::Contact(ContactError::UnknownName { .. })
+            | CapiError::UnknownName { .. } => ClrStatus::UnknownName,
+            CapiError::Null(_) => ClrStatus::NullPointer,
+            CapiError::NonFinite { .. } => ClrStatus::NonFinite,
+            CapiError::UnknownCode { .. }
+            | CapiError::ParameterCount { .. }
+            | CapiError::Utf8(_) => ClrStatus::InvalidArgument,
+            CapiError::Panic(_) => ClrStatus::Panic,
+        }
+    }
+}
+
+/// Require a finite input.
+pub fn finite(name: &'static str, value: f64) -> Result<f64, CapiError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(CapiError::NonFinite { name, value })
+    }
+}
+
+thread_local! {
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+fn set_last_error(message: &str) {
+    let c = CString::new(message.replace('\0', " ")).unwrap_or_default();
+    LAST_ERROR.with(|slot| *slot.borrow_mut() = c);
+}
+
+/// Run `f` at the C boundary: errors become a status and the thread's last-error message, and a
+/// panic is caught (as a last resort) and reported as [`ClrStatus::Panic`].
+pub fn guard(f: impl FnOnce() -> Result<(), CapiError>) -> ClrStatus {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(Ok(())) => ClrStatus::Ok,
+        Ok(Err(e)) => {
+            set_last_error(&e.to_string());
+            e.status()
+        }
+        Err(payload) => {
+            let what = payload
+                .downcast_ref::<&str>()
+                .map(|s| s.to_string())
+                .or_else(|| payload.downcast_ref::<String>().cloned())
+                .unwrap_or_else(|| "unknown payload".to_string());
+            set_last_error(&CapiError::Panic(what).to_string());
+            ClrStatus::Panic
+        }
+    }
+}
+
+/// Pointer to the thread's last error message (UTF-8, NUL-terminated, empty if no call failed
+/// yet on this thread). Owned by the library; valid until the next failing call on this thread.
+pub fn last_error_ptr() -> *const c_char {
+    LAST_ERROR.with(|slot| slot.borrow().as_ptr())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ffi::CStr;
+
+    #[test]
+    fn guard_reports_errors_and_panics() {
+        assert_eq!(guard(|| Ok(())), ClrStatus::Ok);
+        let s = guard(|| Err(CapiError::Null("law")));
+        assert_eq!(s, ClrStatus::NullPointer);
+        let msg = unsafe { CStr::from_ptr(last_error_ptr()) }
+            .to_str()
+            .unwrap();
+        assert!(msg.contains("`law` is a NULL pointer"), "{msg}");
+        let s = guard(|| panic!("boom"));
+        assert_eq!(s, ClrStatus::Panic);
+        let msg = unsafe { CStr::from_ptr(last_error_ptr()) }
+            .to_str()
+            .unwrap();
+        assert!(msg.contains("boom"), "{msg}");
+    }
+}

@@ -1,0 +1,688 @@
+//! The exported `extern "C"` functions and the C-visible types.
+//!
+//! Every fallible function returns a [`ClrStatus`] and writes its result through an output
+//! pointer only on success. Handles are created by `clr_*_new`/`clr_normal_law_preset` and
+//! released by the matching `clr_*_free` (NULL is accepted and ignored). Handles are immutable
+//! after construction except through `clr_normal_law_set_min_impact_velocity`, so one handle can be
+//! evaluated from several threads at once as long as nobody frees or modifies it meanwhile.
+
+use std::ffi::{c_char, CStr};
+
+use clr_contact::body::BodyState;
+use clr_contact::elastic::Material;
+use clr_contact::restitution::effective_restitution;
+use clr_contact::revolute::JointForces;
+use clr_contact::{FrictionLaw, JournalBearing, NormalLaw, RevoluteClearance};
+
+use crate::error::{finite, guard, last_error_ptr, CapiError, ClrStatus};
+use crate::spec::{damping_from_code, ElasticKind, FrictionKind, Kind};
+
+/// Code of an elastic part for `clr_normal_law_new` (one of the `CLR_ELASTIC_*` constants).
+pub type ClrElasticKind = u32;
+/// Hertz F = K δ^1.5 with a given K. Parameters: K (N/m^1.5).
+pub const CLR_ELASTIC_HERTZ: ClrElasticKind = 0;
+/// Power law F = K δ^n. Parameters: K (N/m^n), n (-).
+pub const CLR_ELASTIC_POWER: ClrElasticKind = 1;
+/// Linear spring F = k δ. Parameters: k (N/m).
+pub const CLR_ELASTIC_LINEAR: ClrElasticKind = 2;
+/// Hertz, two convex spheres. Parameters: E1 (Pa), nu1, R1 (m), E2 (Pa), nu2, R2 (m).
+pub const CLR_ELASTIC_HERTZ_SPHERE_SPHERE: ClrElasticKind = 3;
+/// Hertz, sphere on a plane. Parameters: E_sphere (Pa), nu_sphere, R (m), E_plane (Pa), nu_plane.
+pub const CLR_ELASTIC_HERTZ_SPHERE_PLANE: ClrElasticKind = 4;
+/// Hertz, journal in a bearing (Flores et al. 2004). Parameters: E_bearing (Pa), nu_bearing,
+/// R_bearing (m), E_journal (Pa), nu_journal, R_journal (m).
+pub const CLR_ELASTIC_HERTZ_INTERNAL_CYLINDER: ClrElasticKind = 5;
+/// Liu, Zhang & Yang (2007) conformal cylinder. Parameters: E* (Pa), clearance (m), length (m).
+pub const CLR_ELASTIC_LIU: ClrElasticKind = 6;
+/// Bai & Zhao (2012) hybrid stiffness, SI numbers. Parameters: E* (Pa), clearance (m).
+pub const CLR_ELASTIC_BAI_ZHAO: ClrElasticKind = 7;
+/// Pereira, Ramalho & Ambrósio (2011), internal. Parameters: E* (Pa), clearance (m), length (m).
+pub const CLR_ELASTIC_PEREIRA_INTERNAL: ClrElasticKind = 8;
+/// Pereira, Ramalho & Ambrósio (2011), external. Parameters: E* (Pa), R1 (m), R2 (m), length (m).
+pub const CLR_ELASTIC_PEREIRA_EXTERNAL: ClrElasticKind = 9;
+/// Johnson's implicit line contact. Parameters: E* (Pa), clearance (m), length (m).
+pub const CLR_ELASTIC_JOHNSON: ClrElasticKind = 10;
+
+/// Code of a damping factor χ(c_e) (one of the `CLR_DAMPING_*` constants).
+pub type ClrDampingKind = u32;
+/// No damping, χ = 0 (purely elastic).
+pub const CLR_DAMPING_NONE: ClrDampingKind = 0;
+/// Hunt & Crossley (1975): χ = 3(1 − c_e)/2.
+pub const CLR_DAMPING_HUNT_CROSSLEY: ClrDampingKind = 1;
+/// Lankarani & Nikravesh (1990): χ = 3(1 − c_e²)/4.
+pub const CLR_DAMPING_LANKARANI_NIKRAVESH: ClrDampingKind = 2;
+/// Flores et al. (2011): χ = 8(1 − c_e)/(5 c_e).
+pub const CLR_DAMPING_FLORES: ClrDampingKind = 3;
+/// Gonthier et al. (2004): χ = (1 − c_e²)/c_e.
+pub const CLR_DAMPING_GONTHIER: ClrDampingKind = 4;
+/// Zhiying & Qishao (2006): χ = 3(1 − c_e²) e^{2(1 − c_e)}/4.
+pub const CLR_DAMPING_ZHIYING_QISHAO: ClrDampingKind = 5;
+/// Hu & Guo (2015): χ = 3(1 − c_e)/(2 c_e).
+pub const CLR_DAMPING_HU_GUO: ClrDampingKind = 6;
+/// Gharib & Hurmuzlu (2012): χ = (1 − c_e)/c_e.
+pub const CLR_DAMPING_GHARIB_HURMUZLU: ClrDampingKind = 7;
+/// Herbert & McWhannell (1977): χ = 6(1 − c_e)/((2c_e − 1)² + 3).
+pub const CLR_DAMPING_HERBERT_MCWHANNELL: ClrDampingKind = 8;
+/// Lee & Wang (1983): χ = 3(1 − c_e)/4.
+pub const CLR_DAMPING_LEE_WANG: ClrDampingKind = 9;
+/// Restitution-exact χ, root of (1 + c_e)χ = ln[(1 + χ)/(1 − χ c_e)].
+pub const CLR_DAMPING_EXACT: ClrDampingKind = 10;
+
+/// Code of a friction law for `clr_friction_law_new` (one of the `CLR_FRICTION_*` constants).
+pub type ClrFrictionKind = u32;
+/// Coulomb, regularized linearly below v_reg. Parameters: mu, v_reg (m/s).
+pub const CLR_FRICTION_COULOMB: ClrFrictionKind = 0;
+/// Ambrósio's modified Coulomb law. Parameters: mu, v0 (m/s), v1 (m/s).
+pub const CLR_FRICTION_AMBROSIO: ClrFrictionKind = 1;
+/// Threlfall (1978). Parameters: mu, v0 (m/s).
+pub const CLR_FRICTION_THRELFALL: ClrFrictionKind = 2;
+/// Bai & Zhao / ADAMS-STEP Stribeck-type law. Parameters: mu_s, mu_d, v_s (m/s), v_d (m/s).
+pub const CLR_FRICTION_STRIBECK: ClrFrictionKind = 3;
+
+/// Opaque handle of a normal-force law F_N = F_e(δ)(1 + χ δ̇/δ̇⁻).
+pub struct ClrNormalLaw(pub(crate) NormalLaw);
+
+/// Opaque handle of a stateless friction law F_T = μ(v_T) F_N.
+pub struct ClrFrictionLaw(pub(crate) FrictionLaw);
+
+/// Opaque handle of a planar revolute clearance joint (journal in bearing).
+pub struct ClrRevoluteJoint(pub(crate) RevoluteClearance);
+
+/// Geometry and materials of a journal in a bearing, for `clr_normal_law_preset`. SI units.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ClrJournalBearing {
+    /// Young's modulus of the bearing, Pa.
+    pub bearing_youngs_modulus: f64,
+    /// Poisson ratio of the bearing, -.
+    pub bearing_poisson_ratio: f64,
+    /// Young's modulus of the journal, Pa.
+    pub journal_youngs_modulus: f64,
+    /// Poisson ratio of the journal, -.
+    pub journal_poisson_ratio: f64,
+    /// Bearing (hole) radius R_i, m.
+    pub bearing_radius: f64,
+    /// Journal (pin) radius R_j < R_i, m.
+    pub journal_radius: f64,
+    /// Axial length L, m.
+    pub length: f64,
+}
+
+/// State of a planar rigid body: reference point, angle and their rates. SI units.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClrBodyState {
+    /// x of the reference point, m.
+    pub x: f64,
+    /// y of the reference point, m.
+    pub y: f64,
+    /// Angle θ of the body frame, rad, counter-clockwise.
+    pub theta: f64,
+    /// ẋ, m/s.
+    pub vx: f64,
+    /// ẏ, m/s.
+    pub vy: f64,
+    /// ω = θ̇, rad/s.
+    pub omega: f64,
+}
+
+/// A planar generalized force on a body about its reference point.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClrGeneralizedForce {
+    /// Force x component, N.
+    pub fx: f64,
+    /// Force y component, N.
+    pub fy: f64,
+    /// Moment about the body's reference point, N·m, counter-clockwise positive.
+    pub moment: f64,
+}
+
+/// Result of `clr_revolute_joint_forces`. All zero forces when not in contact (δ ≤ 0).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClrRevoluteForces {
+    /// Penetration δ = e − c, m (> 0 in contact).
+    pub penetration: f64,
+    /// Unit normal n (bearing centre → journal centre), x component.
+    pub normal_x: f64,
+    /// Unit normal n, y component.
+    pub normal_y: f64,
+    /// Relative normal velocity v_N = δ̇, m/s (> 0 approaching).
+    pub normal_velocity: f64,
+    /// Relative tangential velocity v_T, m/s.
+    pub tangential_velocity: f64,
+    /// Normal force F_N ≥ 0 applied, N.
+    pub normal_force: f64,
+    /// Friction force F_T on the journal along t = k × n, N.
+    pub tangential_force: f64,
+    /// Generalized force on the bearing body (i).
+    pub bearing: ClrGeneralizedForce,
+    /// Generalized force on the journal body (j).
+    pub journal: ClrGeneralizedForce,
+}
+
+/// Borrow a handle or report a NULL pointer.
+///
+/// # Safety
+/// `p` is NULL or points to a live value.
+unsafe fn borrow<'a, T>(name: &'static str, p: *const T) -> Result<&'a T, CapiError> {
+    p.as_ref().ok_or(CapiError::Null(name))
+}
+
+/// Check an output pointer before any work, so that nothing is written on failure.
+fn out_ptr<T>(name: &'static str, p: *mut T) -> Result<*mut T, CapiError> {
+    if p.is_null() {
+        Err(CapiError::Null(name))
+    } else {
+        Ok(p)
+    }
+}
+
+/// # Safety
+/// `p` is NULL with `n == 0`, or points to `n` readable doubles.
+unsafe fn params<'a>(p: *const f64, n: usize) -> Result<&'a [f64], CapiError> {
+    if n == 0 {
+        Ok(&[])
+    } else if p.is_null() {
+        Err(CapiError::Null("params"))
+    } else {
+        Ok(std::slice::from_raw_parts(p, n))
+    }
+}
+
+fn body_state(name: &'static str, s: &ClrBodyState) -> Result<BodyState, CapiError> {
+    for v in [s.x, s.y, s.theta, s.vx, s.vy, s.omega] {
+        finite(name, v)?;
+    }
+    Ok(BodyState::new(
+        [s.x, s.y].into(),
+        s.theta,
+        [s.vx, s.vy].into(),
+        s.omega,
+    ))
+}
+
+fn generalized(g: clr_contact::GeneralizedForce) -> ClrGeneralizedForce {
+    ClrGeneralizedForce {
+        fx: g.force.x,
+        fy: g.force.y,
+        moment: g.moment,
+    }
+}
+
+/// The library version, e.g. "0.1.0" (static string).
+#[no_mangle]
+pub extern "C" fn clr_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}
+
+/// Message of the last failed call on this thread (UTF-8, NUL-terminated; empty if none failed).
+/// The pointer is owned by the library and valid until the next failing call on this thread;
+/// copy the text if you need it longer. Never NULL.
+#[no_mangle]
+pub extern "C" fn clr_last_error_message() -> *const c_char {
+    last_error_ptr()
+}
+
+/// The journal–bearing test of the flap paper (Wan et al., Machines 10 (2022) 1098): steel
+/// (207 GPa, 0.3) on both sides, R_i = 10 mm, R_j = 9.9 mm, L = 15 mm.
+#[no_mangle]
+pub extern "C" fn clr_journal_bearing_flap_paper_test() -> ClrJournalBearing {
+    let jb = JournalBearing::flap_paper_test();
+    ClrJournalBearing {
+        bearing_youngs_modulus: jb.bearing.youngs_modulus,
+        bearing_poisson_ratio: jb.bearing.poisson_ratio,
+        journal_youngs_modulus: jb.journal.youngs_modulus,
+        journal_poisson_ratio: jb.journal.poisson_ratio,
+        bearing_radius: jb.r_bearing,
+        journal_radius: jb.r_journal,
+        length: jb.length,
+    }
+}
+
+/// Create a journal–bearing normal law by the flap paper's label (case-insensitive): "Hertz",
+/// "LN", "Gonthier", "Bai", "Wang" or "Modified" (see `NormalLaw::preset` in clr-contact for the
+/// elastic part and damping factor of each), for the geometry `*geometry` and the input
+/// coefficient of restitution c_e ∈ (0, 1]. On success `*out` receives a new handle to free with
+/// `clr_normal_law_free`.
+///
+/// # Safety
+/// `name` is NULL or a NUL-terminated string; `geometry` is NULL or points to a
+/// `ClrJournalBearing`; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_preset(
+    name: *const c_char,
+    geometry: *const ClrJournalBearing,
+    c_e: f64,
+    out: *mut *mut ClrNormalLaw,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        if name.is_null() {
+            return Err(CapiError::Null("name"));
+        }
+        let name = CStr::from_ptr(name)
+            .to_str()
+            .map_err(|_| CapiError::Utf8("name"))?;
+        let g = borrow("geometry", geometry)?;
+        let jb = JournalBearing {
+            bearing: Material {
+                youngs_modulus: g.bearing_youngs_modulus,
+                poisson_ratio: g.bearing_poisson_ratio,
+            },
+            journal: Material {
+                youngs_modulus: g.journal_youngs_modulus,
+                poisson_ratio: g.journal_poisson_ratio,
+            },
+            r_bearing: g.bearing_radius,
+            r_journal: g.journal_radius,
+            length: g.length,
+        };
+        let law = NormalLaw::preset(name, &jb, c_e)?;
+        out.write(Box::into_raw(Box::new(ClrNormalLaw(law))));
+        Ok(())
+    })
+}
+
+/// Create a normal law from an elastic part (`CLR_ELASTIC_*` with its `n_params` parameters in
+/// SI, in the order documented at each constant), a damping factor (`CLR_DAMPING_*`) and the
+/// input coefficient of restitution c_e ∈ (0, 1]. On success `*out` receives a new handle to free
+/// with `clr_normal_law_free`.
+///
+/// # Safety
+/// `params` points to `n_params` doubles (may be NULL if `n_params` is 0); `out` is NULL or
+/// writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_new(
+    elastic: ClrElasticKind,
+    params: *const f64,
+    n_params: usize,
+    damping: ClrDampingKind,
+    c_e: f64,
+    out: *mut *mut ClrNormalLaw,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let p = self::params(params, n_params)?;
+        let elastic = ElasticKind::from_code(elastic)?.build(p)?;
+        let law = NormalLaw::new(elastic, damping_from_code(damping)?, c_e)?;
+        out.write(Box::into_raw(Box::new(ClrNormalLaw(law))));
+        Ok(())
+    })
+}
+
+/// Set the floor of δ̇⁻ (m/s, > 0; default 1e-4): below it the impact velocity is replaced by
+/// this value so that a contact starting at rest keeps a finite damping.
+///
+/// # Safety
+/// `law` is NULL or a live handle not used by another thread during the call.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_set_min_impact_velocity(
+    law: *mut ClrNormalLaw,
+    min_impact_velocity: f64,
+) -> ClrStatus {
+    guard(|| {
+        let law = law.as_mut().ok_or(CapiError::Null("law"))?;
+        law.0 = law.0.with_min_impact_velocity(min_impact_velocity)?;
+        Ok(())
+    })
+}
+
+/// Normal force F_N (N) for the penetration δ (m), its rate δ̇ (m/s, > 0 approaching) and the
+/// rate at contact onset δ̇⁻ (m/s): F_N = max(0, F_e(δ)(1 + χ δ̇/max(δ̇⁻, floor))), 0 for δ ≤ 0.
+/// Non-finite inputs are rejected with `CLR_STATUS_NON_FINITE`. Allocates nothing on success.
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_force(
+    law: *const ClrNormalLaw,
+    delta: f64,
+    delta_dot: f64,
+    delta_dot_minus: f64,
+    out: *mut f64,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = borrow("law", law)?;
+        let d = finite("delta (m)", delta)?;
+        let dd = finite("delta_dot (m/s)", delta_dot)?;
+        let ddm = finite("delta_dot_minus (m/s)", delta_dot_minus)?;
+        out.write(law.0.force(d, dd, ddm));
+        Ok(())
+    })
+}
+
+/// Elastic part F_e(δ) (N) of the law for the penetration δ (m); 0 for δ ≤ 0.
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_elastic_force(
+    law: *const ClrNormalLaw,
+    delta: f64,
+    out: *mut f64,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = borrow("law", law)?;
+        out.write(law.0.elastic_force(finite("delta (m)", delta)?));
+        Ok(())
+    })
+}
+
+/// Damping factor χ (–) of the law.
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_chi(law: *const ClrNormalLaw, out: *mut f64) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        out.write(borrow("law", law)?.0.chi());
+        Ok(())
+    })
+}
+
+/// Restitution (–) the law produces in a free impact, exact for any elastic part: the root e of
+/// (1 + e)χ = ln[(1 + χ)/(1 − χe)] (contact-laws.md §1.3).
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_effective_restitution(
+    law: *const ClrNormalLaw,
+    out: *mut f64,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        out.write(borrow("law", law)?.0.effective_restitution());
+        Ok(())
+    })
+}
+
+/// Free a normal law. NULL is ignored. Freeing a handle twice is undefined behaviour.
+///
+/// # Safety
+/// `law` is NULL or a handle from `clr_normal_law_new`/`clr_normal_law_preset` not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn clr_normal_law_free(law: *mut ClrNormalLaw) {
+    if !law.is_null() {
+        drop(Box::from_raw(law));
+    }
+}
+
+/// Damping factor χ (–) of the factor `damping` (`CLR_DAMPING_*`) for the input coefficient of
+/// restitution c_e ∈ (0, 1].
+///
+/// # Safety
+/// `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_damping_chi(
+    damping: ClrDampingKind,
+    c_e: f64,
+    out: *mut f64,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        out.write(damping_from_code(damping)?.chi(c_e)?);
+        Ok(())
+    })
+}
+
+/// Restitution e (–) produced by a multiplicative law with damping factor χ ≥ 0 in a free impact:
+/// the root of (1 + e)χ = ln[(1 + χ)/(1 − χe)] (contact-laws.md §1.3).
+///
+/// # Safety
+/// `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_effective_restitution(chi: f64, out: *mut f64) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        out.write(effective_restitution(chi)?);
+        Ok(())
+    })
+}
+
+/// Create a friction law (`CLR_FRICTION_*` with its `n_params` parameters, in the order
+/// documented at each constant). On success `*out` receives a new handle to free with
+/// `clr_friction_law_free`.
+///
+/// # Safety
+/// `params` points to `n_params` doubles (may be NULL if `n_params` is 0); `out` is NULL or
+/// writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_friction_law_new(
+    kind: ClrFrictionKind,
+    params: *const f64,
+    n_params: usize,
+    out: *mut *mut ClrFrictionLaw,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = FrictionKind::from_code(kind)?.build(self::params(params, n_params)?)?;
+        out.write(Box::into_raw(Box::new(ClrFrictionLaw(law))));
+        Ok(())
+    })
+}
+
+/// Friction force F_T (N) on body j along the tangent, for the slip velocity v_T (m/s) and the
+/// normal force F_N (N): F_T = μ(v_T) F_N, opposing v_T; 0 for F_N ≤ 0.
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_friction_law_force(
+    law: *const ClrFrictionLaw,
+    v_t: f64,
+    f_n: f64,
+    out: *mut f64,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = borrow("law", law)?;
+        let v = finite("v_t (m/s)", v_t)?;
+        let f = finite("f_n (N)", f_n)?;
+        out.write(law.0.force(v, f));
+        Ok(())
+    })
+}
+
+/// Signed friction coefficient μ(v_T) (–), with μ·v_T ≤ 0, so that F_T = μ F_N.
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_friction_law_coefficient(
+    law: *const ClrFrictionLaw,
+    v_t: f64,
+    out: *mut f64,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = borrow("law", law)?;
+        out.write(law.0.signed_coefficient(finite("v_t (m/s)", v_t)?));
+        Ok(())
+    })
+}
+
+/// Free a friction law. NULL is ignored. Freeing a handle twice is undefined behaviour.
+///
+/// # Safety
+/// `law` is NULL or a handle from `clr_friction_law_new` not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn clr_friction_law_free(law: *mut ClrFrictionLaw) {
+    if !law.is_null() {
+        drop(Box::from_raw(law));
+    }
+}
+
+/// Create a planar revolute clearance joint: bearing radius R_i and journal radius R_j (m,
+/// R_i > R_j > 0), and the local coordinates (m) of the bearing centre on body i and of the
+/// journal centre on body j. On success `*out` receives a new handle to free with
+/// `clr_revolute_joint_free`.
+///
+/// # Safety
+/// `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_revolute_joint_new(
+    bearing_radius: f64,
+    journal_radius: f64,
+    bearing_centre_x: f64,
+    bearing_centre_y: f64,
+    journal_centre_x: f64,
+    journal_centre_y: f64,
+    out: *mut *mut ClrRevoluteJoint,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let joint = RevoluteClearance::new(
+            bearing_radius,
+            journal_radius,
+            [bearing_centre_x, bearing_centre_y].into(),
+            [journal_centre_x, journal_centre_y].into(),
+        )?;
+        out.write(Box::into_raw(Box::new(ClrRevoluteJoint(joint))));
+        Ok(())
+    })
+}
+
+/// Generalized forces of the clearance joint on both bodies (Flores et al., Comput. Struct. 82
+/// (2004) 1359): penetration δ = |r_j^P − r_i^P| − (R_i − R_j), F_N from `normal` with δ̇ = v_N
+/// and the impact velocity δ̇⁻ = `impact_velocity` (m/s; the caller keeps it per contact: the
+/// v_N at the first evaluation with δ > 0, until separation), F_T from `friction` (NULL:
+/// frictionless), force on the journal −F_N n + F_T t at its contact point and the opposite on
+/// the bearing, reduced to each body's reference point. Zero forces when δ ≤ 0.
+///
+/// # Safety
+/// `joint`, `normal` are NULL or live handles; `friction` is NULL or a live handle; `bearing`,
+/// `journal` are NULL or point to `ClrBodyState`; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_revolute_joint_forces(
+    joint: *const ClrRevoluteJoint,
+    normal: *const ClrNormalLaw,
+    friction: *const ClrFrictionLaw,
+    bearing: *const ClrBodyState,
+    journal: *const ClrBodyState,
+    impact_velocity: f64,
+    out: *mut ClrRevoluteForces,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let joint = borrow("joint", joint)?;
+        let normal = borrow("normal", normal)?;
+        let friction = friction.as_ref();
+        let bi = body_state("bearing state", borrow("bearing", bearing)?)?;
+        let bj = body_state("journal state", borrow("journal", journal)?)?;
+        let v0 = finite("impact_velocity (m/s)", impact_velocity)?;
+        out.write(revolute_forces(
+            &joint.0,
+            &normal.0,
+            friction.map(|f| &f.0),
+            &bi,
+            &bj,
+            v0,
+        ));
+        Ok(())
+    })
+}
+
+/// The revolute joint evaluation shared by the C and Python bindings.
+pub fn revolute_forces(
+    joint: &RevoluteClearance,
+    normal: &NormalLaw,
+    friction: Option<&FrictionLaw>,
+    bearing: &BodyState,
+    journal: &BodyState,
+    impact_velocity: f64,
+) -> ClrRevoluteForces {
+    let c = joint.contact(bearing, journal);
+    let forces = if c.in_contact() {
+        let f_n = normal.force(c.penetration, c.normal_velocity, impact_velocity);
+        let f_t = friction.map_or(0.0, |f| f.force(c.tangential_velocity, f_n));
+        c.generalized_forces(f_n, f_t)
+    } else {
+        JointForces::default()
+    };
+    ClrRevoluteForces {
+        penetration: c.penetration,
+        normal_x: c.normal.x,
+        normal_y: c.normal.y,
+        normal_velocity: c.normal_velocity,
+        tangential_velocity: c.tangential_velocity,
+        normal_force: forces.normal_force,
+        tangential_force: forces.tangential_force,
+        bearing: generalized(forces.bearing),
+        journal: generalized(forces.journal),
+    }
+}
+
+/// Free a revolute joint. NULL is ignored. Freeing a handle twice is undefined behaviour.
+///
+/// # Safety
+/// `joint` is NULL or a handle from `clr_revolute_joint_new` not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn clr_revolute_joint_free(joint: *mut ClrRevoluteJoint) {
+    if !joint.is_null() {
+        drop(Box::from_raw(joint));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clr_contact::DampingFactor;
+
+    #[test]
+    fn constants_match_the_tables() {
+        let elastic = [
+            CLR_ELASTIC_HERTZ,
+            CLR_ELASTIC_POWER,
+            CLR_ELASTIC_LINEAR,
+            CLR_ELASTIC_HERTZ_SPHERE_SPHERE,
+            CLR_ELASTIC_HERTZ_SPHERE_PLANE,
+            CLR_ELASTIC_HERTZ_INTERNAL_CYLINDER,
+            CLR_ELASTIC_LIU,
+            CLR_ELASTIC_BAI_ZHAO,
+            CLR_ELASTIC_PEREIRA_INTERNAL,
+            CLR_ELASTIC_PEREIRA_EXTERNAL,
+            CLR_ELASTIC_JOHNSON,
+        ];
+        for (&k, code) in ElasticKind::ALL.iter().zip(elastic) {
+            assert_eq!(ElasticKind::from_code(code).unwrap(), k);
+        }
+        let damping = [
+            (CLR_DAMPING_NONE, DampingFactor::None),
+            (CLR_DAMPING_HUNT_CROSSLEY, DampingFactor::HuntCrossley),
+            (
+                CLR_DAMPING_LANKARANI_NIKRAVESH,
+                DampingFactor::LankaraniNikravesh,
+            ),
+            (CLR_DAMPING_FLORES, DampingFactor::Flores),
+            (CLR_DAMPING_GONTHIER, DampingFactor::Gonthier),
+            (CLR_DAMPING_ZHIYING_QISHAO, DampingFactor::ZhiyingQishao),
+            (CLR_DAMPING_HU_GUO, DampingFactor::HuGuo),
+            (CLR_DAMPING_GHARIB_HURMUZLU, DampingFactor::GharibHurmuzlu),
+            (
+                CLR_DAMPING_HERBERT_MCWHANNELL,
+                DampingFactor::HerbertMcWhannell,
+            ),
+            (CLR_DAMPING_LEE_WANG, DampingFactor::LeeWang),
+            (CLR_DAMPING_EXACT, DampingFactor::Exact),
+        ];
+        assert_eq!(damping.len(), DampingFactor::ALL.len());
+        for (code, d) in damping {
+            assert_eq!(damping_from_code(code).unwrap(), d);
+        }
+        let friction = [
+            (CLR_FRICTION_COULOMB, FrictionKind::Coulomb),
+            (CLR_FRICTION_AMBROSIO, FrictionKind::Ambrosio),
+            (CLR_FRICTION_THRELFALL, FrictionKind::Threlfall),
+            (CLR_FRICTION_STRIBECK, FrictionKind::Stribeck),
+        ];
+        for (code, k) in friction {
+            assert_eq!(FrictionKind::from_code(code).unwrap(), k);
+        }
+    }
+}

@@ -1,0 +1,345 @@
+/*
+ * C test of libclr_contact_capi against the unit-test checklist of contact-laws.md §7
+ * (steel E = 207 GPa, nu = 0.3). Built and run by tests/c_program.rs with the machine's `cc`.
+ *
+ * Tolerances: the §7 tables print 7–8 significant digits, so closed-form values are compared with
+ * a relative tolerance of 1e-7 (half a unit of the last printed digit or better); values printed
+ * with 6 decimals (restitution, chi_exact, moments) with an absolute tolerance of 1e-6.
+ * Prints one line per check and "N passed, M failed"; exits non-zero on any failure.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "clr_contact.h"
+
+static int passed = 0;
+static int failed = 0;
+
+static void check(const char *what, int ok) {
+    if (ok) {
+        passed++;
+        printf("ok   %s\n", what);
+    } else {
+        failed++;
+        printf("FAIL %s (last error: %s)\n", what, clr_last_error_message());
+    }
+}
+
+static void close_rel(const char *what, double got, double expected, double rel) {
+    int ok = fabs(got - expected) <= rel * fabs(expected);
+    if (!ok) printf("     %s: got %.10g, expected %.10g (rel tol %g)\n", what, got, expected, rel);
+    check(what, ok);
+}
+
+static void close_abs(const char *what, double got, double expected, double tol) {
+    int ok = fabs(got - expected) <= tol;
+    if (!ok) printf("     %s: got %.10g, expected %.10g (abs tol %g)\n", what, got, expected, tol);
+    check(what, ok);
+}
+
+static void status_is(const char *what, ClrStatus got, ClrStatus expected) {
+    if (got != expected) printf("     %s: status %d, expected %d\n", what, (int)got, (int)expected);
+    check(what, got == expected);
+}
+
+static const double E = 207e9, NU = 0.3;
+static const double RI = 10e-3, RJ = 9.9e-3, L = 15e-3, C = 0.1e-3;
+
+/* Composite modulus E* = 1/(sigma_i + sigma_j), sigma = (1 - nu^2)/E (contact-laws.md §0). */
+static double e_star(void) { return 1.0 / (2.0 * (1.0 - NU * NU) / E); }
+
+static ClrNormalLaw *internal_law(ClrDampingKind damping) {
+    double p[6] = {E, NU, RI, E, NU, RJ};
+    ClrNormalLaw *law = NULL;
+    ClrStatus s = clr_normal_law_new(CLR_ELASTIC_HERTZ_INTERNAL_CYLINDER, p, 6, damping, 0.5, &law);
+    status_is("create internal-cylinder law", s, CLR_STATUS_OK);
+    return law;
+}
+
+static double force(const ClrNormalLaw *law, double d, double dd, double ddm) {
+    double f = NAN;
+    ClrStatus s = clr_normal_law_force(law, d, dd, ddm, &f);
+    if (s != CLR_STATUS_OK) printf("     force: status %d: %s\n", (int)s, clr_last_error_message());
+    return f;
+}
+
+/* §7.1 and §7.2: the dissipative laws on the internal revolute K, delta = 10 um,
+ * delta_dot_minus = 0.5 m/s, c_e = 0.5. */
+static void normal_laws(void) {
+    ClrNormalLaw *ln = internal_law(CLR_DAMPING_LANKARANI_NIKRAVESH);
+    double fe = NAN, chi = NAN, e = NAN;
+    status_is("elastic force status", clr_normal_law_elastic_force(ln, 10e-6, &fe), CLR_STATUS_OK);
+    close_rel("7.1 internal revolute F_e(10 um) = 4771.5040 N", fe, 4771.5040, 1e-7);
+    status_is("chi status", clr_normal_law_chi(ln, &chi), CLR_STATUS_OK);
+    close_rel("7.2 L-N chi = 0.5625", chi, 0.5625, 1e-12);
+    close_rel("7.2 L-N F(+0.25) = 6113.4895 N", force(ln, 10e-6, 0.25, 0.5), 6113.4895, 1e-7);
+    close_rel("7.2 L-N F(-0.25) = 3429.5185 N", force(ln, 10e-6, -0.25, 0.5), 3429.5185, 1e-7);
+    status_is("restitution status", clr_normal_law_effective_restitution(ln, &e), CLR_STATUS_OK);
+    close_abs("7.3 L-N e_eff(c_e = 0.5) = 0.725241", e, 0.725241, 1e-6);
+    check("7.2 F = 0 for delta <= 0", force(ln, -1e-6, 0.25, 0.5) == 0.0);
+
+    /* The floor of delta_dot_minus: with a floor of 0.5 m/s, an onset rate of 1e-6 m/s acts as
+     * 0.5 m/s, so the §7.2 value comes back. */
+    status_is("set floor", clr_normal_law_set_min_impact_velocity(ln, 0.5), CLR_STATUS_OK);
+    close_rel("floored delta_dot_minus gives F(+0.25) = 6113.4895 N", force(ln, 10e-6, 0.25, 1e-6),
+              6113.4895, 1e-7);
+    status_is("floor <= 0 rejected", clr_normal_law_set_min_impact_velocity(ln, 0.0),
+              CLR_STATUS_INVALID_PARAMETER);
+    clr_normal_law_free(ln);
+
+    ClrNormalLaw *fl = internal_law(CLR_DAMPING_FLORES);
+    close_rel("7.2 Flores F(+0.25) = 8588.7072 N", force(fl, 10e-6, 0.25, 0.5), 8588.7072, 1e-7);
+    close_rel("7.2 Flores F(-0.25) = 954.3008 N", force(fl, 10e-6, -0.25, 0.5), 954.3008, 1e-7);
+    check("7.2 F clamped at 0 when 1 + chi*dd/ddm < 0", force(fl, 10e-6, -0.5, 0.5) == 0.0);
+    clr_normal_law_free(fl);
+
+    ClrNormalLaw *zq = internal_law(CLR_DAMPING_ZHIYING_QISHAO);
+    close_rel("7.2 Zhiying-Qishao F(+0.25) = 8419.3988 N", force(zq, 10e-6, 0.25, 0.5), 8419.3988,
+              1e-7);
+    clr_normal_law_free(zq);
+
+    /* Presets of the flap paper on its journal-bearing test geometry (same K as §7.1). */
+    ClrJournalBearing jb = clr_journal_bearing_flap_paper_test();
+    close_rel("flap test geometry R_i = 10 mm", jb.bearing_radius, RI, 1e-15);
+    ClrNormalLaw *p = NULL;
+    status_is("preset LN", clr_normal_law_preset("LN", &jb, 0.5, &p), CLR_STATUS_OK);
+    close_rel("preset LN F(-0.25) = 3429.5185 N", force(p, 10e-6, -0.25, 0.5), 3429.5185, 1e-7);
+    clr_normal_law_free(p);
+    p = NULL;
+    status_is("preset gonthier", clr_normal_law_preset("gonthier", &jb, 0.5, &p), CLR_STATUS_OK);
+    close_rel("preset Gonthier F(+0.25) = 8350.1320 N", force(p, 10e-6, 0.25, 0.5), 8350.1320,
+              1e-7);
+    clr_normal_law_free(p);
+
+    /* §7.5 cylinder laws with Delta R = 0.1 mm, L = 15 mm. */
+    double liu_p[3] = {e_star(), C, L};
+    ClrNormalLaw *liu = NULL;
+    status_is("create Liu", clr_normal_law_new(CLR_ELASTIC_LIU, liu_p, 3, CLR_DAMPING_NONE, 1.0, &liu),
+              CLR_STATUS_OK);
+    clr_normal_law_elastic_force(liu, 1e-6, &fe);
+    close_rel("7.5 Liu F(1 um) = 188.55342 N", fe, 188.55342, 1e-7);
+    clr_normal_law_free(liu);
+
+    double bz_p[2] = {e_star(), C};
+    ClrNormalLaw *bz = NULL;
+    status_is("create Bai-Zhao",
+              clr_normal_law_new(CLR_ELASTIC_BAI_ZHAO, bz_p, 2, CLR_DAMPING_LANKARANI_NIKRAVESH, 0.5,
+                                 &bz),
+              CLR_STATUS_OK);
+    close_rel("7.5 Bai-Zhao hybrid F(10 um, 0.25, 0.5) = 2244.7536 N", force(bz, 10e-6, 0.25, 0.5),
+              2244.7536, 1e-7);
+    clr_normal_law_free(bz);
+}
+
+/* §1.3 and §7.3: damping factors and the exact restitution relation. */
+static void restitution(void) {
+    double chi = NAN, e = NAN;
+    status_is("chi_exact status", clr_damping_chi(CLR_DAMPING_EXACT, 0.5, &chi), CLR_STATUS_OK);
+    close_abs("7.3 chi_exact(0.5) = 1.432751", chi, 1.432751, 1e-6);
+    clr_damping_chi(CLR_DAMPING_EXACT, 0.9, &chi);
+    close_abs("7.3 chi_exact(0.9) = 0.166482", chi, 0.166482, 1e-6);
+    clr_damping_chi(CLR_DAMPING_ZHIYING_QISHAO, 0.5, &chi);
+    /* 0.75 * 0.75 * e = 1.52903353; the §7.2 table prints it as 1.5290340, i.e. good to 6
+     * decimals, hence the absolute tolerance. */
+    close_abs("7.2 Zhiying-Qishao chi(0.5) = 1.5290340", chi, 1.5290340, 1e-6);
+    status_is("e_eff status", clr_effective_restitution(0.5625, &e), CLR_STATUS_OK);
+    close_abs("7.3 e_eff(chi = 0.5625) = 0.725241", e, 0.725241, 1e-6);
+    clr_effective_restitution(1.6, &e);
+    close_abs("1.3 table: Flores e_eff(c_e = 0.5) = 0.4704", e, 0.4704, 5e-5);
+}
+
+/* §7.6 friction, F_N = 1000 N. */
+static void friction(void) {
+    ClrFrictionLaw *law = NULL;
+    double f = NAN, mu = NAN;
+
+    double coulomb[2] = {0.1, 1e-3};
+    status_is("create Coulomb", clr_friction_law_new(CLR_FRICTION_COULOMB, coulomb, 2, &law),
+              CLR_STATUS_OK);
+    clr_friction_law_force(law, 0.02, 1000.0, &f);
+    close_rel("7.6 Coulomb F_T(0.02) = -100 N", f, -100.0, 1e-12);
+    clr_friction_law_free(law);
+
+    double amb[3] = {0.1, 1e-4, 1e-3};
+    clr_friction_law_new(CLR_FRICTION_AMBROSIO, amb, 3, &law);
+    clr_friction_law_force(law, 5e-5, 1000.0, &f);
+    close_abs("7.6 Ambrosio F_T(5e-5) = 0 N", f, 0.0, 1e-12);
+    clr_friction_law_force(law, 5.5e-4, 1000.0, &f);
+    close_rel("7.6 Ambrosio F_T(5.5e-4) = -50 N", f, -50.0, 1e-9);
+    clr_friction_law_force(law, -5.5e-4, 1000.0, &f);
+    close_rel("7.6 Ambrosio F_T(-5.5e-4) = +50 N", f, 50.0, 1e-9);
+    clr_friction_law_force(law, 2e-3, 1000.0, &f);
+    close_rel("7.6 Ambrosio F_T(2e-3) = -100 N", f, -100.0, 1e-12);
+    clr_friction_law_free(law);
+
+    double thr[2] = {0.1, 0.01};
+    clr_friction_law_new(CLR_FRICTION_THRELFALL, thr, 2, &law);
+    clr_friction_law_force(law, 0.01, 1000.0, &f);
+    close_rel("7.6 Threlfall F_T(0.01) = -95.02129 N", f, -95.02129, 1e-7);
+    clr_friction_law_force(law, 0.001, 1000.0, &f);
+    close_rel("7.6 Threlfall F_T(0.001) = -25.91818 N", f, -25.91818, 1e-7);
+    clr_friction_law_free(law);
+
+    double stb[4] = {0.2, 0.1, 0.01, 0.1};
+    clr_friction_law_new(CLR_FRICTION_STRIBECK, stb, 4, &law);
+    const double v[7] = {0.0, 0.005, -0.005, 0.01, 0.055, 0.1, 0.2};
+    const double expected[7] = {0.0, -0.1375, 0.1375, -0.2, -0.15, -0.1, -0.1};
+    for (int i = 0; i < 7; i++) {
+        char what[96];
+        snprintf(what, sizeof what, "7.6 Stribeck mu(%g) = %g", v[i], expected[i]);
+        clr_friction_law_coefficient(law, v[i], &mu);
+        close_abs(what, mu, expected[i], 1e-12);
+    }
+    clr_friction_law_free(law);
+}
+
+/* §7.7 revolute kinematics and forces: bearing fixed at the origin, journal centre at
+ * (c + delta) n with n = (0.6, 0.8), journal velocity (0.3, 0.4) m/s, omega_j = 10 rad/s; L-N
+ * (c_e = 0.5, delta_dot_minus = 0.5) and Ambrosio (mu = 0.1, so c_d = 1). */
+static void revolute(void) {
+    ClrRevoluteJoint *joint = NULL;
+    status_is("create joint", clr_revolute_joint_new(RI, RJ, 0.0, 0.0, 0.0, 0.0, &joint),
+              CLR_STATUS_OK);
+    ClrJournalBearing jb = clr_journal_bearing_flap_paper_test();
+    ClrNormalLaw *ln = NULL;
+    clr_normal_law_preset("LN", &jb, 0.5, &ln);
+    double amb[3] = {0.1, 1e-4, 1e-3};
+    ClrFrictionLaw *fr = NULL;
+    clr_friction_law_new(CLR_FRICTION_AMBROSIO, amb, 3, &fr);
+
+    const double e = C + 10e-6;
+    ClrBodyState bearing = {0};
+    ClrBodyState journal = {e * 0.6, e * 0.8, 0.0, 0.3, 0.4, 10.0};
+    ClrRevoluteForces out;
+    memset(&out, 0, sizeof out);
+    status_is("revolute forces status",
+              clr_revolute_joint_forces(joint, ln, fr, &bearing, &journal, 0.5, &out), CLR_STATUS_OK);
+    close_rel("7.7 penetration = 10 um", out.penetration, 10e-6, 1e-9);
+    close_rel("7.7 v_N = 0.5 m/s", out.normal_velocity, 0.5, 1e-12);
+    close_rel("7.7 v_T = 0.099 m/s", out.tangential_velocity, 0.099, 1e-12);
+    close_rel("7.7 F_N = 7455.4750 N", out.normal_force, 7455.4750, 1e-7);
+    close_rel("7.7 F_T = -745.5475 N", out.tangential_force, -745.5475, 1e-7);
+    close_rel("7.7 f_j,x = -3876.8470 N", out.journal.fx, -3876.8470, 1e-7);
+    close_rel("7.7 f_j,y = -6411.7085 N", out.journal.fy, -6411.7085, 1e-7);
+    close_abs("7.7 m_j = -7.380920 N m", out.journal.moment, -7.380920, 1e-6);
+    close_rel("7.7 f_i,x = 3876.8470 N", out.bearing.fx, 3876.8470, 1e-7);
+    close_rel("7.7 f_i,y = 6411.7085 N", out.bearing.fy, 6411.7085, 1e-7);
+    close_abs("7.7 m_i = +7.455475 N m", out.bearing.moment, 7.455475, 1e-6);
+
+    /* Frictionless (NULL friction): only the normal force, no moment on the journal about its
+     * centre (the normal force passes through it). */
+    clr_revolute_joint_forces(joint, ln, NULL, &bearing, &journal, 0.5, &out);
+    close_rel("frictionless f_j,x = -0.6 F_N", out.journal.fx, -0.6 * 7455.4750, 1e-7);
+    close_abs("frictionless m_j = 0", out.journal.moment, 0.0, 1e-9);
+
+    /* Out of contact: concentric journal, zero forces. */
+    ClrBodyState centred = {0.0, 0.0, 0.0, 0.3, 0.4, 10.0};
+    clr_revolute_joint_forces(joint, ln, fr, &bearing, &centred, 0.5, &out);
+    check("no contact: penetration = -c and zero forces",
+          fabs(out.penetration + C) < 1e-15 && out.normal_force == 0.0 && out.journal.fx == 0.0 &&
+              out.bearing.moment == 0.0);
+
+    /* Bad input never crashes. */
+    ClrBodyState nan_state = journal;
+    nan_state.vx = NAN;
+    status_is("NaN body state -> NON_FINITE",
+              clr_revolute_joint_forces(joint, ln, fr, &bearing, &nan_state, 0.5, &out),
+              CLR_STATUS_NON_FINITE);
+    status_is("NULL bearing state -> NULL_POINTER",
+              clr_revolute_joint_forces(joint, ln, fr, NULL, &journal, 0.5, &out),
+              CLR_STATUS_NULL_POINTER);
+    status_is("NULL joint -> NULL_POINTER",
+              clr_revolute_joint_forces(NULL, ln, fr, &bearing, &journal, 0.5, &out),
+              CLR_STATUS_NULL_POINTER);
+    ClrRevoluteJoint *bad = NULL;
+    status_is("R_j >= R_i -> INVALID_PARAMETER",
+              clr_revolute_joint_new(RJ, RI, 0.0, 0.0, 0.0, 0.0, &bad), CLR_STATUS_INVALID_PARAMETER);
+    check("no handle on failure", bad == NULL);
+
+    clr_revolute_joint_free(joint);
+    clr_normal_law_free(ln);
+    clr_friction_law_free(fr);
+}
+
+/* Error handling: status codes, messages, outputs untouched on failure. */
+static void errors(void) {
+    ClrNormalLaw *law = NULL;
+    double p[6] = {E, NU, RI, E, NU, RJ};
+    status_is("c_e = 1.5 -> INVALID_PARAMETER",
+              clr_normal_law_new(CLR_ELASTIC_HERTZ_INTERNAL_CYLINDER, p, 6,
+                                 CLR_DAMPING_LANKARANI_NIKRAVESH, 1.5, &law),
+              CLR_STATUS_INVALID_PARAMETER);
+    check("message names c_e", strstr(clr_last_error_message(), "c_e") != NULL);
+    check("no handle on failure", law == NULL);
+    status_is("5 parameters for 6 -> INVALID_ARGUMENT",
+              clr_normal_law_new(CLR_ELASTIC_HERTZ_INTERNAL_CYLINDER, p, 5, CLR_DAMPING_NONE, 0.5, &law),
+              CLR_STATUS_INVALID_ARGUMENT);
+    check("message lists the parameters", strstr(clr_last_error_message(), "R_journal") != NULL);
+    status_is("unknown elastic code -> INVALID_ARGUMENT",
+              clr_normal_law_new(99, p, 6, CLR_DAMPING_NONE, 0.5, &law), CLR_STATUS_INVALID_ARGUMENT);
+    status_is("unknown damping code -> INVALID_ARGUMENT",
+              clr_normal_law_new(CLR_ELASTIC_HERTZ, p, 1, 1234, 0.5, &law), CLR_STATUS_INVALID_ARGUMENT);
+    status_is("NULL params -> NULL_POINTER",
+              clr_normal_law_new(CLR_ELASTIC_HERTZ, NULL, 1, CLR_DAMPING_NONE, 0.5, &law),
+              CLR_STATUS_NULL_POINTER);
+    status_is("NULL out -> NULL_POINTER",
+              clr_normal_law_new(CLR_ELASTIC_HERTZ, p, 1, CLR_DAMPING_NONE, 0.5, NULL),
+              CLR_STATUS_NULL_POINTER);
+    double pereira[3] = {e_star(), 11e-3, L};
+    status_is("Pereira with Delta R = 11 mm -> OUT_OF_VALIDITY",
+              clr_normal_law_new(CLR_ELASTIC_PEREIRA_INTERNAL, pereira, 3, CLR_DAMPING_NONE, 1.0, &law),
+              CLR_STATUS_OUT_OF_VALIDITY);
+    ClrJournalBearing jb = clr_journal_bearing_flap_paper_test();
+    status_is("unknown preset -> UNKNOWN_NAME", clr_normal_law_preset("Foo", &jb, 0.5, &law),
+              CLR_STATUS_UNKNOWN_NAME);
+    check("message lists the presets", strstr(clr_last_error_message(), "Gonthier") != NULL);
+    status_is("NULL preset name -> NULL_POINTER", clr_normal_law_preset(NULL, &jb, 0.5, &law),
+              CLR_STATUS_NULL_POINTER);
+    status_is("NULL geometry -> NULL_POINTER", clr_normal_law_preset("LN", NULL, 0.5, &law),
+              CLR_STATUS_NULL_POINTER);
+    status_is("invalid UTF-8 name -> INVALID_ARGUMENT",
+              clr_normal_law_preset("\xff\xfe", &jb, 0.5, &law), CLR_STATUS_INVALID_ARGUMENT);
+    check("still no handle", law == NULL);
+
+    double f = 123.0;
+    status_is("NULL law -> NULL_POINTER", clr_normal_law_force(NULL, 1e-5, 0.0, 0.5, &f),
+              CLR_STATUS_NULL_POINTER);
+    law = internal_law(CLR_DAMPING_LANKARANI_NIKRAVESH);
+    status_is("NaN delta -> NON_FINITE", clr_normal_law_force(law, NAN, 0.0, 0.5, &f),
+              CLR_STATUS_NON_FINITE);
+    status_is("inf delta_dot -> NON_FINITE", clr_normal_law_force(law, 1e-5, INFINITY, 0.5, &f),
+              CLR_STATUS_NON_FINITE);
+    check("output untouched on failure", f == 123.0);
+    check("message names delta", strstr(clr_last_error_message(), "delta_dot") != NULL);
+    clr_normal_law_free(law);
+
+    ClrFrictionLaw *fr = NULL;
+    double bad[3] = {0.1, 1e-3, 1e-4};
+    status_is("Ambrosio v1 < v0 -> INVALID_PARAMETER",
+              clr_friction_law_new(CLR_FRICTION_AMBROSIO, bad, 3, &fr), CLR_STATUS_INVALID_PARAMETER);
+    status_is("NULL friction law -> NULL_POINTER", clr_friction_law_force(fr, 0.1, 1.0, &f),
+              CLR_STATUS_NULL_POINTER);
+    double thr[2] = {0.1, 0.01};
+    clr_friction_law_new(CLR_FRICTION_THRELFALL, thr, 2, &fr);
+    status_is("NaN F_N -> NON_FINITE", clr_friction_law_force(fr, 0.1, NAN, &f), CLR_STATUS_NON_FINITE);
+    clr_friction_law_free(fr);
+    status_is("negative chi -> INVALID_PARAMETER", clr_effective_restitution(-1.0, &f),
+              CLR_STATUS_INVALID_PARAMETER);
+
+    clr_normal_law_free(NULL);
+    clr_friction_law_free(NULL);
+    clr_revolute_joint_free(NULL);
+    check("free(NULL) is a no-op", 1);
+    check("version string = " CLR_EXPECTED_VERSION, strcmp(clr_version(), CLR_EXPECTED_VERSION) == 0);
+}
+
+int main(void) {
+    normal_laws();
+    restitution();
+    friction();
+    revolute();
+    errors();
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed == 0 ? 0 : 1;
+}
