@@ -36,6 +36,9 @@ struct Impact {
     f_max: f64,
     /// Contact time (s).
     t_c: f64,
+    /// Time (s) and state [x, ẋ] at separation.
+    t_end: f64,
+    y_end: [f64; 2],
     /// (δ, F) along the contact, for the hysteresis figure.
     loop_points: Vec<(f64, f64)>,
     /// Accepted steps of both phases.
@@ -50,33 +53,47 @@ impl Impact {
 
 /// Integrate the journal's 1-D radial motion through its first impact with clr-ode.
 fn simulate(law: NormalLaw, clearance: f64) -> Result<Impact, String> {
+    simulate_from(law, clearance, 1.0, 0.0, [0.0, V0])
+}
+
+/// Free flight from (t0, y0 = [x, ẋ]) to the bearing wall on the side `side` = ±1 (x = side·c),
+/// then the contact phase to separation. With δ = side·x − c and δ̇ = side·ẋ the journal obeys
+/// m ẍ = −side·F(δ, δ̇, δ̇⁻). Velocities in [`Impact`] are δ̇ values.
+fn simulate_from(
+    law: NormalLaw,
+    clearance: f64,
+    side: f64,
+    t0: f64,
+    y0: [f64; 2],
+) -> Result<Impact, String> {
     let opts = || Options::default().rtol(1e-12).atol_vec(vec![1e-17, 1e-13]);
-    // Phase 1: free flight until δ = x − c crosses 0 (terminal event).
+    // Phase 1: free flight until δ = side·x − c crosses 0 (terminal event).
     let mut flight = OdeFn::new(2, |_t, y: &[f64], dy: &mut [f64]| {
         dy[0] = y[1];
         dy[1] = 0.0;
     })
     .event(Direction::Rising, true, move |_t, y: &[f64]| {
-        y[0] - clearance
+        side * y[0] - clearance
     });
     let mut solver = Dopri5::new(opts().output(Output::End));
     let sol = solver
-        .solve(&mut flight, 0.0, &[0.0, V0], 1.0)
+        .solve(&mut flight, t0, &y0, t0 + 1.0)
         .map_err(|e| format!("free flight: {e}"))?;
     let onset = sol
         .events
         .first()
         .ok_or("free flight: no contact onset event")?;
     let (t0, y0) = (onset.t, onset.y.clone());
-    let v_in = y0[1];
-    // Phase 2: contact, m δ̈ = −F(δ, δ̇, δ̇⁻), to the separation event; states recorded on a
-    // fine grid (2e-9 s) so the peaks are resolved far below the 1e-3 tolerance.
+    // δ̇⁻ captured at the onset event and kept for this contact only.
+    let v_in = side * y0[1];
+    // Phase 2: contact to the separation event; states recorded on a fine grid (2e-9 s) so
+    // the peaks are resolved far below the 1e-3 tolerance.
     let mut contact = OdeFn::new(2, move |_t, y: &[f64], dy: &mut [f64]| {
         dy[0] = y[1];
-        dy[1] = -law.force(y[0] - clearance, y[1], v_in) / MASS;
+        dy[1] = -side * law.force(side * y[0] - clearance, side * y[1], v_in) / MASS;
     })
     .event(Direction::Falling, true, move |_t, y: &[f64]| {
-        y[0] - clearance
+        side * y[0] - clearance
     });
     let t_end = t0 + 2e-3;
     let grid: Vec<f64> = (1..1_000_000)
@@ -95,8 +112,8 @@ fn simulate(law: NormalLaw, clearance: f64) -> Result<Impact, String> {
     let mut f_max = 0.0f64;
     let mut loop_points = Vec::new();
     for (k, (_, y)) in sol.iter().enumerate() {
-        let d = y[0] - clearance;
-        let f = law.force(d, y[1], v_in);
+        let d = side * y[0] - clearance;
+        let f = law.force(d, side * y[1], v_in);
         delta_max = delta_max.max(d);
         f_max = f_max.max(f);
         if k % 200 == 0 {
@@ -105,10 +122,12 @@ fn simulate(law: NormalLaw, clearance: f64) -> Result<Impact, String> {
     }
     Ok(Impact {
         v_in,
-        v_out: end.y[1],
+        v_out: side * end.y[1],
         delta_max,
         f_max,
         t_c: end.t - t0,
+        t_end: end.t,
+        y_end: [end.y[0], end.y[1]],
         loop_points,
         steps: sol.stats.accepted,
     })
@@ -310,6 +329,39 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
                 .failed(f64::NAN, e),
             ),
         }
+    }
+
+    // Second rebound off the opposite wall (contact-laws.md §4, step 5): a new δ̇⁻ is recorded
+    // for the new contact, so the overall restitution after two impacts is e_eff².
+    let id = "contact.restitution.second-impact";
+    if filter.wants(id) {
+        let spec = Case::new(
+            id,
+            "ẋ after two impacts / ẋ before, L-N law, c_e = 0.5",
+            "-",
+            "closed form e_eff² (contact-laws.md §1.3, §4 step 5)",
+        );
+        let e = DampingFactor::LankaraniNikravesh
+            .effective_restitution(C_E)
+            .unwrap_or(f64::NAN);
+        let run = NormalLaw::preset("LN", &jb, C_E)
+            .map_err(|e| e.to_string())
+            .and_then(|law| {
+                let first = simulate(law, c)?;
+                let second = simulate_from(law, c, -1.0, first.t_end, first.y_end)?;
+                Ok((first, second))
+            });
+        out.push(match run {
+            Ok((first, second)) => spec
+                .relative(second.y_end[1] / V0, e * e, 1e-6)
+                .note(format!(
+                    "δ̇⁻ first {:.6} m/s, second {:.6} m/s (e·v0 = {:.6})",
+                    first.v_in,
+                    second.v_in,
+                    e * V0
+                )),
+            Err(err) => spec.failed(e * e, err),
+        });
     }
 
     // Exact damping: the integrated restitution equals the requested one for a non-Hertzian
