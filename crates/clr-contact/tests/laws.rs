@@ -797,6 +797,25 @@ proptest! {
     }
 
     #[test]
+    fn lugre_bristle_state_stays_bounded(
+        v in -1.0f64..1.0,
+        frac in 1.0f64..3.0,
+        sigma0 in 1e3f64..1e7,
+    ) {
+        // Canudas de Wit et al. (1995), Property 1: |z| ≤ max g/σ0 is invariant, because
+        // outside the band g(v)/σ0 the bristle rate points back towards it.
+        let l = LuGre::new(sigma0, 300.0, 0.0, 0.2, 0.1, 0.01).unwrap();
+        let z = frac * l.g(v) / sigma0 * v.signum();
+        if v != 0.0 {
+            prop_assert!(l.z_dot(v, z) * z <= 0.0);
+        }
+        // Steady state: ż = 0 and |μ_ss| ≤ μ_max.
+        let zs = l.steady_state_z(v);
+        prop_assert!(l.z_dot(v, zs).abs() <= 1e-12 * v.abs().max(1e-300));
+        prop_assert!(l.steady_state_coefficient(v).abs() <= l.mu_max(v) * (1.0 + 1e-12));
+    }
+
+    #[test]
     fn damping_factors_satisfy_the_restitution_relation(c_e in 0.01f64..=1.0) {
         for d in DampingFactor::ALL {
             let chi = d.chi(c_e).unwrap();
