@@ -1,0 +1,119 @@
+//! The error type of clr-mbd.
+
+use clr_contact::ContactError;
+use clr_ode::OdeError;
+
+/// Everything that can go wrong when building or running a multibody model.
+///
+/// Every message names the offending item and says what to change.
+#[derive(Debug, thiserror::Error)]
+pub enum MbdError {
+    /// An item refers to a body that was never defined.
+    #[error(
+        "{item}: unknown body `{body}`; define it with ModelBuilder::body first (known bodies: \
+         ground, {known})"
+    )]
+    UnknownBody {
+        /// The item (joint, driver, force, point, contact) that refers to the body.
+        item: String,
+        /// The name that was not found.
+        body: String,
+        /// The bodies that exist, comma-separated.
+        known: String,
+    },
+    /// An item refers to a point that was never defined.
+    #[error("{item}: unknown point `{point}`; define it with ModelBuilder::point first")]
+    UnknownPoint {
+        /// The item that refers to the point.
+        item: String,
+        /// The name that was not found.
+        point: String,
+    },
+    /// Two items share a name (all names share one namespace; `ground` is reserved).
+    #[error("duplicate name `{name}` (a {first} and a {second}); give every item its own name")]
+    DuplicateName {
+        /// The name used twice.
+        name: String,
+        /// Kind of the first item with that name.
+        first: &'static str,
+        /// Kind of the second item with that name.
+        second: &'static str,
+    },
+    /// A body's mass or moment of inertia is zero, negative or not finite.
+    #[error("body `{body}`: {what} = {value} must be positive and finite")]
+    InvalidInertia {
+        /// The body.
+        body: String,
+        /// `"mass (kg)"` or `"moment of inertia about the centre of mass (kg·m²)"`.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+    },
+    /// A joint, driver, force or contact connects a body to itself.
+    #[error("{item}: connects body `{body}` to itself; give two different bodies")]
+    SameBody {
+        /// The item.
+        item: String,
+        /// The body given twice.
+        body: String,
+    },
+    /// Any other invalid parameter of an item (a zero axis, a negative stiffness, …).
+    #[error("{item}: {what} = {value} is invalid: {requirement}")]
+    InvalidParameter {
+        /// The item.
+        item: String,
+        /// The parameter with its unit.
+        what: &'static str,
+        /// The value given.
+        value: f64,
+        /// What the value must satisfy.
+        requirement: &'static str,
+    },
+    /// A contact law or geometry could not be built.
+    #[error("{item}: {source}")]
+    Contact {
+        /// The contact element.
+        item: String,
+        /// The clr-contact error.
+        source: ContactError,
+    },
+    /// The constraint Jacobian is rank deficient: redundant (or conflicting) constraints.
+    #[error(
+        "redundant constraints: the constraint Jacobian has rank {rank} < {rows} rows; these \
+         equations are linear combinations of the others: {involved}. Remove a joint or \
+         replace a revolute joint by a point-on-line joint so every equation is independent"
+    )]
+    RedundantConstraints {
+        /// Numerical rank of Φ_q.
+        rank: usize,
+        /// Number of constraint equations.
+        rows: usize,
+        /// The dependent equations and those they depend on, as `item (equation)` labels.
+        involved: String,
+    },
+    /// Newton's iteration for consistent positions did not converge.
+    #[error(
+        "could not assemble the mechanism at t = {t}: position constraints still violated by \
+         {residual:e} after {iterations} Newton iterations (largest: {worst}); give initial \
+         poses closer to an assembled configuration or check the joint locations"
+    )]
+    Assembly {
+        /// Time of the assembly.
+        t: f64,
+        /// Remaining ‖Φ‖∞ (m or rad).
+        residual: f64,
+        /// Iterations spent.
+        iterations: usize,
+        /// The most violated equation.
+        worst: String,
+    },
+    /// Invalid simulation settings.
+    #[error("simulation options: {0}")]
+    Options(String),
+    /// The integrator failed; the error carries the partial clr-ode solution.
+    #[error("integration failed: {0}")]
+    Solver(#[from] OdeError),
+    /// Writing output failed.
+    #[error("writing output: {0}")]
+    Io(#[from] std::io::Error),
+}

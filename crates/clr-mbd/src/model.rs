@@ -1,0 +1,821 @@
+//! The model builder: named bodies, points, joints, drivers, forces and contact elements.
+//!
+//! Items refer to each other by name; [`ModelBuilder::build`] resolves and validates every
+//! reference and returns a [`Model`] or a typed [`MbdError`] naming the offending item.
+
+use std::collections::HashMap;
+
+use clr_contact::{BodyState, FrictionLaw, NormalLaw, RevoluteClearance};
+use nalgebra::Vector2;
+
+use crate::error::MbdError;
+use crate::system::{Clearance, Con, ForceEl, Model, Motion};
+
+/// Name of the ground body (fixed at the origin, angle 0). It is always defined.
+pub const GROUND: &str = "ground";
+
+/// Index of the ground in resolved items (rigid bodies are numbered 0, 1, …).
+pub(crate) const GROUND_ID: usize = usize::MAX;
+
+/// A rigid body: mass, inertia about the centre of mass, initial pose and velocity.
+///
+/// The body reference point is its centre of mass; its coordinates are q = (x, y, θ) in m, m,
+/// rad (θ counter-clockwise from the world x axis).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RigidBody {
+    /// Mass, kg (> 0).
+    pub mass: f64,
+    /// Moment of inertia about the centre of mass, kg·m² (> 0).
+    pub inertia: f64,
+    /// Initial position of the centre of mass (x, y), m.
+    pub position: [f64; 2],
+    /// Initial angle, rad.
+    pub angle: f64,
+    /// Initial velocity of the centre of mass, m/s.
+    pub velocity: [f64; 2],
+    /// Initial angular velocity, rad/s.
+    pub angular_velocity: f64,
+}
+
+impl RigidBody {
+    /// A body of mass `mass` (kg) and centroidal inertia `inertia` (kg·m²) at rest at the origin.
+    pub fn new(mass: f64, inertia: f64) -> Self {
+        Self {
+            mass,
+            inertia,
+            position: [0.0; 2],
+            angle: 0.0,
+            velocity: [0.0; 2],
+            angular_velocity: 0.0,
+        }
+    }
+    /// Initial pose: centre of mass at (x, y) m, angle θ rad.
+    pub fn at(mut self, x: f64, y: f64, angle: f64) -> Self {
+        self.position = [x, y];
+        self.angle = angle;
+        self
+    }
+    /// Initial velocity (v_x, v_y) m/s and angular velocity ω rad/s (made consistent with the
+    /// constraints by [`Model::initial_state`]).
+    pub fn moving(mut self, vx: f64, vy: f64, omega: f64) -> Self {
+        self.velocity = [vx, vy];
+        self.angular_velocity = omega;
+        self
+    }
+}
+
+/// Where a joint or force attaches: a named point, or a body with local coordinates (m) in the
+/// body frame (origin at the centre of mass).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Anchor {
+    /// A point defined with [`ModelBuilder::point`].
+    Point(String),
+    /// A body name and local coordinates (m).
+    Local(String, [f64; 2]),
+}
+
+impl From<&str> for Anchor {
+    fn from(point: &str) -> Self {
+        Anchor::Point(point.to_string())
+    }
+}
+
+impl From<(&str, [f64; 2])> for Anchor {
+    fn from((body, local): (&str, [f64; 2])) -> Self {
+        Anchor::Local(body.to_string(), local)
+    }
+}
+
+/// Applied force on a body: `f(t, state of the body) -> (F_x, F_y)` in N.
+pub type ForceFn = Box<dyn Fn(f64, &BodyState) -> Vector2<f64>>;
+/// Applied torque on a body: `f(t, state of the body) -> τ` in N·m.
+pub type TorqueFn = Box<dyn Fn(f64, &BodyState) -> f64>;
+/// Torque between two bodies: `f(t, state of body i, state of body j) -> τ` in N·m, acting
+/// +τ on body j and −τ on body i (a motor in the joint between them).
+pub type PairTorqueFn = Box<dyn Fn(f64, &BodyState, &BodyState) -> f64>;
+
+/// A revolute clearance joint: bearing (hole) on one body, journal (pin) on another.
+pub struct RevoluteClearanceSpec {
+    /// Bearing radius R_i, m.
+    pub bearing_radius: f64,
+    /// Journal radius R_j, m (< R_i).
+    pub journal_radius: f64,
+    /// Normal-force law (its elastic part already contains the axial length where the law uses
+    /// one, e.g. [`NormalLaw::preset`] with a `JournalBearing`).
+    pub normal: NormalLaw,
+    /// Friction law (use `FrictionLaw::coulomb(0.0, 1.0)` for none).
+    pub friction: FrictionLaw,
+}
+
+enum Item {
+    Point {
+        name: String,
+        body: String,
+        local: [f64; 2],
+    },
+    Revolute {
+        name: String,
+        a: Anchor,
+        b: Anchor,
+    },
+    Fixed {
+        name: String,
+        a: Anchor,
+        b: Anchor,
+    },
+    Translational {
+        name: String,
+        a: Anchor,
+        b: Anchor,
+        axis: [f64; 2],
+    },
+    DriveAngle {
+        name: String,
+        body_i: String,
+        body_j: String,
+        motion: Motion,
+    },
+    DriveDisplacement {
+        name: String,
+        a: Anchor,
+        b: Anchor,
+        axis: [f64; 2],
+        motion: Motion,
+    },
+    Spring {
+        name: String,
+        a: Anchor,
+        b: Anchor,
+        k: f64,
+        c: f64,
+        l0: f64,
+    },
+    RotSpring {
+        name: String,
+        body_i: String,
+        body_j: String,
+        k: f64,
+        c: f64,
+        angle0: f64,
+    },
+    Force {
+        name: String,
+        at: Anchor,
+        f: ForceFn,
+    },
+    Torque {
+        name: String,
+        body: String,
+        f: TorqueFn,
+    },
+    PairTorque {
+        name: String,
+        body_i: String,
+        body_j: String,
+        f: PairTorqueFn,
+    },
+    RevClearance {
+        name: String,
+        bearing: Anchor,
+        journal: Anchor,
+        spec: RevoluteClearanceSpec,
+    },
+}
+
+impl Item {
+    fn name(&self) -> &str {
+        match self {
+            Item::Point { name, .. }
+            | Item::Revolute { name, .. }
+            | Item::Fixed { name, .. }
+            | Item::Translational { name, .. }
+            | Item::DriveAngle { name, .. }
+            | Item::DriveDisplacement { name, .. }
+            | Item::Spring { name, .. }
+            | Item::RotSpring { name, .. }
+            | Item::Force { name, .. }
+            | Item::Torque { name, .. }
+            | Item::PairTorque { name, .. }
+            | Item::RevClearance { name, .. } => name,
+        }
+    }
+    fn kind(&self) -> &'static str {
+        match self {
+            Item::Point { .. } => "point",
+            Item::Revolute { .. } => "revolute joint",
+            Item::Fixed { .. } => "fixed joint",
+            Item::Translational { .. } => "translational joint",
+            Item::DriveAngle { .. } => "angle driver",
+            Item::DriveDisplacement { .. } => "displacement driver",
+            Item::Spring { .. } => "spring-damper",
+            Item::RotSpring { .. } => "rotational spring-damper",
+            Item::Force { .. } => "applied force",
+            Item::Torque { .. } => "applied torque",
+            Item::PairTorque { .. } => "torque between bodies",
+            Item::RevClearance { .. } => "revolute clearance joint",
+        }
+    }
+}
+
+/// Builds a [`Model`]. Methods record items and never fail; [`ModelBuilder::build`] validates.
+///
+/// ```
+/// use clr_mbd::{ModelBuilder, RigidBody};
+/// // a pendulum: 1 kg rod of length 1 m pinned at the origin, horizontal at t = 0
+/// let mut b = ModelBuilder::new();
+/// b.gravity(0.0, -9.81)
+///     .body("rod", RigidBody::new(1.0, 1.0 / 12.0).at(0.5, 0.0, 0.0))
+///     .revolute("pin", ("ground", [0.0, 0.0]), ("rod", [-0.5, 0.0]));
+/// let model = b.build().unwrap();
+/// assert_eq!(model.n_coordinates(), 3);
+/// assert_eq!(model.n_constraints(), 2);
+/// ```
+#[derive(Default)]
+pub struct ModelBuilder {
+    bodies: Vec<(String, RigidBody)>,
+    items: Vec<Item>,
+    gravity: [f64; 2],
+}
+
+impl ModelBuilder {
+    /// An empty model (only the ground), no gravity.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Gravitational acceleration (g_x, g_y) in m/s², e.g. (0, −9.81).
+    pub fn gravity(&mut self, gx: f64, gy: f64) -> &mut Self {
+        self.gravity = [gx, gy];
+        self
+    }
+
+    /// A rigid body named `name`.
+    pub fn body(&mut self, name: &str, body: RigidBody) -> &mut Self {
+        self.bodies.push((name.to_string(), body));
+        self
+    }
+
+    /// A named point fixed on `body` at local coordinates `local` (m).
+    pub fn point(&mut self, name: &str, body: &str, local: [f64; 2]) -> &mut Self {
+        self.items.push(Item::Point {
+            name: name.into(),
+            body: body.into(),
+            local,
+        });
+        self
+    }
+
+    /// An ideal revolute joint: the anchor points `a` (on body i) and `b` (on body j) coincide
+    /// (2 equations, Nikravesh 1988, eq. 5.11).
+    pub fn revolute(
+        &mut self,
+        name: &str,
+        a: impl Into<Anchor>,
+        b: impl Into<Anchor>,
+    ) -> &mut Self {
+        self.items.push(Item::Revolute {
+            name: name.into(),
+            a: a.into(),
+            b: b.into(),
+        });
+        self
+    }
+
+    /// A fixed joint: the anchors coincide and the relative angle keeps its initial value
+    /// (3 equations).
+    pub fn fixed(&mut self, name: &str, a: impl Into<Anchor>, b: impl Into<Anchor>) -> &mut Self {
+        self.items.push(Item::Fixed {
+            name: name.into(),
+            a: a.into(),
+            b: b.into(),
+        });
+        self
+    }
+
+    /// An ideal translational (prismatic) joint: the anchor on body j stays on the line through
+    /// the anchor on body i along `axis` (local to body i, any length > 0), and the relative
+    /// angle keeps its initial value (2 equations, Nikravesh 1988, eq. 5.15).
+    pub fn translational(
+        &mut self,
+        name: &str,
+        a: impl Into<Anchor>,
+        b: impl Into<Anchor>,
+        axis: [f64; 2],
+    ) -> &mut Self {
+        self.items.push(Item::Translational {
+            name: name.into(),
+            a: a.into(),
+            b: b.into(),
+            axis,
+        });
+        self
+    }
+
+    /// Driver of the absolute angle of `body`: θ = f(t) (rad).
+    pub fn drive_angle(&mut self, name: &str, body: &str, motion: Motion) -> &mut Self {
+        self.drive_relative_angle(name, GROUND, body, motion)
+    }
+
+    /// Driver of the relative angle θ_j − θ_i = f(t) (rad).
+    pub fn drive_relative_angle(
+        &mut self,
+        name: &str,
+        body_i: &str,
+        body_j: &str,
+        motion: Motion,
+    ) -> &mut Self {
+        self.items.push(Item::DriveAngle {
+            name: name.into(),
+            body_i: body_i.into(),
+            body_j: body_j.into(),
+            motion,
+        });
+        self
+    }
+
+    /// Driver of a relative displacement (an actuator): the projection of (P_j − P_i) on the unit
+    /// `axis` fixed on body i equals f(t) (m).
+    pub fn drive_displacement(
+        &mut self,
+        name: &str,
+        a: impl Into<Anchor>,
+        b: impl Into<Anchor>,
+        axis: [f64; 2],
+        motion: Motion,
+    ) -> &mut Self {
+        self.items.push(Item::DriveDisplacement {
+            name: name.into(),
+            a: a.into(),
+            b: b.into(),
+            axis,
+            motion,
+        });
+        self
+    }
+
+    /// A translational spring–damper between two anchors: tension f = k(l − l0) + c·l̇ along the
+    /// line between them (k in N/m, c in N·s/m, free length l0 in m).
+    pub fn spring_damper(
+        &mut self,
+        name: &str,
+        a: impl Into<Anchor>,
+        b: impl Into<Anchor>,
+        k: f64,
+        c: f64,
+        l0: f64,
+    ) -> &mut Self {
+        self.items.push(Item::Spring {
+            name: name.into(),
+            a: a.into(),
+            b: b.into(),
+            k,
+            c,
+            l0,
+        });
+        self
+    }
+
+    /// A rotational spring–damper: torque on body j τ = −k(θ_j − θ_i − θ0) − c(ω_j − ω_i), −τ on
+    /// body i (k in N·m/rad, c in N·m·s/rad, θ0 in rad).
+    pub fn rotational_spring_damper(
+        &mut self,
+        name: &str,
+        body_i: &str,
+        body_j: &str,
+        k: f64,
+        c: f64,
+        angle0: f64,
+    ) -> &mut Self {
+        self.items.push(Item::RotSpring {
+            name: name.into(),
+            body_i: body_i.into(),
+            body_j: body_j.into(),
+            k,
+            c,
+            angle0,
+        });
+        self
+    }
+
+    /// An applied force (N, world frame) at an anchor, a function of time and the body state.
+    pub fn applied_force(
+        &mut self,
+        name: &str,
+        at: impl Into<Anchor>,
+        f: impl Fn(f64, &BodyState) -> Vector2<f64> + 'static,
+    ) -> &mut Self {
+        self.items.push(Item::Force {
+            name: name.into(),
+            at: at.into(),
+            f: Box::new(f),
+        });
+        self
+    }
+
+    /// An applied torque (N·m) on a body, a function of time and the body state.
+    pub fn applied_torque(
+        &mut self,
+        name: &str,
+        body: &str,
+        f: impl Fn(f64, &BodyState) -> f64 + 'static,
+    ) -> &mut Self {
+        self.items.push(Item::Torque {
+            name: name.into(),
+            body: body.into(),
+            f: Box::new(f),
+        });
+        self
+    }
+
+    /// A torque between two bodies (a joint drive): +τ on body j, −τ on body i.
+    pub fn torque_between(
+        &mut self,
+        name: &str,
+        body_i: &str,
+        body_j: &str,
+        f: impl Fn(f64, &BodyState, &BodyState) -> f64 + 'static,
+    ) -> &mut Self {
+        self.items.push(Item::PairTorque {
+            name: name.into(),
+            body_i: body_i.into(),
+            body_j: body_j.into(),
+            f: Box::new(f),
+        });
+        self
+    }
+
+    /// A revolute clearance joint: bearing centre at anchor `bearing`, journal centre at anchor
+    /// `journal`; a force element (no constraint equation).
+    pub fn revolute_clearance(
+        &mut self,
+        name: &str,
+        bearing: impl Into<Anchor>,
+        journal: impl Into<Anchor>,
+        spec: RevoluteClearanceSpec,
+    ) -> &mut Self {
+        self.items.push(Item::RevClearance {
+            name: name.into(),
+            bearing: bearing.into(),
+            journal: journal.into(),
+            spec,
+        });
+        self
+    }
+
+    /// Validate every item and build the model.
+    ///
+    /// # Errors
+    /// [`MbdError::DuplicateName`], [`MbdError::UnknownBody`], [`MbdError::UnknownPoint`],
+    /// [`MbdError::InvalidInertia`], [`MbdError::SameBody`], [`MbdError::InvalidParameter`],
+    /// [`MbdError::Contact`].
+    pub fn build(self) -> Result<Model, MbdError> {
+        let mut names: HashMap<String, &'static str> = HashMap::new();
+        names.insert(GROUND.to_string(), "ground");
+        let mut claim = |name: &str, kind: &'static str| -> Result<(), MbdError> {
+            if let Some(first) = names.get(name) {
+                return Err(MbdError::DuplicateName {
+                    name: name.to_string(),
+                    first,
+                    second: kind,
+                });
+            }
+            names.insert(name.to_string(), kind);
+            Ok(())
+        };
+        let mut body_ids = HashMap::new();
+        for (k, (name, b)) in self.bodies.iter().enumerate() {
+            claim(name, "body")?;
+            for (what, v) in [
+                ("mass (kg)", b.mass),
+                (
+                    "moment of inertia about the centre of mass (kg·m²)",
+                    b.inertia,
+                ),
+            ] {
+                if !(v.is_finite() && v > 0.0) {
+                    return Err(MbdError::InvalidInertia {
+                        body: name.clone(),
+                        what,
+                        value: v,
+                    });
+                }
+            }
+            let finite = b
+                .position
+                .iter()
+                .chain(b.velocity.iter())
+                .all(|v| v.is_finite())
+                && b.angle.is_finite()
+                && b.angular_velocity.is_finite();
+            if !finite {
+                return Err(MbdError::InvalidParameter {
+                    item: name.clone(),
+                    what: "initial pose or velocity",
+                    value: f64::NAN,
+                    requirement: "every component must be finite",
+                });
+            }
+            body_ids.insert(name.clone(), k);
+        }
+        for item in &self.items {
+            claim(item.name(), item.kind())?;
+        }
+        let known = self
+            .bodies
+            .iter()
+            .map(|(n, _)| n.as_str())
+            .collect::<Vec<_>>()
+            .join(", ");
+        let body = |item: &str, name: &str| -> Result<usize, MbdError> {
+            if name == GROUND {
+                return Ok(GROUND_ID);
+            }
+            body_ids
+                .get(name)
+                .copied()
+                .ok_or_else(|| MbdError::UnknownBody {
+                    item: item.to_string(),
+                    body: name.to_string(),
+                    known: known.clone(),
+                })
+        };
+        // points first: anchors may refer to them
+        let mut points: HashMap<String, (usize, Vector2<f64>)> = HashMap::new();
+        let mut point_list = Vec::new();
+        for item in &self.items {
+            if let Item::Point {
+                name,
+                body: b,
+                local,
+            } = item
+            {
+                let id = body(name, b)?;
+                check_finite_vec(name, "local point (m)", *local)?;
+                points.insert(name.clone(), (id, Vector2::new(local[0], local[1])));
+                point_list.push((name.clone(), id, Vector2::new(local[0], local[1])));
+            }
+        }
+        let anchor = |item: &str, a: &Anchor| -> Result<(usize, Vector2<f64>), MbdError> {
+            match a {
+                Anchor::Point(p) => points
+                    .get(p)
+                    .copied()
+                    .ok_or_else(|| MbdError::UnknownPoint {
+                        item: item.to_string(),
+                        point: p.clone(),
+                    }),
+                Anchor::Local(b, l) => {
+                    check_finite_vec(item, "local anchor coordinates (m)", *l)?;
+                    Ok((body(item, b)?, Vector2::new(l[0], l[1])))
+                }
+            }
+        };
+        let body_name = |id: usize| -> String {
+            if id == GROUND_ID {
+                GROUND.to_string()
+            } else {
+                self.bodies[id].0.clone()
+            }
+        };
+        let distinct = |item: &str, i: usize, j: usize| -> Result<(), MbdError> {
+            if i == j {
+                Err(MbdError::SameBody {
+                    item: item.to_string(),
+                    body: body_name(i),
+                })
+            } else {
+                Ok(())
+            }
+        };
+        let angle0 = |id: usize| -> f64 {
+            if id == GROUND_ID {
+                0.0
+            } else {
+                self.bodies[id].1.angle
+            }
+        };
+        let mut cons: Vec<Con> = Vec::new();
+        let mut forces: Vec<ForceEl> = Vec::new();
+        let mut clearances: Vec<Clearance> = Vec::new();
+        let mut motions: Vec<Motion> = Vec::new();
+        for item in self.items {
+            let name = item.name().to_string();
+            match item {
+                Item::Point { .. } => {}
+                Item::Revolute { a, b, .. } => {
+                    let (i, si) = anchor(&name, &a)?;
+                    let (j, sj) = anchor(&name, &b)?;
+                    distinct(&name, i, j)?;
+                    cons.push(Con::coincide(&name, i, si, j, sj));
+                }
+                Item::Fixed { a, b, .. } => {
+                    let (i, si) = anchor(&name, &a)?;
+                    let (j, sj) = anchor(&name, &b)?;
+                    distinct(&name, i, j)?;
+                    cons.push(Con::coincide(&name, i, si, j, sj));
+                    cons.push(Con::angle(&name, i, j, angle0(j) - angle0(i), None));
+                }
+                Item::Translational { a, b, axis, .. } => {
+                    let (i, si) = anchor(&name, &a)?;
+                    let (j, sj) = anchor(&name, &b)?;
+                    distinct(&name, i, j)?;
+                    let u = unit_axis(&name, axis)?;
+                    let w = Vector2::new(-u.y, u.x);
+                    cons.push(Con::project(&name, i, si, j, sj, w, None));
+                    cons.push(Con::angle(&name, i, j, angle0(j) - angle0(i), None));
+                }
+                Item::DriveAngle {
+                    body_i,
+                    body_j,
+                    motion,
+                    ..
+                } => {
+                    let i = body(&name, &body_i)?;
+                    let j = body(&name, &body_j)?;
+                    distinct(&name, i, j)?;
+                    motions.push(motion);
+                    cons.push(Con::angle(&name, i, j, 0.0, Some(motions.len() - 1)));
+                }
+                Item::DriveDisplacement {
+                    a, b, axis, motion, ..
+                } => {
+                    let (i, si) = anchor(&name, &a)?;
+                    let (j, sj) = anchor(&name, &b)?;
+                    distinct(&name, i, j)?;
+                    let u = unit_axis(&name, axis)?;
+                    motions.push(motion);
+                    cons.push(Con::project(
+                        &name,
+                        i,
+                        si,
+                        j,
+                        sj,
+                        u,
+                        Some(motions.len() - 1),
+                    ));
+                }
+                Item::Spring { a, b, k, c, l0, .. } => {
+                    let (i, si) = anchor(&name, &a)?;
+                    let (j, sj) = anchor(&name, &b)?;
+                    distinct(&name, i, j)?;
+                    non_negative(&name, "stiffness k (N/m)", k)?;
+                    non_negative(&name, "damping c (N·s/m)", c)?;
+                    non_negative(&name, "free length l0 (m)", l0)?;
+                    forces.push(ForceEl::Spring {
+                        name,
+                        i,
+                        si,
+                        j,
+                        sj,
+                        k,
+                        c,
+                        l0,
+                    });
+                }
+                Item::RotSpring {
+                    body_i,
+                    body_j,
+                    k,
+                    c,
+                    angle0: a0,
+                    ..
+                } => {
+                    let i = body(&name, &body_i)?;
+                    let j = body(&name, &body_j)?;
+                    distinct(&name, i, j)?;
+                    non_negative(&name, "stiffness k (N·m/rad)", k)?;
+                    non_negative(&name, "damping c (N·m·s/rad)", c)?;
+                    if !a0.is_finite() {
+                        return Err(MbdError::InvalidParameter {
+                            item: name,
+                            what: "free angle θ0 (rad)",
+                            value: a0,
+                            requirement: "must be finite",
+                        });
+                    }
+                    forces.push(ForceEl::RotSpring {
+                        name,
+                        i,
+                        j,
+                        k,
+                        c,
+                        angle0: a0,
+                    });
+                }
+                Item::Force { at, f, .. } => {
+                    let (i, si) = anchor(&name, &at)?;
+                    if i == GROUND_ID {
+                        return Err(ground_load(name));
+                    }
+                    forces.push(ForceEl::Force { name, i, si, f });
+                }
+                Item::Torque { body: b, f, .. } => {
+                    let i = body(&name, &b)?;
+                    if i == GROUND_ID {
+                        return Err(ground_load(name));
+                    }
+                    forces.push(ForceEl::Torque { name, i, f });
+                }
+                Item::PairTorque {
+                    body_i, body_j, f, ..
+                } => {
+                    let i = body(&name, &body_i)?;
+                    let j = body(&name, &body_j)?;
+                    distinct(&name, i, j)?;
+                    forces.push(ForceEl::PairTorque { name, i, j, f });
+                }
+                Item::RevClearance {
+                    bearing,
+                    journal,
+                    spec,
+                    ..
+                } => {
+                    let (i, si) = anchor(&name, &bearing)?;
+                    let (j, sj) = anchor(&name, &journal)?;
+                    distinct(&name, i, j)?;
+                    let geometry =
+                        RevoluteClearance::new(spec.bearing_radius, spec.journal_radius, si, sj)
+                            .map_err(|source| MbdError::Contact {
+                                item: name.clone(),
+                                source,
+                            })?;
+                    clearances.push(Clearance {
+                        name,
+                        i,
+                        j,
+                        geometry,
+                        normal: spec.normal,
+                        friction: spec.friction,
+                    });
+                }
+            }
+        }
+        if !(self.gravity[0].is_finite() && self.gravity[1].is_finite()) {
+            return Err(MbdError::InvalidParameter {
+                item: "gravity".into(),
+                what: "gravitational acceleration (m/s²)",
+                value: f64::NAN,
+                requirement: "both components must be finite",
+            });
+        }
+        Model::assemble(
+            self.bodies,
+            point_list,
+            cons,
+            motions,
+            forces,
+            clearances,
+            Vector2::new(self.gravity[0], self.gravity[1]),
+        )
+    }
+}
+
+fn ground_load(item: String) -> MbdError {
+    MbdError::InvalidParameter {
+        item,
+        what: "body index",
+        value: f64::NAN,
+        requirement: "a load on the ground does nothing; attach it to a moving body",
+    }
+}
+
+fn check_finite_vec(item: &str, what: &'static str, v: [f64; 2]) -> Result<(), MbdError> {
+    if v[0].is_finite() && v[1].is_finite() {
+        Ok(())
+    } else {
+        Err(MbdError::InvalidParameter {
+            item: item.to_string(),
+            what,
+            value: if v[0].is_finite() { v[1] } else { v[0] },
+            requirement: "must be finite",
+        })
+    }
+}
+
+fn non_negative(item: &str, what: &'static str, v: f64) -> Result<(), MbdError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(MbdError::InvalidParameter {
+            item: item.to_string(),
+            what,
+            value: v,
+            requirement: "must be finite and not negative",
+        })
+    }
+}
+
+fn unit_axis(item: &str, axis: [f64; 2]) -> Result<Vector2<f64>, MbdError> {
+    let v = Vector2::new(axis[0], axis[1]);
+    let n = v.norm();
+    if n.is_finite() && n > 0.0 {
+        Ok(v / n)
+    } else {
+        Err(MbdError::InvalidParameter {
+            item: item.to_string(),
+            what: "axis length (local coordinates)",
+            value: n,
+            requirement: "the axis must be a finite non-zero vector",
+        })
+    }
+}

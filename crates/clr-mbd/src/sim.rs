@@ -1,0 +1,401 @@
+//! The simulation driver and the output recorder.
+//!
+//! [`Model::simulate`] integrates y = (q, q̇) with clr-ode, one accepted step at a time: after
+//! each step the contact memory is committed (clr-contact memory rule 1), requested output
+//! times inside the step are recorded from the dense output, the state is optionally projected
+//! onto the constraint manifold, and contact onsets located as terminal events restart the
+//! solver at the onset with δ̇⁻ equal to the penetration rate there.
+
+use std::io::Write;
+use std::path::Path;
+
+use clr_ode::{Control, Dopri5, Ndf, Observer, Options, Output, Stats, StopReason};
+
+use crate::error::MbdError;
+use crate::system::{body_state, Model};
+
+/// Which clr-ode integrator to use.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum SolverKind {
+    /// Variable-order NDF (ode15s family), the default: contact stiffness makes the problem
+    /// stiff.
+    #[default]
+    Ndf,
+    /// Dormand–Prince 5(4).
+    Dopri5,
+}
+
+/// Settings of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SimOptions {
+    /// Start time, s.
+    pub t0: f64,
+    /// End time, s.
+    pub t_end: f64,
+    /// Integrator (default NDF).
+    pub solver: SolverKind,
+    /// Relative tolerance (default 1e-6).
+    pub rtol: f64,
+    /// Absolute tolerance (default 1e-8, units of q and q̇).
+    pub atol: f64,
+    /// Largest step, s (default unbounded).
+    pub h_max: f64,
+    /// Step budget (default 1 000 000).
+    pub max_steps: usize,
+    /// Output times (increasing, inside [t0, t_end]), recorded from the dense output.
+    pub times: Vec<f64>,
+    /// Also record the state after every accepted step (default false).
+    pub every_step: bool,
+    /// Project q and q̇ onto the constraints after an accepted step whenever ‖Φ‖∞ exceeds this
+    /// value (m or rad); `None` (default) never projects and relies on Baumgarte terms. Each
+    /// projection restarts the integrator (its history is lost), so small thresholds cost steps.
+    pub projection: Option<f64>,
+    /// Locate contact onsets of clearance joints as terminal events and restart there (default
+    /// true).
+    pub contact_events: bool,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        Self {
+            t0: 0.0,
+            t_end: 1.0,
+            solver: SolverKind::Ndf,
+            rtol: 1e-6,
+            atol: 1e-8,
+            h_max: f64::INFINITY,
+            max_steps: 1_000_000,
+            times: Vec::new(),
+            every_step: false,
+            projection: None,
+            contact_events: true,
+        }
+    }
+}
+
+impl SimOptions {
+    /// A run over [t0, t_end] with `n_out` + 1 equally spaced output times.
+    pub fn span(t0: f64, t_end: f64, n_out: usize) -> Self {
+        let n_out = n_out.max(1);
+        let times = (0..=n_out)
+            .map(|k| {
+                if k == n_out {
+                    t_end
+                } else {
+                    t0 + (t_end - t0) * k as f64 / n_out as f64
+                }
+            })
+            .collect();
+        Self {
+            t0,
+            t_end,
+            times,
+            ..Default::default()
+        }
+    }
+    /// Set the solver.
+    pub fn solver(mut self, s: SolverKind) -> Self {
+        self.solver = s;
+        self
+    }
+    /// Set rtol and atol.
+    pub fn tolerances(mut self, rtol: f64, atol: f64) -> Self {
+        self.rtol = rtol;
+        self.atol = atol;
+        self
+    }
+    /// Set the output times.
+    pub fn times(mut self, times: Vec<f64>) -> Self {
+        self.times = times;
+        self
+    }
+}
+
+/// Recorded output: one row per output point, named columns; arrays via [`Results::column`].
+///
+/// Columns, in order: `t`; per body `B.x B.y B.theta B.vx B.vy B.omega B.ax B.ay B.alpha`; per
+/// joint or driver `J.Fx J.Fy J.M` (reaction on its second body, or on its first when the second
+/// is the ground, about that body's centre of mass); per clearance joint `C.penetration
+/// C.rate C.normal_force C.friction_force C.contact C.ex C.ey` (eccentricity in the bearing
+/// body's frame); `energy.kinetic energy.potential energy.elastic energy.total`;
+/// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Results {
+    /// Column names.
+    pub columns: Vec<String>,
+    /// Row-major values, `columns.len()` per row.
+    pub data: Vec<f64>,
+    /// Solver statistics (accumulated over restarts).
+    pub stats: Stats,
+    /// Number of contact onsets located as events.
+    pub onsets: usize,
+    /// Number of projections applied.
+    pub projections: usize,
+    /// Largest ‖Φ‖∞ seen after accepted steps (before any projection), m or rad.
+    pub max_position_violation: f64,
+    /// Final state (q, q̇).
+    pub y_final: Vec<f64>,
+}
+
+impl Results {
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        if self.columns.is_empty() {
+            0
+        } else {
+            self.data.len() / self.columns.len()
+        }
+    }
+    /// True without rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Index of a column by name.
+    pub fn index(&self, name: &str) -> Option<usize> {
+        self.columns.iter().position(|c| c == name)
+    }
+    /// A column as an array (`None` for unknown names).
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let k = self.index(name)?;
+        let w = self.columns.len();
+        Some(self.data.chunks_exact(w).map(|r| r[k]).collect())
+    }
+    /// Row `r`.
+    pub fn row(&self, r: usize) -> &[f64] {
+        let w = self.columns.len();
+        &self.data[r * w..(r + 1) * w]
+    }
+    /// Write all rows as CSV with a header line.
+    ///
+    /// # Errors
+    /// [`MbdError::Io`].
+    pub fn write_csv(&self, path: &Path) -> Result<(), MbdError> {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+        writeln!(f, "{}", self.columns.join(","))?;
+        for r in 0..self.len() {
+            let row: Vec<String> = self.row(r).iter().map(|v| format!("{v:e}")).collect();
+            writeln!(f, "{}", row.join(","))?;
+        }
+        f.flush()?;
+        Ok(())
+    }
+}
+
+struct StopEachStep;
+
+impl Observer for StopEachStep {
+    fn observe(&mut self, _t: f64, _y: &[f64]) -> Control {
+        Control::Stop
+    }
+}
+
+enum AnySolver {
+    Ndf(Box<Ndf>),
+    Dopri5(Box<Dopri5>),
+}
+
+macro_rules! with_solver {
+    ($s:expr, $v:ident => $body:expr) => {
+        match $s {
+            AnySolver::Ndf($v) => $body,
+            AnySolver::Dopri5($v) => $body,
+        }
+    };
+}
+
+impl Model {
+    /// The output column names (see [`Results`]).
+    pub fn columns(&self) -> Vec<String> {
+        let mut c = vec!["t".to_string()];
+        for b in &self.body_names {
+            for s in ["x", "y", "theta", "vx", "vy", "omega", "ax", "ay", "alpha"] {
+                c.push(format!("{b}.{s}"));
+            }
+        }
+        for j in self.joint_names() {
+            for s in ["Fx", "Fy", "M"] {
+                c.push(format!("{j}.{s}"));
+            }
+        }
+        for cl in &self.clearances {
+            for s in [
+                "penetration",
+                "rate",
+                "normal_force",
+                "friction_force",
+                "contact",
+                "ex",
+                "ey",
+            ] {
+                c.push(format!("{}.{s}", cl.name));
+            }
+        }
+        for s in [
+            "energy.kinetic",
+            "energy.potential",
+            "energy.elastic",
+            "energy.total",
+            "violation.position",
+            "violation.velocity",
+        ] {
+            c.push(s.to_string());
+        }
+        c
+    }
+
+    /// Evaluate everything at (t, y) and append one output row.
+    pub(crate) fn record(&mut self, t: f64, y: &[f64], out: &mut Vec<f64>) {
+        let n = self.n;
+        let (q, qd) = y.split_at(n);
+        self.solve_accelerations(t, q, qd);
+        out.push(t);
+        for k in 0..self.bodies.len() {
+            out.extend_from_slice(&q[3 * k..3 * k + 3]);
+            out.extend_from_slice(&qd[3 * k..3 * k + 3]);
+            out.extend_from_slice(&self.accelerations()[3 * k..3 * k + 3]);
+        }
+        for s in self.joint_starts() {
+            out.extend_from_slice(&self.reaction(s));
+        }
+        for c in &self.contacts {
+            out.extend_from_slice(&[
+                c.penetration,
+                c.penetration_rate,
+                c.normal_force,
+                c.friction_force,
+                if c.in_contact { 1.0 } else { 0.0 },
+                c.eccentricity[0],
+                c.eccentricity[1],
+            ]);
+        }
+        let e = self.energies(q, qd);
+        let pv = self.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let vv = self.phid.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        out.extend_from_slice(&[e.kinetic, e.potential, e.elastic, e.total(), pv, vv]);
+    }
+
+    /// World position (m) of a body-fixed point `local` on body k at coordinates q.
+    pub fn point_position(&self, k: usize, local: [f64; 2], q: &[f64]) -> [f64; 2] {
+        let zeros = [0.0; 3];
+        let qq = &q[3 * k..3 * k + 3];
+        let b = body_state(0, qq, &zeros);
+        let p = b.point(nalgebra::Vector2::new(local[0], local[1]));
+        [p.x, p.y]
+    }
+
+    /// Integrate from a consistent initial state ([`Model::initial_state`]) over
+    /// [`SimOptions::t0`, `SimOptions::t_end`] and record the outputs.
+    ///
+    /// # Errors
+    /// Invalid options, assembly failures, or the integrator's error (with its partial solution).
+    pub fn simulate(&mut self, opts: &SimOptions) -> Result<Results, MbdError> {
+        let y0 = self.initial_state(opts.t0)?;
+        self.simulate_from(opts, &y0)
+    }
+
+    /// As [`Model::simulate`] from a given state y0 = (q, q̇) (not modified; project it first if
+    /// it may violate the constraints).
+    ///
+    /// # Errors
+    /// As [`Model::simulate`].
+    pub fn simulate_from(&mut self, opts: &SimOptions, y0: &[f64]) -> Result<Results, MbdError> {
+        if opts.t_end <= opts.t0 || !opts.t0.is_finite() || !opts.t_end.is_finite() {
+            return Err(MbdError::Options(format!(
+                "t_end = {} must be finite and after t0 = {}",
+                opts.t_end, opts.t0
+            )));
+        }
+        if opts.times.windows(2).any(|w| w[1] < w[0])
+            || opts.times.iter().any(|&t| t < opts.t0 || t > opts.t_end)
+        {
+            return Err(MbdError::Options(
+                "output times must be increasing and inside [t0, t_end]".into(),
+            ));
+        }
+        if y0.len() != 2 * self.n {
+            return Err(MbdError::Options(format!(
+                "the initial state has {} components; the model needs 2n = {}",
+                y0.len(),
+                2 * self.n
+            )));
+        }
+        self.events_on = opts.contact_events;
+        let ode = Options::default()
+            .rtol(opts.rtol)
+            .atol(opts.atol)
+            .h_max(opts.h_max)
+            .max_steps(opts.max_steps)
+            .output(Output::Times(opts.times.clone()));
+        let mut solver = match opts.solver {
+            SolverKind::Ndf => AnySolver::Ndf(Box::new(Ndf::new(ode))),
+            SolverKind::Dopri5 => AnySolver::Dopri5(Box::new(Dopri5::new(ode))),
+        };
+        let columns = self.columns();
+        let mut data = Vec::new();
+        let n2 = 2 * self.n;
+        let mut y = y0.to_vec();
+        let mut y_out = vec![0.0; n2];
+        self.memory.reset();
+        self.commit_contacts(&y);
+        with_solver!(&mut solver, s => s.start(self, opts.t0, &y, opts.t_end))?;
+        // outputs at t0 were recorded by the solver's start
+        let mut recorded = with_solver!(&solver, s => s.solution().t.len());
+        for _ in 0..recorded {
+            self.record(opts.t0, &y, &mut data);
+        }
+        if opts.every_step && recorded == 0 {
+            self.record(opts.t0, &y, &mut data);
+        }
+        let (mut onsets, mut projections) = (0, 0);
+        let mut max_viol = 0.0f64;
+        loop {
+            let reason =
+                with_solver!(&mut solver, s => s.advance_observed(self, &mut StopEachStep))?;
+            let t = with_solver!(&solver, s => s.solution().t_final);
+            y.copy_from_slice(with_solver!(&solver, s => &s.solution().y_final));
+            // outputs inside the step, recorded by the solver from its dense output (before its
+            // order/step change invalidates the interpolant), evaluated before the memory commit
+            let n_out = with_solver!(&solver, s => s.solution().t.len());
+            while recorded < n_out {
+                let to = with_solver!(&solver, s => s.solution().t[recorded]);
+                y_out.copy_from_slice(with_solver!(&solver, s => s.solution().state(recorded)));
+                self.record(to, &y_out, &mut data);
+                recorded += 1;
+            }
+            self.commit_contacts(&y);
+            let (pv, _) = self.violation(t, &y);
+            max_viol = max_viol.max(pv);
+            let mut restart = false;
+            if let StopReason::TerminalEvent(_) = reason {
+                onsets += 1;
+                restart = true;
+            }
+            if let Some(tol) = opts.projection {
+                if pv > tol && t < opts.t_end {
+                    self.project(t, &mut y, tol * 1e-3)?;
+                    projections += 1;
+                    restart = true;
+                }
+            }
+            if opts.every_step {
+                self.record(t, &y, &mut data);
+            }
+            if reason == StopReason::EndReached || t >= opts.t_end {
+                break;
+            }
+            if restart {
+                with_solver!(&mut solver, s => s.restart(self, t, &y))?;
+            }
+        }
+        let stats = with_solver!(&solver, s => s.stats());
+        Ok(Results {
+            columns,
+            data,
+            stats,
+            onsets,
+            projections,
+            max_position_violation: max_viol,
+            y_final: y,
+        })
+    }
+}

@@ -1,0 +1,938 @@
+//! The built model: constraint equations, forces, the augmented equations of motion and their
+//! first-order form for clr-ode.
+//!
+//! Coordinates q = (x_k, y_k, θ_k) for every rigid body k (centre of mass and angle). The
+//! equations of motion with Lagrange multipliers and Baumgarte stabilization (J. Baumgarte,
+//! Comput. Methods Appl. Mech. Eng. 1 (1972) 1–16; P.E. Nikravesh, *Computer-Aided Analysis of
+//! Mechanical Systems*, Prentice Hall 1988, eqs. 6.13 and 13.22):
+//!
+//! ```text
+//! [ M   Φ_qᵀ ] [ q̈ ]   [ Q                 ]
+//! [ Φ_q  0   ] [ λ  ] = [ γ − 2αΦ̇ − β²Φ     ]
+//! ```
+//!
+//! with γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt. The first-order system is y = (q, q̇),
+//! ẏ = (q̇, q̈).
+
+use clr_contact::{BodyState, ContactMemory, FrictionLaw, NormalLaw, RevoluteClearance};
+use clr_ode::linalg::DenseLu;
+use clr_ode::{Direction, OdeSystem};
+use nalgebra::Vector2;
+
+use crate::error::MbdError;
+use crate::model::{ForceFn, PairTorqueFn, RigidBody, TorqueFn, GROUND_ID};
+
+/// Default Baumgarte coefficient α (1/s) multiplying 2Φ̇ (Flores et al., *Kinematics and
+/// Dynamics of Multibody Systems with Imperfect Joints*, Springer 2008, §2.6, use α = β = 5).
+pub const DEFAULT_BAUMGARTE_ALPHA: f64 = 5.0;
+/// Default Baumgarte coefficient β (1/s) with β² multiplying Φ (see
+/// [`DEFAULT_BAUMGARTE_ALPHA`]).
+pub const DEFAULT_BAUMGARTE_BETA: f64 = 5.0;
+
+/// A prescribed motion f(t) with its first and second time derivatives (units of the driven
+/// coordinate: rad or m, per s, per s²).
+pub struct Motion(Box<dyn Fn(f64) -> [f64; 3]>);
+
+impl Motion {
+    /// A motion from a closure returning [f(t), f′(t), f″(t)].
+    pub fn new(f: impl Fn(f64) -> [f64; 3] + 'static) -> Self {
+        Motion(Box::new(f))
+    }
+    /// f(t) = x0 + v·t (e.g. a crank at constant speed v rad/s from angle x0).
+    pub fn linear(x0: f64, v: f64) -> Self {
+        Motion::new(move |t| [x0 + v * t, v, 0.0])
+    }
+    /// f(t) = offset + amplitude·sin(ω t + phase).
+    pub fn harmonic(offset: f64, amplitude: f64, omega: f64, phase: f64) -> Self {
+        Motion::new(move |t| {
+            let (s, c) = (omega * t + phase).sin_cos();
+            [
+                offset + amplitude * s,
+                amplitude * omega * c,
+                -amplitude * omega * omega * s,
+            ]
+        })
+    }
+    /// [f(t), f′(t), f″(t)].
+    #[inline]
+    pub fn eval(&self, t: f64) -> [f64; 3] {
+        (self.0)(t)
+    }
+}
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) enum ConKind {
+    /// r_i + A_i s_i − r_j − A_j s_j = 0 (2 rows).
+    Coincide {
+        i: usize,
+        si: Vector2<f64>,
+        j: usize,
+        sj: Vector2<f64>,
+    },
+    /// θ_j − θ_i − c(t) = 0, c = offset or motion (1 row).
+    Angle {
+        i: usize,
+        j: usize,
+        offset: f64,
+        motion: Option<usize>,
+    },
+    /// (A_i w)ᵀ (r_j + A_j s_j − r_i − A_i s_i) − c(t) = 0 (1 row).
+    Project {
+        i: usize,
+        si: Vector2<f64>,
+        j: usize,
+        sj: Vector2<f64>,
+        w: Vector2<f64>,
+        motion: Option<usize>,
+    },
+}
+
+/// One primitive constraint (rows of Φ) belonging to a named joint or driver.
+#[derive(Debug, Clone)]
+pub(crate) struct Con {
+    pub(crate) name: String,
+    pub(crate) kind: ConKind,
+    pub(crate) row: usize,
+}
+
+impl Con {
+    pub(crate) fn coincide(
+        name: &str,
+        i: usize,
+        si: Vector2<f64>,
+        j: usize,
+        sj: Vector2<f64>,
+    ) -> Self {
+        Con {
+            name: name.into(),
+            kind: ConKind::Coincide { i, si, j, sj },
+            row: 0,
+        }
+    }
+    pub(crate) fn angle(
+        name: &str,
+        i: usize,
+        j: usize,
+        offset: f64,
+        motion: Option<usize>,
+    ) -> Self {
+        Con {
+            name: name.into(),
+            kind: ConKind::Angle {
+                i,
+                j,
+                offset,
+                motion,
+            },
+            row: 0,
+        }
+    }
+    pub(crate) fn project(
+        name: &str,
+        i: usize,
+        si: Vector2<f64>,
+        j: usize,
+        sj: Vector2<f64>,
+        w: Vector2<f64>,
+        motion: Option<usize>,
+    ) -> Self {
+        Con {
+            name: name.into(),
+            kind: ConKind::Project {
+                i,
+                si,
+                j,
+                sj,
+                w,
+                motion,
+            },
+            row: 0,
+        }
+    }
+    fn rows(&self) -> usize {
+        match self.kind {
+            ConKind::Coincide { .. } => 2,
+            _ => 1,
+        }
+    }
+    fn bodies(&self) -> (usize, usize) {
+        match self.kind {
+            ConKind::Coincide { i, j, .. }
+            | ConKind::Angle { i, j, .. }
+            | ConKind::Project { i, j, .. } => (i, j),
+        }
+    }
+    pub(crate) fn label(&self, r: usize) -> String {
+        let eq = match (self.kind, r) {
+            (ConKind::Coincide { .. }, 0) => "x",
+            (ConKind::Coincide { .. }, _) => "y",
+            (ConKind::Angle { motion: None, .. }, _) => "relative angle",
+            (ConKind::Angle { .. }, _) => "driven angle",
+            (ConKind::Project { motion: None, .. }, _) => "normal offset",
+            (ConKind::Project { .. }, _) => "driven displacement",
+        };
+        format!("{} ({eq})", self.name)
+    }
+}
+
+pub(crate) enum ForceEl {
+    Spring {
+        name: String,
+        i: usize,
+        si: Vector2<f64>,
+        j: usize,
+        sj: Vector2<f64>,
+        k: f64,
+        c: f64,
+        l0: f64,
+    },
+    RotSpring {
+        name: String,
+        i: usize,
+        j: usize,
+        k: f64,
+        c: f64,
+        angle0: f64,
+    },
+    Force {
+        name: String,
+        i: usize,
+        si: Vector2<f64>,
+        f: ForceFn,
+    },
+    Torque {
+        name: String,
+        i: usize,
+        f: TorqueFn,
+    },
+    PairTorque {
+        name: String,
+        i: usize,
+        j: usize,
+        f: PairTorqueFn,
+    },
+}
+
+impl ForceEl {
+    fn name(&self) -> &str {
+        match self {
+            ForceEl::Spring { name, .. }
+            | ForceEl::RotSpring { name, .. }
+            | ForceEl::Force { name, .. }
+            | ForceEl::Torque { name, .. }
+            | ForceEl::PairTorque { name, .. } => name,
+        }
+    }
+}
+
+pub(crate) struct Clearance {
+    pub(crate) name: String,
+    pub(crate) i: usize,
+    pub(crate) j: usize,
+    pub(crate) geometry: RevoluteClearance,
+    pub(crate) normal: NormalLaw,
+    pub(crate) friction: FrictionLaw,
+}
+
+/// Quantities of one revolute clearance joint at the last evaluated state.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactReport {
+    /// Penetration δ = e − c, m (> 0 in contact).
+    pub penetration: f64,
+    /// Penetration rate δ̇, m/s (> 0 approaching).
+    pub penetration_rate: f64,
+    /// Impact velocity δ̇⁻ used by the law, m/s (0 when not in contact).
+    pub impact_velocity: f64,
+    /// Normal force F_N, N.
+    pub normal_force: f64,
+    /// Friction force F_T on the journal along the tangent, N.
+    pub friction_force: f64,
+    /// True when δ > 0.
+    pub in_contact: bool,
+    /// Journal centre relative to the bearing centre in the bearing body's frame, m.
+    pub eccentricity: [f64; 2],
+}
+
+/// Energies at one state, J.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Energies {
+    /// Kinetic energy ½ q̇ᵀ M q̇.
+    pub kinetic: f64,
+    /// Gravitational potential −Σ m g·r (zero at the origin).
+    pub potential: f64,
+    /// Elastic energy of springs and contact elastic parts ∫F_e dδ.
+    pub elastic: f64,
+}
+
+impl Energies {
+    /// Kinetic + potential + elastic.
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.potential + self.elastic
+    }
+}
+
+/// A built multibody model and its solver workspace. It is a clr-ode [`OdeSystem`] on
+/// y = (q, q̇) of dimension 2·[`Model::n_coordinates`]; use [`Model::initial_state`] for a
+/// consistent start, or [`Model::simulate`](crate::Model::simulate) for the full driver.
+pub struct Model {
+    pub(crate) body_names: Vec<String>,
+    pub(crate) bodies: Vec<RigidBody>,
+    pub(crate) points: Vec<(String, usize, Vector2<f64>)>,
+    pub(crate) cons: Vec<Con>,
+    pub(crate) motions: Vec<Motion>,
+    pub(crate) forces: Vec<ForceEl>,
+    pub(crate) clearances: Vec<Clearance>,
+    pub(crate) gravity: Vector2<f64>,
+    pub(crate) memory: ContactMemory,
+    pub(crate) alpha: f64,
+    pub(crate) beta: f64,
+    pub(crate) events_on: bool,
+    pub(crate) n: usize,
+    pub(crate) m: usize,
+    // workspace (sized in `assemble`, reused by every evaluation)
+    lu: DenseLu,
+    pub(crate) phi: Vec<f64>,
+    /// Φ_q, row-major m × n.
+    pub(crate) phiq: Vec<f64>,
+    pub(crate) phid: Vec<f64>,
+    pub(crate) gamma: Vec<f64>,
+    pub(crate) qf: Vec<f64>,
+    /// [q̈; λ] of the last evaluation.
+    pub(crate) sol: Vec<f64>,
+    pub(crate) contacts: Vec<ContactReport>,
+    pub(crate) solve_ok: bool,
+}
+
+#[inline]
+fn perp(v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(-v.y, v.x)
+}
+
+#[inline]
+fn rot(th: f64, s: Vector2<f64>) -> Vector2<f64> {
+    let (sn, c) = th.sin_cos();
+    Vector2::new(c * s.x - sn * s.y, sn * s.x + c * s.y)
+}
+
+#[inline]
+fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// Position, angle, velocity and angular velocity of body k (the ground is fixed at 0).
+#[inline]
+pub(crate) fn body_state(k: usize, q: &[f64], qd: &[f64]) -> BodyState {
+    if k == GROUND_ID {
+        BodyState::default()
+    } else {
+        let b = 3 * k;
+        BodyState::new(
+            Vector2::new(q[b], q[b + 1]),
+            q[b + 2],
+            Vector2::new(qd[b], qd[b + 1]),
+            qd[b + 2],
+        )
+    }
+}
+
+impl Model {
+    pub(crate) fn assemble(
+        bodies: Vec<(String, RigidBody)>,
+        points: Vec<(String, usize, Vector2<f64>)>,
+        mut cons: Vec<Con>,
+        motions: Vec<Motion>,
+        forces: Vec<ForceEl>,
+        clearances: Vec<Clearance>,
+        gravity: Vector2<f64>,
+    ) -> Result<Self, MbdError> {
+        let mut m = 0;
+        for c in cons.iter_mut() {
+            c.row = m;
+            m += c.rows();
+        }
+        let n = 3 * bodies.len();
+        if n == 0 {
+            return Err(MbdError::InvalidParameter {
+                item: "model".into(),
+                what: "number of bodies",
+                value: 0.0,
+                requirement: "define at least one rigid body with ModelBuilder::body",
+            });
+        }
+        let min_v = clearances
+            .iter()
+            .map(|c| c.normal.min_impact_velocity())
+            .fold(
+                clr_contact::NormalLaw::DEFAULT_MIN_IMPACT_VELOCITY,
+                f64::min,
+            );
+        let memory =
+            ContactMemory::new(clearances.len(), min_v).map_err(|source| MbdError::Contact {
+                item: "contact memory".into(),
+                source,
+            })?;
+        let mut lu = DenseLu::default();
+        lu.resize(n + m);
+        let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
+        let nc = clearances.len();
+        Ok(Model {
+            body_names,
+            bodies,
+            points,
+            cons,
+            motions,
+            forces,
+            clearances,
+            gravity,
+            memory,
+            alpha: DEFAULT_BAUMGARTE_ALPHA,
+            beta: DEFAULT_BAUMGARTE_BETA,
+            events_on: true,
+            n,
+            m,
+            lu,
+            phi: vec![0.0; m],
+            phiq: vec![0.0; m * n],
+            phid: vec![0.0; m],
+            gamma: vec![0.0; m],
+            qf: vec![0.0; n],
+            sol: vec![0.0; n + m],
+            contacts: vec![ContactReport::default(); nc],
+            solve_ok: true,
+        })
+    }
+
+    /// Number of coordinates n = 3 × (number of rigid bodies).
+    pub fn n_coordinates(&self) -> usize {
+        self.n
+    }
+
+    /// Number of constraint equations m (joints and drivers).
+    pub fn n_constraints(&self) -> usize {
+        self.m
+    }
+
+    /// Body names in coordinate order (body k owns q[3k..3k+3]).
+    pub fn body_names(&self) -> &[String] {
+        &self.body_names
+    }
+
+    /// Index of a body by name (`None` for unknown names and for the ground).
+    pub fn body_index(&self, name: &str) -> Option<usize> {
+        self.body_names.iter().position(|b| b == name)
+    }
+
+    /// Mass (kg) and centroidal inertia (kg·m²) of body k.
+    pub fn body_inertia(&self, k: usize) -> (f64, f64) {
+        (self.bodies[k].mass, self.bodies[k].inertia)
+    }
+
+    /// Set the Baumgarte coefficients α, β (1/s, ≥ 0; defaults [`DEFAULT_BAUMGARTE_ALPHA`],
+    /// [`DEFAULT_BAUMGARTE_BETA`]). α = β = 0 integrates the plain index-1 form.
+    ///
+    /// # Errors
+    /// [`MbdError::InvalidParameter`] for negative or non-finite values.
+    pub fn set_baumgarte(&mut self, alpha: f64, beta: f64) -> Result<(), MbdError> {
+        for (what, v) in [("Baumgarte α (1/s)", alpha), ("Baumgarte β (1/s)", beta)] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(MbdError::InvalidParameter {
+                    item: "model".into(),
+                    what,
+                    value: v,
+                    requirement: "must be finite and not negative",
+                });
+            }
+        }
+        self.alpha = alpha;
+        self.beta = beta;
+        Ok(())
+    }
+
+    /// Locate contact onsets as terminal events (default on): see
+    /// [`Model::simulate`](crate::Model::simulate).
+    pub fn set_contact_events(&mut self, on: bool) {
+        self.events_on = on;
+    }
+
+    /// Initial coordinates and velocities as given to the builder (not yet consistent).
+    pub fn given_state(&self) -> Vec<f64> {
+        let n = self.n;
+        let mut y = vec![0.0; 2 * n];
+        for (k, b) in self.bodies.iter().enumerate() {
+            y[3 * k] = b.position[0];
+            y[3 * k + 1] = b.position[1];
+            y[3 * k + 2] = b.angle;
+            y[n + 3 * k] = b.velocity[0];
+            y[n + 3 * k + 1] = b.velocity[1];
+            y[n + 3 * k + 2] = b.angular_velocity;
+        }
+        y
+    }
+
+    /// Evaluate Φ, Φ_q, Φ̇ and γ at (t, q, q̇) into the workspace.
+    pub(crate) fn eval_constraints(&mut self, t: f64, q: &[f64], qd: &[f64]) {
+        let n = self.n;
+        self.phiq.fill(0.0);
+        for c in &self.cons {
+            let r = c.row;
+            match c.kind {
+                ConKind::Coincide { i, si, j, sj } => {
+                    let bi = body_state(i, q, qd);
+                    let bj = body_state(j, q, qd);
+                    let ai = rot(bi.angle, si);
+                    let aj = rot(bj.angle, sj);
+                    let phi = bi.position + ai - bj.position - aj;
+                    let phid = bi.velocity + bi.angular_velocity * perp(ai)
+                        - bj.velocity
+                        - bj.angular_velocity * perp(aj);
+                    let g = bi.angular_velocity.powi(2) * ai - bj.angular_velocity.powi(2) * aj;
+                    for d in 0..2 {
+                        self.phi[r + d] = phi[d];
+                        self.phid[r + d] = phid[d];
+                        self.gamma[r + d] = g[d];
+                    }
+                    let (pi, pj) = (perp(ai), perp(aj));
+                    put(&mut self.phiq, n, r, i, [1.0, 0.0, pi.x]);
+                    put(&mut self.phiq, n, r + 1, i, [0.0, 1.0, pi.y]);
+                    put(&mut self.phiq, n, r, j, [-1.0, 0.0, -pj.x]);
+                    put(&mut self.phiq, n, r + 1, j, [0.0, -1.0, -pj.y]);
+                }
+                ConKind::Angle {
+                    i,
+                    j,
+                    offset,
+                    motion,
+                } => {
+                    let bi = body_state(i, q, qd);
+                    let bj = body_state(j, q, qd);
+                    let f = match motion {
+                        Some(k) => self.motions[k].eval(t),
+                        None => [offset, 0.0, 0.0],
+                    };
+                    self.phi[r] = bj.angle - bi.angle - f[0];
+                    self.phid[r] = bj.angular_velocity - bi.angular_velocity - f[1];
+                    self.gamma[r] = f[2];
+                    put(&mut self.phiq, n, r, i, [0.0, 0.0, -1.0]);
+                    put(&mut self.phiq, n, r, j, [0.0, 0.0, 1.0]);
+                }
+                ConKind::Project {
+                    i,
+                    si,
+                    j,
+                    sj,
+                    w,
+                    motion,
+                } => {
+                    let bi = body_state(i, q, qd);
+                    let bj = body_state(j, q, qd);
+                    let f = match motion {
+                        Some(k) => self.motions[k].eval(t),
+                        None => [0.0; 3],
+                    };
+                    let (wi, omi) = (bi.angle, bi.angular_velocity);
+                    let omj = bj.angular_velocity;
+                    let ai = rot(wi, si);
+                    let aj = rot(bj.angle, sj);
+                    let nv = rot(wi, w);
+                    let d = bj.position + aj - bi.position - ai;
+                    let dd = bj.velocity + omj * perp(aj) - bi.velocity - omi * perp(ai);
+                    self.phi[r] = nv.dot(&d) - f[0];
+                    self.phid[r] = omi * perp(nv).dot(&d) + nv.dot(&dd) - f[1];
+                    self.gamma[r] = omi * omi * nv.dot(&d) - 2.0 * omi * perp(nv).dot(&dd)
+                        + omj * omj * nv.dot(&aj)
+                        - omi * omi * nv.dot(&ai)
+                        + f[2];
+                    let ti = perp(nv).dot(&d) - nv.dot(&perp(ai));
+                    put(&mut self.phiq, n, r, i, [-nv.x, -nv.y, ti]);
+                    put(&mut self.phiq, n, r, j, [nv.x, nv.y, nv.dot(&perp(aj))]);
+                }
+            }
+        }
+    }
+
+    /// Generalized forces Q at (t, q, q̇) into the workspace; contact reports updated. Uses the
+    /// contact memory (tentative onsets for contacts closed in the committed memory).
+    pub(crate) fn eval_forces(&mut self, t: f64, q: &[f64], qd: &[f64]) {
+        self.qf.fill(0.0);
+        for (k, b) in self.bodies.iter().enumerate() {
+            self.qf[3 * k] += b.mass * self.gravity.x;
+            self.qf[3 * k + 1] += b.mass * self.gravity.y;
+        }
+        let qf = &mut self.qf;
+        for f in &self.forces {
+            match f {
+                ForceEl::Spring {
+                    i,
+                    si,
+                    j,
+                    sj,
+                    k,
+                    c,
+                    l0,
+                    ..
+                } => {
+                    let bi = body_state(*i, q, qd);
+                    let bj = body_state(*j, q, qd);
+                    let (ai, aj) = (bi.rotate(*si), bj.rotate(*sj));
+                    let d = bj.position + aj - bi.position - ai;
+                    let l = d.norm();
+                    if l <= f64::MIN_POSITIVE {
+                        continue;
+                    }
+                    let u = d / l;
+                    let vrel = bj.velocity + bj.angular_velocity * perp(aj)
+                        - bi.velocity
+                        - bi.angular_velocity * perp(ai);
+                    let tension = k * (l - l0) + c * u.dot(&vrel);
+                    add_force(qf, *i, ai, tension * u);
+                    add_force(qf, *j, aj, -tension * u);
+                }
+                ForceEl::RotSpring {
+                    i, j, k, c, angle0, ..
+                } => {
+                    let bi = body_state(*i, q, qd);
+                    let bj = body_state(*j, q, qd);
+                    let tau = -k * (bj.angle - bi.angle - angle0)
+                        - c * (bj.angular_velocity - bi.angular_velocity);
+                    add_torque(qf, *j, tau);
+                    add_torque(qf, *i, -tau);
+                }
+                ForceEl::Force { i, si, f, .. } => {
+                    let bi = body_state(*i, q, qd);
+                    let force = f(t, &bi);
+                    add_force(qf, *i, bi.rotate(*si), force);
+                }
+                ForceEl::Torque { i, f, .. } => {
+                    let bi = body_state(*i, q, qd);
+                    add_torque(qf, *i, f(t, &bi));
+                }
+                ForceEl::PairTorque { i, j, f, .. } => {
+                    let bi = body_state(*i, q, qd);
+                    let bj = body_state(*j, q, qd);
+                    let tau = f(t, &bi, &bj);
+                    add_torque(qf, *j, tau);
+                    add_torque(qf, *i, -tau);
+                }
+            }
+        }
+        for (k, cl) in self.clearances.iter().enumerate() {
+            let bi = body_state(cl.i, q, qd);
+            let bj = body_state(cl.j, q, qd);
+            let ct = cl.geometry.contact(&bi, &bj);
+            let local = bi.to_local(bi.position + ct.eccentricity_vector);
+            let mut rep = ContactReport {
+                penetration: ct.penetration,
+                penetration_rate: ct.normal_velocity,
+                eccentricity: [local.x, local.y],
+                ..Default::default()
+            };
+            if ct.in_contact() {
+                let vm = self
+                    .memory
+                    .impact_velocity(k, ct.penetration, ct.normal_velocity);
+                let jf = ct.forces_from_laws(&cl.normal, &cl.friction, vm);
+                add_gen(qf, cl.i, jf.bearing.as_array());
+                add_gen(qf, cl.j, jf.journal.as_array());
+                rep.in_contact = true;
+                rep.impact_velocity = vm;
+                rep.normal_force = jf.normal_force;
+                rep.friction_force = jf.tangential_force;
+            }
+            self.contacts[k] = rep;
+        }
+    }
+
+    /// Solve the augmented system at (t, q, q̇): afterwards `sol` = [q̈; λ]. Returns false when
+    /// the matrix is singular (then `sol` is NaN).
+    pub(crate) fn solve_accelerations(&mut self, t: f64, q: &[f64], qd: &[f64]) -> bool {
+        self.eval_constraints(t, q, qd);
+        self.eval_forces(t, q, qd);
+        let (n, m) = (self.n, self.m);
+        let nm = n + m;
+        let a = self.lu.matrix_mut();
+        a.fill(0.0);
+        for (k, b) in self.bodies.iter().enumerate() {
+            a[3 * k * (nm + 1)] = b.mass;
+            a[(3 * k + 1) * (nm + 1)] = b.mass;
+            a[(3 * k + 2) * (nm + 1)] = b.inertia;
+        }
+        for r in 0..m {
+            for c in 0..n {
+                let v = self.phiq[r * n + c];
+                if v != 0.0 {
+                    a[(n + r) + c * nm] = v;
+                    a[c + (n + r) * nm] = v;
+                }
+            }
+        }
+        self.sol[..n].copy_from_slice(&self.qf);
+        let (al, be) = (self.alpha, self.beta);
+        for r in 0..m {
+            self.sol[n + r] = self.gamma[r] - 2.0 * al * self.phid[r] - be * be * self.phi[r];
+        }
+        if self.lu.factor().is_err() {
+            self.sol.fill(f64::NAN);
+            self.solve_ok = false;
+            return false;
+        }
+        self.lu.solve(&mut self.sol);
+        self.solve_ok = true;
+        true
+    }
+
+    /// Accelerations q̈ of the last evaluation (units of q per s²).
+    pub(crate) fn accelerations(&self) -> &[f64] {
+        &self.sol[..self.n]
+    }
+
+    /// Lagrange multipliers λ of the last evaluation.
+    pub(crate) fn multipliers(&self) -> &[f64] {
+        &self.sol[self.n..]
+    }
+
+    /// Energies at (q, q̇) (kinetic, gravitational, elastic), J.
+    pub fn energies(&self, q: &[f64], qd: &[f64]) -> Energies {
+        let mut e = Energies::default();
+        for (k, b) in self.bodies.iter().enumerate() {
+            let v2 = qd[3 * k].powi(2) + qd[3 * k + 1].powi(2);
+            e.kinetic += 0.5 * (b.mass * v2 + b.inertia * qd[3 * k + 2].powi(2));
+            e.potential -= b.mass * (self.gravity.x * q[3 * k] + self.gravity.y * q[3 * k + 1]);
+        }
+        for f in &self.forces {
+            match f {
+                ForceEl::Spring {
+                    i,
+                    si,
+                    j,
+                    sj,
+                    k,
+                    l0,
+                    ..
+                } => {
+                    let bi = body_state(*i, q, qd);
+                    let bj = body_state(*j, q, qd);
+                    let l = (bj.point(*sj) - bi.point(*si)).norm();
+                    e.elastic += 0.5 * k * (l - l0).powi(2);
+                }
+                ForceEl::RotSpring {
+                    i, j, k, angle0, ..
+                } => {
+                    let bi = body_state(*i, q, qd);
+                    let bj = body_state(*j, q, qd);
+                    e.elastic += 0.5 * k * (bj.angle - bi.angle - angle0).powi(2);
+                }
+                _ => {}
+            }
+        }
+        for cl in &self.clearances {
+            let bi = body_state(cl.i, q, qd);
+            let bj = body_state(cl.j, q, qd);
+            let d = cl.geometry.penetration(&bi, &bj);
+            e.elastic += elastic_energy(&cl.normal, d);
+        }
+        e
+    }
+
+    /// Names of the joints and drivers (one per named item, in definition order).
+    pub fn joint_names(&self) -> Vec<String> {
+        let mut out: Vec<String> = Vec::new();
+        for c in &self.cons {
+            if out.last() != Some(&c.name) {
+                out.push(c.name.clone());
+            }
+        }
+        out
+    }
+
+    /// Reaction (F_x, F_y in N, moment in N·m about the centre of mass) that joint or driver
+    /// `name` exerts on its second body (on its first body when the second is the ground), from
+    /// the multipliers of the last evaluation: the generalized constraint force −Φ_qᵀλ restricted
+    /// to that body's coordinates.
+    pub(crate) fn reaction(&self, first_con: usize) -> [f64; 3] {
+        let name = &self.cons[first_con].name;
+        let (i, j) = self.cons[first_con].bodies();
+        let b = if j != GROUND_ID { j } else { i };
+        let mut out = [0.0; 3];
+        if b == GROUND_ID {
+            return out;
+        }
+        let n = self.n;
+        let lam = self.multipliers();
+        for c in self.cons[first_con..]
+            .iter()
+            .take_while(|c| &c.name == name)
+        {
+            for (r, l) in lam.iter().enumerate().skip(c.row).take(c.rows()) {
+                for (d, o) in out.iter_mut().enumerate() {
+                    *o -= self.phiq[r * n + 3 * b + d] * l;
+                }
+            }
+        }
+        out
+    }
+
+    /// Indices of the first primitive constraint of each named joint or driver.
+    pub(crate) fn joint_starts(&self) -> Vec<usize> {
+        let mut out = Vec::new();
+        for (k, c) in self.cons.iter().enumerate() {
+            if k == 0 || self.cons[k - 1].name != c.name {
+                out.push(k);
+            }
+        }
+        out
+    }
+
+    /// Labels of constraint rows, `item (equation)`.
+    pub(crate) fn row_labels(&self) -> Vec<String> {
+        let mut out = Vec::with_capacity(self.m);
+        for c in &self.cons {
+            for r in 0..c.rows() {
+                out.push(c.label(r));
+            }
+        }
+        out
+    }
+
+    /// Names of the revolute clearance joints.
+    pub fn clearance_names(&self) -> Vec<String> {
+        self.clearances.iter().map(|c| c.name.clone()).collect()
+    }
+
+    /// Names of the force elements.
+    pub fn force_names(&self) -> Vec<String> {
+        self.forces.iter().map(|f| f.name().to_string()).collect()
+    }
+
+    /// Named points: (name, body index or `None` for the ground, local coordinates in m).
+    pub fn points(&self) -> Vec<(String, Option<usize>, [f64; 2])> {
+        self.points
+            .iter()
+            .map(|(n, b, l)| (n.clone(), (*b != GROUND_ID).then_some(*b), [l.x, l.y]))
+            .collect()
+    }
+
+    /// Reports of the clearance joints at the last evaluation.
+    pub fn contact_reports(&self) -> &[ContactReport] {
+        &self.contacts
+    }
+
+    /// Commit the contact memory at an accepted state (rule 1 of clr-contact's memory).
+    pub(crate) fn commit_contacts(&mut self, y: &[f64]) {
+        let n = self.n;
+        let (q, qd) = y.split_at(n);
+        for (k, cl) in self.clearances.iter().enumerate() {
+            let bi = body_state(cl.i, q, qd);
+            let bj = body_state(cl.j, q, qd);
+            let ct = cl.geometry.contact(&bi, &bj);
+            self.memory.commit(k, ct.penetration, ct.normal_velocity);
+        }
+    }
+}
+
+/// Elastic energy ∫₀^δ F_e(s) ds of a normal law (J): exact for power laws K δ^{n+1}/(n+1),
+/// 16-point Gauss–Legendre quadrature otherwise.
+fn elastic_energy(law: &NormalLaw, delta: f64) -> f64 {
+    if delta <= 0.0 || !delta.is_finite() {
+        return 0.0;
+    }
+    if let Some((k, e)) = law.elastic().power_parameters() {
+        return k * delta.powf(e + 1.0) / (e + 1.0);
+    }
+    // Gauss–Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun, Table 25.4, n = 16).
+    const X: [f64; 8] = [
+        0.095_012_509_837_637_44,
+        0.281_603_550_779_258_9,
+        0.458_016_777_657_227_4,
+        0.617_876_244_402_643_8,
+        0.755_404_408_355_003,
+        0.865_631_202_387_831_7,
+        0.944_575_023_073_232_6,
+        0.989_400_934_991_649_9,
+    ];
+    const W: [f64; 8] = [
+        0.189_450_610_455_068_5,
+        0.182_603_415_044_923_6,
+        0.169_156_519_395_002_5,
+        0.149_595_988_816_576_7,
+        0.124_628_971_255_533_9,
+        0.095_158_511_682_492_8,
+        0.062_253_523_938_647_9,
+        0.027_152_459_411_754_1,
+    ];
+    let h = 0.5 * delta;
+    let mut s = 0.0;
+    for (x, w) in X.iter().zip(W.iter()) {
+        s += w * (law.elastic_force(h * (1.0 - x)) + law.elastic_force(h * (1.0 + x)));
+    }
+    s * h
+}
+
+#[inline]
+fn put(phiq: &mut [f64], n: usize, r: usize, k: usize, v: [f64; 3]) {
+    if k != GROUND_ID {
+        let o = r * n + 3 * k;
+        phiq[o] += v[0];
+        phiq[o + 1] += v[1];
+        phiq[o + 2] += v[2];
+    }
+}
+
+#[inline]
+fn add_force(qf: &mut [f64], k: usize, arm: Vector2<f64>, f: Vector2<f64>) {
+    add_gen(qf, k, [f.x, f.y, cross(arm, f)]);
+}
+
+#[inline]
+fn add_torque(qf: &mut [f64], k: usize, tau: f64) {
+    add_gen(qf, k, [0.0, 0.0, tau]);
+}
+
+#[inline]
+fn add_gen(qf: &mut [f64], k: usize, g: [f64; 3]) {
+    if k != GROUND_ID {
+        qf[3 * k] += g[0];
+        qf[3 * k + 1] += g[1];
+        qf[3 * k + 2] += g[2];
+    }
+}
+
+impl OdeSystem for Model {
+    fn dim(&self) -> usize {
+        2 * self.n
+    }
+
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        let n = self.n;
+        let (q, qd) = y.split_at(n);
+        self.solve_accelerations(t, q, qd);
+        dydt[..n].copy_from_slice(qd);
+        dydt[n..].copy_from_slice(&self.sol[..n]);
+    }
+
+    fn n_events(&self) -> usize {
+        if self.events_on {
+            self.clearances.len()
+        } else {
+            0
+        }
+    }
+
+    /// g_k = penetration δ_k of clearance joint k (m): a rising crossing is a contact onset.
+    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
+        let n = self.n;
+        let (q, qd) = y.split_at(n);
+        for (cl, gk) in self.clearances.iter().zip(g.iter_mut()) {
+            let bi = body_state(cl.i, q, qd);
+            let bj = body_state(cl.j, q, qd);
+            *gk = cl.geometry.penetration(&bi, &bj);
+        }
+    }
+
+    fn event_direction(&self, _i: usize) -> Direction {
+        Direction::Rising
+    }
+
+    fn event_terminal(&self, _i: usize) -> bool {
+        true
+    }
+}
