@@ -21,6 +21,7 @@ enum Kind {
         mu: f64,
         v0: f64,
         v1: f64,
+        smooth: bool,
     },
     Threlfall {
         mu: f64,
@@ -104,6 +105,21 @@ impl FrictionLaw {
     /// # Errors
     /// [`ContactError::InvalidParameter`] for μ < 0, v0 < 0 or v1 ≤ v0.
     pub fn ambrosio(mu: f64, v0: f64, v1: f64) -> Result<Self, ContactError> {
+        Self::ambrosio_kind(mu, v0, v1, false)
+    }
+
+    /// C¹ variant of [`ambrosio`](Self::ambrosio) (an option of this crate, not Ambrósio's,
+    /// contact-laws.md §2): c_d = s²(3 − 2s) with s = (|v_T| − v0)/(v1 − v0) clamped to [0, 1], so
+    /// the force has a continuous derivative at v0 and v1, which helps implicit integrators.
+    /// Equal to the linear ramp at v0, (v0 + v1)/2 and v1.
+    ///
+    /// # Errors
+    /// As [`ambrosio`](Self::ambrosio).
+    pub fn ambrosio_smooth(mu: f64, v0: f64, v1: f64) -> Result<Self, ContactError> {
+        Self::ambrosio_kind(mu, v0, v1, true)
+    }
+
+    fn ambrosio_kind(mu: f64, v0: f64, v1: f64, smooth: bool) -> Result<Self, ContactError> {
         const LAW: &str = "Ambrósio friction";
         let mu = coefficient(LAW, "friction coefficient μ (-)", mu)?;
         if !(v0 >= 0.0 && v0.is_finite()) {
@@ -117,7 +133,7 @@ impl FrictionLaw {
         positive(LAW, "v1 (m/s)", v1)?;
         ordered(LAW, "v1 (m/s)", v0, v1)?;
         Ok(Self {
-            kind: Kind::Ambrosio { mu, v0, v1 },
+            kind: Kind::Ambrosio { mu, v0, v1, smooth },
         })
     }
 
@@ -174,14 +190,9 @@ impl FrictionLaw {
         let sgn = sign(v_t);
         match self.kind {
             Kind::Coulomb { mu, v_reg } => -mu * (v_t / v_reg).clamp(-1.0, 1.0),
-            Kind::Ambrosio { mu, v0, v1 } => {
-                let cd = if a < v0 {
-                    0.0
-                } else if a > v1 {
-                    1.0
-                } else {
-                    (a - v0) / (v1 - v0)
-                };
+            Kind::Ambrosio { mu, v0, v1, smooth } => {
+                let ramp = ((a - v0) / (v1 - v0)).clamp(0.0, 1.0);
+                let cd = if smooth { step3(ramp) } else { ramp };
                 -mu * cd * sgn
             }
             Kind::Threlfall { mu, v0 } => -mu * (-(-3.0 * a / v0).exp_m1()) * sgn,

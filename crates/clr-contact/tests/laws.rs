@@ -668,6 +668,17 @@ fn coulomb_and_ambrosio_values() {
     assert_digits(a.force(5.5e-4, 1000.0), "-50");
     assert_digits(a.force(-5.5e-4, 1000.0), "50");
     assert_digits(a.force(2e-3, 1000.0), "-100");
+    // C¹ variant: equal to the ramp at v0, the midpoint and v1, with zero slope at both ends.
+    let sm = FrictionLaw::ambrosio_smooth(0.1, 1e-4, 1e-3).unwrap();
+    assert_eq!(sm.force(5e-5, 1000.0), 0.0);
+    assert_digits(sm.force(5.5e-4, 1000.0), "-50");
+    assert_digits(sm.force(2e-3, 1000.0), "-100");
+    for v in [1e-4, 1e-3] {
+        let h = 1e-9;
+        let slope = (sm.force(v + h, 1000.0) - sm.force(v - h, 1000.0)) / (2.0 * h);
+        // |slope| of the ramp would be 1e5/0.9e-3·… = 1.1e5 N/(m/s); the C¹ law gives ~0.
+        assert!(slope.abs() < 1.0, "slope {slope} at {v}");
+    }
     assert!(matches!(
         FrictionLaw::ambrosio(0.1, 1e-3, 1e-4),
         Err(ContactError::InvalidParameter { .. })
@@ -785,6 +796,7 @@ proptest! {
         let laws = [
             FrictionLaw::coulomb(mu, v0).unwrap(),
             FrictionLaw::ambrosio(mu, v0, v0 * ratio).unwrap(),
+            FrictionLaw::ambrosio_smooth(mu, v0, v0 * ratio).unwrap(),
             FrictionLaw::threlfall(mu, v0).unwrap(),
             FrictionLaw::stribeck(mu, 0.5 * mu, v0, v0 * ratio).unwrap(),
             FrictionLaw::stribeck(0.5 * mu, mu, v0, v0 * ratio).unwrap(),
