@@ -676,7 +676,7 @@ fn coulomb_and_ambrosio_values() {
     for v in [1e-4, 1e-3] {
         let h = 1e-9;
         let slope = (sm.force(v + h, 1000.0) - sm.force(v - h, 1000.0)) / (2.0 * h);
-        // |slope| of the ramp would be 1e5/0.9e-3·… = 1.1e5 N/(m/s); the C¹ law gives ~0.
+        // The linear ramp has slope μF_N/(v1 − v0) = 1.1e5 N·s/m there; the C¹ law about 0.
         assert!(slope.abs() < 1.0, "slope {slope} at {v}");
     }
     assert!(matches!(
