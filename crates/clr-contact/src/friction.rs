@@ -215,6 +215,54 @@ impl FrictionLaw {
         }
     }
 
+    /// Derivative dμ/dv_T (s/m) of the [signed coefficient](Self::signed_coefficient), for
+    /// Jacobians of implicit integrators (dF_T/dv_T = F_N·dμ/dv_T). Where the law has a kink
+    /// (Coulomb at ±v_reg, the linear Ambrósio ramp at v0 and v1) the value of the branch with the
+    /// larger |v_T| is returned.
+    #[inline]
+    pub fn coefficient_derivative(&self, v_t: f64) -> f64 {
+        if v_t.is_nan() {
+            return 0.0;
+        }
+        let a = v_t.abs();
+        match self.kind {
+            Kind::Coulomb { mu, v_reg } => {
+                if a < v_reg {
+                    -mu / v_reg
+                } else {
+                    0.0
+                }
+            }
+            Kind::Ambrosio { mu, v0, v1, smooth } => {
+                if a < v0 || a >= v1 {
+                    0.0
+                } else if smooth {
+                    let s = (a - v0) / (v1 - v0);
+                    -mu * 6.0 * s * (1.0 - s) / (v1 - v0)
+                } else {
+                    -mu / (v1 - v0)
+                }
+            }
+            Kind::Threlfall { mu, v0 } => -mu * 3.0 / v0 * (-3.0 * a / v0).exp(),
+            Kind::Stribeck {
+                mu_s,
+                mu_d,
+                v_s,
+                v_d,
+            } => {
+                if a > v_d {
+                    0.0
+                } else if a >= v_s {
+                    let s = (a - v_d) / (v_s - v_d);
+                    -(mu_s - mu_d) * 6.0 * s * (1.0 - s) / (v_s - v_d)
+                } else {
+                    let u = (v_t + v_s) / (2.0 * v_s);
+                    -6.0 * mu_s * u * (1.0 - u) / v_s
+                }
+            }
+        }
+    }
+
     /// Friction force F_T (N) along t on body j for slip v_T (m/s) and normal force F_N (N):
     /// opposes v_T, |F_T| ≤ μ_max·F_N; 0 for F_N ≤ 0.
     #[inline]

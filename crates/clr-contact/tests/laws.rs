@@ -907,3 +907,29 @@ fn stiffness_matches_central_differences() {
         (0.0, 0.0, 0.0)
     );
 }
+
+#[test]
+fn friction_derivatives_match_central_differences() {
+    let laws = [
+        FrictionLaw::coulomb(0.1, 1e-4).unwrap(),
+        FrictionLaw::ambrosio(0.1, 1e-4, 1e-3).unwrap(),
+        FrictionLaw::ambrosio_smooth(0.1, 1e-4, 1e-3).unwrap(),
+        FrictionLaw::threlfall(0.1, 0.01).unwrap(),
+        FrictionLaw::stribeck(0.2, 0.1, 0.01, 0.1).unwrap(),
+    ];
+    // Points away from the kinks, on every branch and both signs.
+    for law in laws {
+        for v in [3e-5f64, 4e-4, 7e-4, 3e-3, 6e-3, 0.03, 0.07, 0.3] {
+            for v in [v, -v] {
+                let h = v.abs() * 1e-6;
+                let fd =
+                    (law.signed_coefficient(v + h) - law.signed_coefficient(v - h)) / (2.0 * h);
+                let d = law.coefficient_derivative(v);
+                assert!(
+                    (d - fd).abs() <= 1e-6 * fd.abs().max(1.0),
+                    "{law:?} at {v}: {d} vs {fd}"
+                );
+            }
+        }
+    }
+}
