@@ -140,28 +140,26 @@ fn small_lu(n: usize, a: &mut [f64], piv: &mut [usize]) -> Result<(), Singular> 
 }
 
 fn small_solve(n: usize, a: &[f64], piv: &[usize], b: &mut [f64]) {
-    for (k, &p) in piv.iter().enumerate().take(n) {
+    let b = &mut b[..n];
+    let a = &a[..n * n];
+    for (k, &p) in piv[..n].iter().enumerate() {
         b.swap(k, p);
     }
     // forward: L y = P b (unit lower), column by column
-    for j in 0..n {
-        let (head, tail) = b.split_at_mut(j + 1);
-        let bj = head[j];
+    for (j, col) in a.chunks_exact(n).enumerate() {
+        let bj = b[j];
         if bj != 0.0 {
-            let col = &a[j * n + j + 1..(j + 1) * n];
-            for (bi, l) in tail.iter_mut().zip(col) {
-                *bi -= l * bj;
+            for i in j + 1..n {
+                b[i] -= col[i] * bj;
             }
         }
     }
     // backward: U x = y
-    for j in (0..n).rev() {
-        let (head, tail) = b.split_at_mut(j);
-        let bj = tail[0] / a[j * n + j];
-        tail[0] = bj;
-        let col = &a[j * n..j * n + j];
-        for (bi, u) in head.iter_mut().zip(col) {
-            *bi -= u * bj;
+    for (j, col) in a.chunks_exact(n).enumerate().rev() {
+        let bj = b[j] / col[j];
+        b[j] = bj;
+        for i in 0..j {
+            b[i] -= col[i] * bj;
         }
     }
 }

@@ -139,32 +139,36 @@ impl NdfMethod {
     fn change_d(&mut self, factor: f64) {
         let n = self.n;
         let k = self.order;
+        // R(factor) for all orders at once: entries (i, j) ≤ k are those of order k, and U_k is
+        // zero beyond k, so RU restricted to 0..=k is the order-k product. Fixed 6 × 6 loops
+        // unroll without bounds checks.
         let mut r = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
-        compute_r(k, factor, &mut r);
+        r[0] = [1.0; MAX_ORDER + 1];
+        for i in 1..=MAX_ORDER {
+            let inv = 1.0 / i as f64;
+            for j in 0..=MAX_ORDER {
+                r[i][j] = r[i - 1][j] * ((i as f64 - 1.0 - factor * j as f64) * inv);
+            }
+        }
         let u = &self.u[k];
-        // RU = R · U
         let mut ru = [[0.0; MAX_ORDER + 1]; MAX_ORDER + 1];
-        for i in 0..=k {
-            for j in 0..=k {
-                let mut s = 0.0;
-                for m in 0..=k {
-                    s += r[i][m] * u[m][j];
+        for i in 0..=MAX_ORDER {
+            for m in 0..=MAX_ORDER {
+                let rim = r[i][m];
+                for j in 0..=MAX_ORDER {
+                    ru[i][j] += rim * u[m][j];
                 }
-                ru[i][j] = s;
             }
         }
         // D_new[j] = Σ_i RU[i][j] D[i]
+        let src = &self.d[..(k + 1) * n];
         let tmp = &mut self.d_tmp[..(k + 1) * n];
-        tmp.fill(0.0);
-        for j in 0..=k {
-            let out = &mut tmp[j * n..(j + 1) * n];
-            for i in 0..=k {
-                let c = ru[i][j];
-                if c != 0.0 {
-                    let src = &self.d[i * n..(i + 1) * n];
-                    for (o, s) in out.iter_mut().zip(src) {
-                        *o += c * s;
-                    }
+        for (out, ru_j) in tmp.chunks_exact_mut(n).zip(0..=MAX_ORDER) {
+            out.fill(0.0);
+            for (d_i, ru_i) in src.chunks_exact(n).zip(ru.iter()) {
+                let c = ru_i[ru_j];
+                for (o, s) in out.iter_mut().zip(d_i) {
+                    *o += c * s;
                 }
             }
         }
@@ -256,8 +260,10 @@ impl NdfMethod {
                 break;
             }
             if identity {
-                for i in 0..n {
-                    self.dy[i] = c * self.f[i] - self.psi[i] - self.dd[i];
+                for (((dy, f), psi), dd) in
+                    self.dy.iter_mut().zip(&self.f).zip(&self.psi).zip(&self.dd)
+                {
+                    *dy = c * f - psi - dd;
                 }
             } else {
                 // c f − M (ψ + d)
@@ -291,9 +297,9 @@ impl NdfMethod {
             {
                 break;
             }
-            for i in 0..n {
-                self.y_new[i] += self.dy[i];
-                self.dd[i] += self.dy[i];
+            for ((y, dd), dy) in self.y_new.iter_mut().zip(self.dd.iter_mut()).zip(&self.dy) {
+                *y += dy;
+                *dd += dy;
             }
             // converged when the remaining error θ/(1 − θ)·‖Δ‖ is below the tolerance
             if dy_norm == 0.0 || (rate >= 0.0 && rate / (1.0 - rate) * dy_norm < self.newton_tol) {
@@ -595,14 +601,19 @@ impl Method for NdfMethod {
         let k = self.order;
         self.n_equal_steps += 1;
         self.jac_current = false;
-        for i in 0..n {
-            let dk1 = self.d[(k + 1) * n + i];
-            self.d[(k + 2) * n + i] = self.dd[i] - dk1;
-            self.d[(k + 1) * n + i] = self.dd[i];
-        }
-        for j in (0..=k).rev() {
-            for i in 0..n {
-                self.d[j * n + i] += self.d[(j + 1) * n + i];
+        {
+            let d = &mut self.d[..(k + 3) * n];
+            let (lo, hi) = d.split_at_mut((k + 2) * n);
+            let dk1 = &mut lo[(k + 1) * n..];
+            for ((a, b), e) in hi.iter_mut().zip(dk1.iter_mut()).zip(&self.dd) {
+                *a = e - *b;
+                *b = *e;
+            }
+            for j in (0..=k).rev() {
+                let (lo, hi) = d.split_at_mut((j + 1) * n);
+                for (a, b) in lo[j * n..].iter_mut().zip(&hi[..n]) {
+                    *a += b;
+                }
             }
         }
         Ok(())
