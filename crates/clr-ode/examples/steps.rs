@@ -1,11 +1,15 @@
 //! Steps and time per step at the benchmark tolerances (rtol 1e-6; atol 1e-6, Robertson 1e-12):
-//! `cargo run --release -p clr-ode --example steps`.
+//! `cargo run --release -p clr-ode --example steps` (env REPS = repetitions, PROBLEM = one name).
 
 use clr_ode::test_models::{scd, Problem};
 use clr_ode::{Ndf, Options, Output};
 
 fn main() {
+    let only = std::env::var("PROBLEM").ok();
     for p in Problem::ODES {
+        if only.as_deref().is_some_and(|o| o != p.name()) {
+            continue;
+        }
         let atol = if p == Problem::Robertson { 1e-12 } else { 1e-6 };
         let mut sys = p.system();
         let mut s = Ndf::new(Options::default().rtol(1e-6).atol(atol).output(Output::End));
