@@ -6,9 +6,12 @@
 //! t_end; 1e-12 at rtol 1e-6 as in verification.md's peer note). The same rule is used by all
 //! three solvers and checked on the peers' rows.
 //!
-//! Each solve is repeated (at least 5 times and `--min-time` seconds, 3 times and 4×`--min-time`
-//! for SciPy) and the median wall time is reported. clr-ode runs in this process; the peers run
-//! as child processes in the same invocation. Accuracy is the mixed-error number of significant
+//! Timing: clr-ode (in this process) and the diffsol peer (a child process) alternate in
+//! `--rounds` rounds (default 3), so that both see the same machine load; in each round a solve
+//! is repeated at least 5 times and `--min-time`/rounds seconds (default 1 s in total), and a row
+//! reports the median over rounds of the per-round median wall time. SciPy runs once afterwards
+//! (at least 3 solves and 2×`--min-time` seconds per row); only its solve is timed. The peers run
+//! in the same invocation. Accuracy is the mixed-error number of significant
 //! correct digits `scd = −log10 max_i |y_i − ref_i| / (1 + |ref_i|)` of the state at t_end against
 //! the Test Set reference (`clr_ode::test_models`).
 //!
@@ -51,6 +54,7 @@ struct Report<'a> {
 struct Args {
     rtols: Vec<f64>,
     min_time: f64,
+    rounds: usize,
     diffsol: bool,
     scipy: bool,
 }
@@ -58,7 +62,8 @@ struct Args {
 fn parse_args(args: &[String]) -> Result<Args, String> {
     let mut a = Args {
         rtols: Vec::new(),
-        min_time: 0.5,
+        min_time: 1.0,
+        rounds: 3,
         diffsol: true,
         scipy: true,
     };
@@ -76,6 +81,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         match arg.as_str() {
             "--rtol" => a.rtols.push(value("--rtol")?),
             "--min-time" => a.min_time = value("--min-time")?,
+            "--rounds" => a.rounds = value("--rounds")?.round().max(1.0) as usize,
             "--no-scipy" => a.scipy = false,
             "--no-diffsol" => a.diffsol = false,
             other => return Err(format!("unknown argument {other}")),
@@ -232,6 +238,97 @@ pub fn markdown(machine: &str, rows: &[Row], notes: &[String]) -> String {
     md
 }
 
+/// Tolerances of the work–precision sweep of clr-ode and diffsol: 1e-5 … 1e-10 by decades plus
+/// the requested ones, loosest first.
+fn sweep_rtols(requested: &[f64]) -> Vec<f64> {
+    let mut v: Vec<f64> = (5..=10).map(|k| 10f64.powi(-k)).collect();
+    for &r in requested {
+        if !v.iter().any(|x| (x / r - 1.0).abs() < 1e-9) {
+            v.push(r);
+        }
+    }
+    v.sort_by(|a, b| b.total_cmp(a));
+    v
+}
+
+/// Wall time of `solver` on `problem` at accuracy `scd`, interpolated linearly in
+/// (scd, log10 time) between the two sweep points that bracket it; `None` outside the sweep or
+/// when the curve is not monotone there.
+pub fn time_at_scd(rows: &[Row], problem: &str, solver: &str, scd: f64) -> Option<f64> {
+    let mut pts: Vec<(f64, f64)> = rows
+        .iter()
+        .filter(|r| r.problem == problem && r.solver == solver && r.scd.is_finite())
+        .map(|r| (r.scd, r.wall_s.log10()))
+        .collect();
+    pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+    pts.windows(2).find_map(|w| {
+        let ((s0, t0), (s1, t1)) = (w[0], w[1]);
+        (s0 <= scd && scd <= s1 && s1 > s0)
+            .then(|| 10f64.powf(t0 + (t1 - t0) * (scd - s0) / (s1 - s0)))
+    })
+}
+
+/// For each clr-ode point at the requested tolerances: the time diffsol needs for the same scd
+/// (interpolated on its sweep), and the ratio to clr-ode's time.
+pub fn equal_accuracy_table(rows: &[Row], rtols: &[f64]) -> String {
+    let mut md = String::new();
+    let _ = writeln!(
+        md,
+        "\nAt equal accuracy: diffsol's time interpolated at clr-ode's scd on diffsol's \
+         work–precision sweep (rtol 1e-5 … 1e-10; linear in scd vs log time).\n"
+    );
+    let _ = writeln!(
+        md,
+        "| problem | clr rtol | clr scd | clr (ms) | diffsol at same scd (ms) | diffsol / clr |"
+    );
+    let _ = writeln!(md, "|---|---|---|---|---|---|");
+    for r in rows
+        .iter()
+        .filter(|r| r.solver == clr::SOLVER && rtols.contains(&r.rtol))
+    {
+        let d = time_at_scd(rows, &r.problem, "diffsol-bdf", r.scd);
+        let (dt, ratio) = d.map_or(("–".to_string(), "–".to_string()), |d| {
+            (fmt_ms(d), format!("{:.2}", d / r.wall_s))
+        });
+        let _ = writeln!(
+            md,
+            "| {} | {:.0e} | {:.2} | {} | {dt} | {ratio} |",
+            r.problem,
+            r.rtol,
+            r.scd,
+            fmt_ms(r.wall_s)
+        );
+    }
+    md
+}
+
+/// Merge the rows of several rounds: one row per (problem, solver, rtol) with the median of the
+/// rounds' median times and the total number of timed solves.
+fn median_of_rounds(rows: Vec<Row>) -> Vec<Row> {
+    let mut out: Vec<(Row, Vec<f64>)> = Vec::new();
+    for r in rows {
+        match out
+            .iter_mut()
+            .find(|(o, _)| o.problem == r.problem && o.solver == r.solver && o.rtol == r.rtol)
+        {
+            Some((o, times)) => {
+                times.push(r.wall_s);
+                o.repeats += r.repeats;
+            }
+            None => {
+                let t = r.wall_s;
+                out.push((r, vec![t]));
+            }
+        }
+    }
+    out.into_iter()
+        .map(|(mut r, times)| {
+            r.wall_s = median(times);
+            r
+        })
+        .collect()
+}
+
 pub fn run(args: &[String]) -> ExitCode {
     let args = match parse_args(args) {
         Ok(a) => a,
@@ -245,34 +342,53 @@ pub fn run(args: &[String]) -> ExitCode {
     let mut notes = Vec::new();
     let mut failed = false;
 
-    eprintln!("bench ode: clr-ode NDF (in process)");
-    for &rtol in &args.rtols {
-        for name in clr::PROBLEMS {
-            let atol = atol_for(name, rtol);
-            match clr::bench(name, rtol, atol, args.min_time) {
-                Ok(row) => rows.push(row),
-                Err(e) => {
-                    eprintln!("bench ode: clr-ode {name} at rtol {rtol:e}: {e}");
-                    notes.push(format!("clr-ode {name} at rtol {rtol:e} failed: {e}"));
-                    failed = true;
+    // clr-ode and diffsol alternate in rounds so that both see the same machine load; each row
+    // is then the median of its per-round medians.
+    let sweep = sweep_rtols(&args.rtols);
+    let per_round = args.min_time / args.rounds as f64;
+    let mut timed_rows = Vec::new();
+    for round in 1..=args.rounds {
+        eprintln!(
+            "bench ode: round {round}/{}: clr-ode NDF (in process)",
+            args.rounds
+        );
+        for &rtol in &sweep {
+            for name in clr::PROBLEMS {
+                let atol = atol_for(name, rtol);
+                match clr::bench(name, rtol, atol, per_round) {
+                    Ok(row) => timed_rows.push(row),
+                    Err(e) => {
+                        let msg = format!("clr-ode {name} at rtol {rtol:e} failed: {e}");
+                        eprintln!("bench ode: {msg}");
+                        if round == 1 {
+                            notes.push(msg);
+                        }
+                        failed = true;
+                    }
                 }
             }
         }
+        if args.diffsol {
+            let mut round_notes = Vec::new();
+            peer_rows(
+                "diffsol",
+                run_diffsol(&root, &sweep, per_round),
+                &mut timed_rows,
+                &mut round_notes,
+            );
+            if round == 1 {
+                notes.append(&mut round_notes);
+            }
+        }
     }
-    if args.diffsol {
-        peer_rows(
-            "diffsol",
-            run_diffsol(&root, &args.rtols, args.min_time),
-            &mut rows,
-            &mut notes,
-        );
-    } else {
+    if !args.diffsol {
         notes.push("diffsol skipped (--no-diffsol)".to_string());
     }
+    rows.extend(median_of_rounds(timed_rows));
     if args.scipy {
         peer_rows(
             "SciPy",
-            run_scipy(&root, &args.rtols, 4.0 * args.min_time),
+            run_scipy(&root, &args.rtols, 2.0 * args.min_time),
             &mut rows,
             &mut notes,
         );
@@ -299,7 +415,13 @@ pub fn run(args: &[String]) -> ExitCode {
     });
 
     let machine = machine();
-    let md = markdown(&machine, &rows, &notes);
+    let main_rows: Vec<Row> = rows
+        .iter()
+        .filter(|r| args.rtols.contains(&r.rtol))
+        .cloned()
+        .collect();
+    let mut md = markdown(&machine, &main_rows, &notes);
+    md.push_str(&equal_accuracy_table(&rows, &args.rtols));
     let dir = crate::target_dir().join("bench");
     let report = Report {
         machine: machine.clone(),
