@@ -9,8 +9,8 @@ use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 
 fn cantilever(n: usize) -> BeamModel {
     let sec = Section::rectangular(0.02, 0.01).expect("valid section");
-    let mut b = BeamModel::straight([0.0, 0.0], [1.0, 0.0], n, Material::steel(), sec)
-        .expect("valid beam");
+    let mut b =
+        BeamModel::straight([0.0, 0.0], [1.0, 0.0], n, Material::steel(), sec).expect("valid beam");
     b.support(0, Support::Clamped).expect("node 0 exists");
     b
 }

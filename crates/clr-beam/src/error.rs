@@ -106,6 +106,9 @@ pub enum BeamError {
     /// The eigenvalue solver did not converge.
     #[error("the eigenvalue solver did not converge: {0}")]
     Eigen(String),
+    /// A sparse assembly or factorization failed (out of memory or index overflow).
+    #[error("sparse matrix operation failed: {0}; reduce the model size")]
+    Sparse(String),
     /// A prescribed component index is not 0 (u), 1 (v) or 2 (θ).
     #[error("DOF component {0} does not exist; use 0 (u), 1 (v) or 2 (θ)")]
     NoSuchComponent(usize),

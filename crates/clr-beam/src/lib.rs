@@ -21,8 +21,8 @@ pub mod transient;
 
 pub use element::{FrameElement, MassKind};
 pub use error::BeamError;
-pub use modal::Modes;
-pub use model::{BeamModel, DofMap, Loads, StaticSolution, Support};
+pub use modal::{EigenMethod, Modes};
+pub use model::{BeamModel, DofMap, Loads, SparseMatrix, StaticSolution, Support};
 pub use query::{BeamPoint, Face, LoadRow, Path, SurfacePoint};
 pub use reduction::{FloatingFrameInvariants, ReducedModel};
 pub use section::{Material, Section};

@@ -14,6 +14,7 @@
 //! and is reported as exactly ω = 0. Cost: O(n³) in the number of free DOF n (dense), about
 //! 1 s at 3000 DOF on two cores.
 
+use faer::linalg::solvers::Solve;
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
@@ -63,16 +64,32 @@ impl BeamModel {
         ei / (ra * l.powi(4))
     }
 
-    /// The lowest `n` modes of the model with its supports (prescribed DOF held at zero).
-    /// Errors: `n` = 0, more modes than free DOF, indefinite stiffness (compression beyond
-    /// buckling), non-positive-definite mass.
+    /// The lowest `n` modes of the model with its supports (prescribed DOF held at zero),
+    /// with [`EigenMethod::Auto`]. Errors: `n` = 0, more modes than free DOF, indefinite
+    /// stiffness (compression beyond buckling), non-positive-definite mass.
     pub fn modes(&self, n: usize) -> Result<Modes, BeamError> {
+        self.modes_with(n, EigenMethod::Auto)
+    }
+
+    /// The lowest `n` modes with a chosen eigen solver.
+    pub fn modes_with(&self, n: usize, method: EigenMethod) -> Result<Modes, BeamError> {
         let dofs = self.dof_map()?;
-        let k = self.stiffness_dense()?;
-        let m = self.mass_dense()?;
-        let kff = restrict(k.as_ref(), &dofs.free, &dofs.free);
-        let mff = restrict(m.as_ref(), &dofs.free, &dofs.free);
-        let (lambda, phi) = lowest_modes(kff.as_ref(), mff.as_ref(), n, self.lambda_ref())?;
+        let nf = dofs.free.len();
+        let dense = match method {
+            EigenMethod::Dense => true,
+            EigenMethod::Subspace => false,
+            EigenMethod::Auto => nf <= AUTO_DENSE_LIMIT || 2 * n + 8 >= nf,
+        };
+        let (lambda, phi) = if dense {
+            let k = self.stiffness_dense()?;
+            let m = self.mass_dense()?;
+            let kff = restrict(k.as_ref(), &dofs.free, &dofs.free);
+            let mff = restrict(m.as_ref(), &dofs.free, &dofs.free);
+            lowest_modes(kff.as_ref(), mff.as_ref(), n, self.lambda_ref())?
+        } else {
+            let (k, m) = self.free_sparse(&dofs)?;
+            subspace_modes(k.as_ref(), m.as_ref(), n, self.lambda_ref())?
+        };
         let mut shapes = Mat::<f64>::zeros(self.n_dof(), n);
         for j in 0..n {
             for (i, &d) in dofs.free.iter().enumerate() {
@@ -87,6 +104,141 @@ impl BeamModel {
             rigid_body_modes,
             dofs,
         })
+    }
+}
+
+/// Free-DOF count up to which [`EigenMethod::Auto`] uses the dense solver.
+pub const AUTO_DENSE_LIMIT: usize = 200;
+
+/// Eigen solver of [`BeamModel::modes_with`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum EigenMethod {
+    /// Dense shift-invert with a full symmetric eigendecomposition ([`lowest_modes`]):
+    /// O(n³), all modes exact to round-off.
+    Dense,
+    /// Sparse shift-invert subspace iteration ([`subspace_modes`]): O(n) per iteration for
+    /// beams and frames (banded matrices).
+    Subspace,
+    /// Dense up to [`AUTO_DENSE_LIMIT`] free DOF (or when the subspace would be nearly the
+    /// whole space), subspace iteration above.
+    #[default]
+    Auto,
+}
+
+/// Lowest `n` eigenpairs of K φ = λ M φ for sparse K (positive semi-definite) and M (positive
+/// definite) by shift-invert subspace iteration with Rayleigh–Ritz projection (Bathe,
+/// *Finite Element Procedures*, 2nd ed. 2014, §11.6): q = max(2n, n + 8) vectors, the
+/// shifted matrix A = K + σM (σ = `lambda_ref`, see the module docs) factored once by sparse
+/// Cholesky; per iteration Y = M X, X̄ = A⁻¹ Y, the projected pencil (X̄ᵀY, X̄ᵀMX̄) is solved
+/// densely and X = X̄ Q. Converged when the n lowest Ritz values of A change by less than
+/// 1e-12 relative between iterations (at most 300 iterations). Same outputs as
+/// [`lowest_modes`].
+pub fn subspace_modes(
+    k: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    m: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    n: usize,
+    lambda_ref: f64,
+) -> Result<(Vec<f64>, Mat<f64>), BeamError> {
+    let dim = k.nrows();
+    if n == 0 {
+        return Err(BeamError::ZeroModes);
+    }
+    if n > dim {
+        return Err(BeamError::TooManyModes {
+            requested: n,
+            available: dim,
+        });
+    }
+    let q = (2 * n).max(n + 8).min(dim);
+    let sigma = lambda_ref;
+    let a = sparse_add(k, m, sigma)?;
+    let llt = a
+        .sp_cholesky(Side::Lower)
+        .map_err(|_| BeamError::Indefinite { lambda: -sigma })?;
+    // Deterministic start: diagonal of M, then a fixed pseudo-random sequence (LCG).
+    let mut seed: u64 = 0x9E37_79B9_7F4A_7C15;
+    let mut x = Mat::<f64>::from_fn(dim, q, |i, j| {
+        if j == 0 {
+            1.0 + (i % 3) as f64
+        } else {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+        }
+    });
+    let mut previous: Vec<f64> = vec![f64::INFINITY; n];
+    for _ in 0..300 {
+        let y = m * &x;
+        let mut xb = y.clone();
+        llt.solve_in_place(xb.as_mut());
+        let ab = xb.transpose() * &y;
+        let mxb = m * &xb;
+        let mb = xb.transpose() * &mxb;
+        let ab = Mat::from_fn(q, q, |i, j| 0.5 * (ab[(i, j)] + ab[(j, i)]));
+        let mb = Mat::from_fn(q, q, |i, j| 0.5 * (mb[(i, j)] + mb[(j, i)]));
+        // Ritz values of A (≥ σ), by the dense solver on the small pencil.
+        let (ritz, qv) = lowest_modes(ab.as_ref(), mb.as_ref(), q, sigma)?;
+        x = &xb * &qv;
+        let converged = ritz
+            .iter()
+            .zip(&previous)
+            .take(n)
+            .all(|(r, p)| (r - p).abs() <= 1e-12 * r.abs());
+        previous = ritz[..n].to_vec();
+        if converged {
+            let mut lambda = Vec::with_capacity(n);
+            for &r in &previous {
+                let mut lam = r - sigma;
+                if lam.abs() <= ZERO_MODE_TOL * lambda_ref {
+                    lam = 0.0;
+                } else if lam < 0.0 {
+                    return Err(BeamError::Indefinite { lambda: lam });
+                }
+                lambda.push(lam);
+            }
+            let mut phi = x.subcols(0, n).to_owned();
+            fix_signs(&mut phi);
+            return Ok((lambda, phi));
+        }
+    }
+    Err(BeamError::Eigen(
+        "subspace iteration did not converge in 300 iterations; use EigenMethod::Dense".into(),
+    ))
+}
+
+/// K + σ M for sparse matrices of the same pattern family.
+fn sparse_add(
+    k: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    m: faer::sparse::SparseColMatRef<'_, usize, f64>,
+    sigma: f64,
+) -> Result<faer::sparse::SparseColMat<usize, f64>, BeamError> {
+    let mut t = Vec::with_capacity(k.compute_nnz() + m.compute_nnz());
+    for (mat, s) in [(k, 1.0), (m, sigma)] {
+        for j in 0..mat.ncols() {
+            for (i, v) in mat.row_idx_of_col(j).zip(mat.val_of_col(j)) {
+                t.push(faer::sparse::Triplet::new(i, j, s * v));
+            }
+        }
+    }
+    faer::sparse::SparseColMat::try_new_from_triplets(k.nrows(), k.ncols(), &t)
+        .map_err(|e| BeamError::Sparse(format!("{e:?}")))
+}
+
+/// Deterministic sign: the largest-magnitude component of each column positive.
+fn fix_signs(y: &mut Mat<f64>) {
+    for j in 0..y.ncols() {
+        let mut imax = 0;
+        for i in 0..y.nrows() {
+            if y[(i, j)].abs() > y[(imax, j)].abs() {
+                imax = i;
+            }
+        }
+        if y[(imax, j)] < 0.0 {
+            for i in 0..y.nrows() {
+                y[(i, j)] = -y[(i, j)];
+            }
+        }
     }
 }
 
@@ -152,19 +304,6 @@ pub fn lowest_modes(
         }
     }
     solve_upper_triangular_in_place(l.transpose(), y.as_mut(), Par::Seq);
-    // Deterministic sign: largest-magnitude component positive.
-    for j in 0..n {
-        let mut imax = 0;
-        for i in 0..dim {
-            if y[(i, j)].abs() > y[(imax, j)].abs() {
-                imax = i;
-            }
-        }
-        if y[(imax, j)] < 0.0 {
-            for i in 0..dim {
-                y[(i, j)] = -y[(i, j)];
-            }
-        }
-    }
+    fix_signs(&mut y);
     Ok((lambda, y))
 }

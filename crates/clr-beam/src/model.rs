@@ -11,6 +11,9 @@ use crate::element::{FrameElement, MassKind, Mat6, Vec6};
 use crate::error::BeamError;
 use crate::section::{Material, Section};
 
+/// Sparse (CSC) matrix type of the assembly.
+pub type SparseMatrix = SparseColMat<usize, f64>;
+
 /// Planar frame model: nodes, elements, supports, mass kind and Rayleigh damping.
 #[derive(Debug, Clone, Default)]
 pub struct BeamModel {
@@ -404,19 +407,42 @@ impl BeamModel {
         &self,
         f: impl Fn(&FrameElement) -> Mat6,
     ) -> Result<SparseColMat<usize, f64>, BeamError> {
-        let n = self.n_dof();
+        let index: Vec<Option<usize>> = (0..self.n_dof()).map(Some).collect();
+        self.assemble_sparse_on(f, &index, self.n_dof())
+    }
+
+    /// Sparse assembly onto the DOF subset given by `index` (full DOF → row/column, `None` =
+    /// dropped), of dimension `dim`. Cost and storage linear in the number of elements.
+    fn assemble_sparse_on(
+        &self,
+        f: impl Fn(&FrameElement) -> Mat6,
+        index: &[Option<usize>],
+        dim: usize,
+    ) -> Result<SparseColMat<usize, f64>, BeamError> {
         let mut t = Vec::with_capacity(36 * self.elements.len());
         for e in &self.elements {
             let ke = f(e);
             let d = e.dofs();
             for i in 0..6 {
                 for j in 0..6 {
-                    t.push(Triplet::new(d[i], d[j], ke[(i, j)]));
+                    if let (Some(r), Some(c)) = (index[d[i]], index[d[j]]) {
+                        t.push(Triplet::new(r, c, ke[(i, j)]));
+                    }
                 }
             }
         }
-        SparseColMat::try_new_from_triplets(n, n, &t)
-            .map_err(|e| BeamError::Eigen(format!("sparse assembly failed: {e:?}")))
+        SparseColMat::try_new_from_triplets(dim, dim, &t)
+            .map_err(|e| BeamError::Sparse(format!("{e:?}")))
+    }
+
+    /// Sparse stiffness and mass restricted to the free DOF of `map` (free ordering).
+    pub fn free_sparse(&self, map: &DofMap) -> Result<(SparseMatrix, SparseMatrix), BeamError> {
+        self.check_nonempty()?;
+        let n = map.free.len();
+        Ok((
+            self.assemble_sparse_on(FrameElement::global_stiffness, &map.free_index, n)?,
+            self.assemble_sparse_on(|e| e.global_mass(self.mass_kind), &map.free_index, n)?,
+        ))
     }
 
     /// Dense global stiffness (elastic + geometric), full DOF (N/m, N, N·m).
