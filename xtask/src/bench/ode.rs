@@ -23,13 +23,13 @@ use std::fmt::Write as _;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::clr;
 use super::peers::{run_diffsol, run_scipy, PeerRow};
 
 /// One row of the benchmark table.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Row {
     pub problem: String,
     pub solver: String,
@@ -40,8 +40,10 @@ pub struct Row {
     pub f_evals: usize,
     pub steps: usize,
     /// Mixed-error significant correct digits at t_end against the Test Set reference.
+    #[serde(default)]
     pub scd: f64,
     /// Number of timed solves behind the median.
+    #[serde(default)]
     pub repeats: usize,
 }
 
@@ -145,8 +147,14 @@ fn machine() -> String {
         })
         .unwrap_or_else(|| "unknown CPU".to_string());
     let cores = std::thread::available_parallelism().map_or(0, |n| n.get());
+    let load = std::fs::read_to_string("/proc/loadavg")
+        .ok()
+        .and_then(|s| s.split_whitespace().next().map(str::to_string))
+        .map_or(String::new(), |l| {
+            format!(", 1-min load average {l} at start")
+        });
     format!(
-        "{cpu}, {cores} cores, {} {}",
+        "{cpu}, {cores} cores, {} {}{load}",
         std::env::consts::OS,
         std::env::consts::ARCH
     )
@@ -160,29 +168,20 @@ fn peer_rows(
 ) {
     match rows {
         Ok(rows) => {
-            for r in rows {
-                let Some(reference) = clr::reference(&r.problem) else {
-                    notes.push(format!("{who}: unknown problem {} ignored", r.problem));
+            for PeerRow { mut row, y_end } in rows {
+                let Some(reference) = clr::reference(&row.problem) else {
+                    notes.push(format!("{who}: unknown problem {} ignored", row.problem));
                     continue;
                 };
-                let expected = atol_for(&r.problem, r.rtol);
-                if (r.atol - expected).abs() > 1e-9 * expected {
+                let expected = atol_for(&row.problem, row.rtol);
+                if (row.atol - expected).abs() > 1e-9 * expected {
                     notes.push(format!(
                         "{who}: {} at rtol {:e} used atol {:e}, not {expected:e}",
-                        r.problem, r.rtol, r.atol
+                        row.problem, row.rtol, row.atol
                     ));
                 }
-                out.push(Row {
-                    scd: clr::scd(&r.y_end, reference),
-                    problem: r.problem,
-                    solver: r.solver,
-                    rtol: r.rtol,
-                    atol: r.atol,
-                    wall_s: r.wall_s,
-                    f_evals: r.f_evals,
-                    steps: r.steps,
-                    repeats: r.repeats,
-                });
+                row.scd = clr::scd(&y_end, reference);
+                out.push(row);
             }
         }
         Err(e) => {
@@ -338,6 +337,7 @@ pub fn run(args: &[String]) -> ExitCode {
         }
     };
     let root = crate::workspace_root();
+    let machine = machine();
     let mut rows = Vec::new();
     let mut notes = Vec::new();
     let mut failed = false;
@@ -414,7 +414,6 @@ pub fn run(args: &[String]) -> ExitCode {
             .then_with(|| order(a).cmp(&order(b)))
     });
 
-    let machine = machine();
     let main_rows: Vec<Row> = rows
         .iter()
         .filter(|r| args.rtols.contains(&r.rtol))

@@ -14,19 +14,15 @@ use std::process::{Command, Stdio};
 
 use serde::Deserialize;
 
-/// One row printed by a peer program.
+use super::ode::Row;
+
+/// One row printed by a peer program: the common fields of a benchmark row (its `scd` is
+/// computed afterwards from `y_end`) and the state at t_end.
 #[derive(Debug, Clone, Deserialize)]
 pub struct PeerRow {
-    pub problem: String,
-    pub solver: String,
-    pub rtol: f64,
-    pub atol: f64,
-    pub wall_s: f64,
-    pub f_evals: usize,
-    pub steps: usize,
+    #[serde(flatten)]
+    pub row: Row,
     pub y_end: Vec<f64>,
-    #[serde(default)]
-    pub repeats: usize,
 }
 
 fn tolerance_args(rtols: &[f64], min_time: f64) -> Vec<String> {
