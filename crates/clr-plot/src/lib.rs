@@ -83,6 +83,11 @@ pub struct Figure {
     equal_aspect: bool,
 }
 
+/// A series after axis transforms: label, finite points, style.
+type Prepared = (String, Vec<(f64, f64)>, Style);
+/// An axis range (min, max).
+type Range = (f64, f64);
+
 const PALETTE: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
     RGBColor(255, 127, 14),
@@ -170,7 +175,7 @@ impl Figure {
         self
     }
 
-    fn transformed(&self) -> Vec<(String, Vec<(f64, f64)>, Style)> {
+    fn transformed(&self) -> Vec<Prepared> {
         self.series
             .iter()
             .map(|s| {
@@ -237,9 +242,9 @@ impl Figure {
     fn draw<DB: DrawingBackend>(
         &self,
         root: DrawingArea<DB, Shift>,
-        data: &[(String, Vec<(f64, f64)>, Style)],
-        xr: (f64, f64),
-        yr: (f64, f64),
+        data: &[Prepared],
+        xr: Range,
+        yr: Range,
     ) -> Result<(), String> {
         let e = |err: DrawingAreaErrorKind<DB::ErrorType>| err.to_string();
         root.fill(&WHITE).map_err(e)?;
