@@ -196,10 +196,7 @@ impl Figure {
             .collect()
     }
 
-    fn ranges(
-        &self,
-        data: &[(String, Vec<(f64, f64)>, Style)],
-    ) -> Option<((f64, f64), (f64, f64))> {
+    fn ranges(&self, data: &[Prepared]) -> Option<(Range, Range)> {
         let mut xr = (f64::INFINITY, f64::NEG_INFINITY);
         let mut yr = (f64::INFINITY, f64::NEG_INFINITY);
         for (_, pts, _) in data {
