@@ -71,6 +71,7 @@
 
 // Numerical kernels index several arrays in lock-step; iterator chains would obscure them.
 #![allow(clippy::needless_range_loop)]
+#![warn(missing_docs)]
 
 pub mod dopri5;
 pub mod linalg;

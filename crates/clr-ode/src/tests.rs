@@ -349,3 +349,30 @@ fn fixed_order_ndf_and_bdf_orders() {
         }
     }
 }
+
+mod properties {
+    use crate::*;
+    use proptest::prelude::*;
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(32))]
+
+        /// y' = λ y, y(0) = y0: closed form y0 e^{λ t}. Both solvers stay within a small multiple
+        /// of the requested tolerance over stiff and non-stiff rates (DOPRI5 only non-stiff).
+        #[test]
+        fn linear_decay_matches_closed_form(log_rate in -1.0f64..4.0, y0 in 0.1f64..10.0) {
+            let lam = -(10f64.powf(log_rate));
+            let t_end = 5.0 / lam.abs();
+            let exact = y0 * (lam * t_end).exp();
+            let mut sys = OdeFn::new(1, move |_t, y: &[f64], dy: &mut [f64]| dy[0] = lam * y[0])
+                .jacobian(move |_t, _y: &[f64], j: &mut [f64]| j[0] = lam);
+            let opts = Options::default().rtol(1e-8).atol(1e-10).output(Output::End);
+            let y = Ndf::new(opts.clone()).solve(&mut sys, 0.0, &[y0], t_end).unwrap().y_final[0];
+            prop_assert!((y - exact).abs() < 1e-6 * y0, "ndf {y} vs {exact}");
+            if log_rate < 2.0 {
+                let y = Dopri5::new(opts).solve(&mut sys, 0.0, &[y0], t_end).unwrap().y_final[0];
+                prop_assert!((y - exact).abs() < 1e-6 * y0, "dopri5 {y} vs {exact}");
+            }
+        }
+    }
+}
