@@ -1,4 +1,15 @@
-//! The paper systems of clr: the sliding guide of a telescopic mechanism, the flap actuation
-//! system and the dual manipulator on a free-floating spacecraft.
+//! The paper systems of clr and the validation systems beside them, each a typed parameter
+//! struct (serde, SI units) with documented defaults, a builder producing a `clr-mbd` model, and
+//! the studies and metrics of its paper.
 //!
-//! **Not implemented yet.** It needs `clr-mbd`; see `docs/models/` for the plan of each system.
+//! Every built-in model is reachable by name through [`catalog`], which is what the `clr`
+//! command and the Python package use: [`catalog::entries`] lists them,
+//! [`catalog::default_parameters`] gives the resolved parameters as JSON (so a front end can
+//! override any field), and [`catalog::run`] simulates one and returns a [`RunOutput`].
+
+pub mod catalog;
+pub mod error;
+pub mod output;
+
+pub use error::ModelsError;
+pub use output::{Metric, RunOutput, RunSettings};

@@ -4,6 +4,7 @@ pub mod beam;
 pub mod contact;
 mod contact_geometry;
 mod mbd;
+mod models;
 pub mod ode;
 
 use std::process::ExitCode;
@@ -54,6 +55,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "mbd",
         run: mbd::cases,
+    },
+    Group {
+        name: "models",
+        run: models::cases,
     },
 ];
 
