@@ -28,7 +28,7 @@ pub enum ModelsError {
         model: String,
         /// Underlying error.
         #[source]
-        source: clr_mbd::MbdError,
+        source: Box<clr_mbd::MbdError>,
     },
     /// The simulation failed; `partial` holds what was computed up to the failure.
     #[error("simulation of `{model}` failed: {message}")]
