@@ -18,7 +18,8 @@ pub enum Output {
     /// The states at these times (increasing, within [t0, t_end]), from the dense output.
     /// Times after a terminal event are not reached.
     Times(Vec<f64>),
-    /// Only the final state (end of the run, terminal event or observer stop).
+    /// Only the state where each `advance` stops (end of the run, terminal event or observer
+    /// stop); a restart loop records one state per stop.
     End,
 }
 

@@ -350,6 +350,31 @@ fn fixed_order_ndf_and_bdf_orders() {
     }
 }
 
+#[test]
+fn terminal_event_cuts_requested_output_and_observer_sees_event_state() {
+    // y1 = cos t falls through zero at π/2
+    let mut sys = oscillator().event(Direction::Falling, true, |_t, y: &[f64]| y[0]);
+    let times = vec![0.0, 0.5, 1.0, 1.5, 2.0, 2.5];
+    let mut last = (0.0, 1.0);
+    let sol = Ndf::new(
+        Options::default()
+            .rtol(1e-9)
+            .atol(1e-12)
+            .output(Output::Times(times)),
+    )
+    .solve_observed(&mut sys, 0.0, &[1.0, 0.0], 3.0, &mut |t, y: &[f64]| {
+        last = (t, y[0]);
+        Control::Continue
+    })
+    .unwrap();
+    assert_eq!(sol.stop, StopReason::TerminalEvent(0));
+    assert_eq!(sol.t, vec![0.0, 0.5, 1.0, 1.5]);
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    assert!((sol.t_final - half_pi).abs() < 1e-8);
+    assert_eq!(last.0, sol.t_final);
+    assert!(last.1.abs() < 1e-8);
+}
+
 mod properties {
     use crate::*;
     use proptest::prelude::*;
