@@ -92,6 +92,8 @@ fn all_finite(x: &[f64]) -> bool {
 }
 
 impl Method for Dopri5Method {
+    const SUPPORTS_MASS: bool = false;
+
     fn resize(&mut self, n: usize) {
         self.n = n;
         for v in [

@@ -336,6 +336,8 @@ impl NdfMethod {
 }
 
 impl Method for NdfMethod {
+    const SUPPORTS_MASS: bool = true;
+
     fn resize(&mut self, n: usize) {
         self.n = n;
         self.d.resize((MAX_ORDER + 3) * n, 0.0);

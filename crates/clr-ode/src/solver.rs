@@ -86,6 +86,8 @@ pub enum Failure {
 /// A one-step method driven by [`Solver`]: [`crate::ndf::NdfMethod`] or
 /// [`crate::dopri5::Dopri5Method`]. It owns its buffers and never allocates in `step`.
 pub trait Method: Default {
+    /// Whether the method handles a mass matrix M ≠ I.
+    const SUPPORTS_MASS: bool;
     /// Size the buffers for dimension n (allocates only when n changes).
     fn resize(&mut self, n: usize);
     /// Total capacity of the buffers (to check that restarts do not reallocate).
@@ -370,6 +372,11 @@ impl<M: Method> Solver<M> {
                     "output times must lie within [t0, t_end] = [{t0}, {t_end}]"
                 )));
             }
+        }
+        if !M::SUPPORTS_MASS && sys.mass_kind() != crate::system::MassKind::Identity {
+            return Err(invalid(
+                "this solver integrates explicit ODEs y' = f only; use Ndf for a mass matrix or a DAE",
+            ));
         }
         sys.validate().map_err(invalid)
     }

@@ -92,6 +92,14 @@ fn invalid_input_is_typed() {
     assert!(bad(s.solve(&mut sys, 0.0, &[1.0, 0.0], 1.0)));
     let mut s = Dopri5::new(Options::default().atol_vec(vec![1e-6]));
     assert!(bad(s.solve(&mut sys, 0.0, &[1.0, 0.0], 1.0)));
+    // DOPRI5 has no mass matrix support: refused rather than ignored
+    let mut dae = crate::test_models::Robertson::dae();
+    assert!(bad(Dopri5::new(Options::default()).solve(
+        &mut dae,
+        0.0,
+        &[1.0, 0.0, 0.0],
+        1.0
+    )));
 }
 
 #[test]
