@@ -35,10 +35,12 @@
 //!
 //! [`MultipointDetector`] owns every buffer; after construction no evaluation allocates.
 //!
-//! The shape queries (point in rectangle, distance to a face) are written here in `f64` rather
-//! than taken from parry2d: parry2d 0.31 computes in `f32` (about 3e-8 m resolution at 0.5 m,
-//! coarser than the 7.5 nm penetrations of §7.8) and uses glam types, so a conversion per query
-//! would cost more than the query.
+//! The two shape queries (is a guide point inside the slider rectangle; how deep, measured along
+//! the guide normal to the slider face that faces the guide) are written here in `f64` rather
+//! than taken from parry: `parry2d` computes in `f32` (about 3e-8 m resolution at 0.5 m, coarser
+//! than the 7.5 nm penetrations of contact-laws.md §7.8), and `parry2d-f64`'s cuboid point
+//! projection and ray cast would answer them but need conversions to its own vector types around
+//! a query that is a dozen lines in the slider frame. The crate therefore does not depend on parry.
 
 use nalgebra::Vector2;
 
