@@ -227,3 +227,46 @@ fn slider_crank_outputs_match_closed_form() {
     assert_eq!(lines.next().unwrap().split(',').count(), res.columns.len());
     assert_eq!(lines.count(), 38);
 }
+
+/// A free 1 kg journal moving radially at 0.5 m/s inside a fixed bearing (the flap paper's
+/// journal–bearing test: steel, R_i = 10 mm, R_j = 9.9 mm, L = 15 mm) rebounds with the
+/// restitution the law produces in a free impact, which for F_e(δ)(1 + χδ̇/δ̇⁻) depends on χ only
+/// (contact-laws.md §1.3; L-N with c_e = 0.5 gives 0.7252, quoted in paper-systems.md §1.1).
+/// With and without event-located onsets.
+#[test]
+fn clearance_joint_free_impact_restitution() {
+    use clr_contact::{FrictionLaw, JournalBearing, NormalLaw};
+    let jb = JournalBearing::flap_paper_test();
+    let law = NormalLaw::preset("LN", &jb, 0.5).unwrap();
+    let expected = law.effective_restitution();
+    assert!((expected - 0.7252).abs() < 5e-4);
+    for events in [true, false] {
+        let mut b = ModelBuilder::new();
+        b.body("journal", RigidBody::new(1.0, 1e-4).moving(0.5, 0.0, 0.0))
+            .revolute_clearance(
+                "gap",
+                ("ground", [0.0, 0.0]),
+                ("journal", [0.0, 0.0]),
+                crate::RevoluteClearanceSpec {
+                    bearing_radius: jb.r_bearing,
+                    journal_radius: jb.r_journal,
+                    normal: law,
+                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+                },
+            );
+        let mut model = b.build().unwrap();
+        let mut opts = SimOptions::span(0.0, 4e-4, 4).tolerances(1e-9, 1e-12);
+        opts.contact_events = events;
+        let res = model.simulate(&opts).unwrap();
+        let vx = res.column("journal.vx").unwrap();
+        let e = -vx[4] / 0.5;
+        assert!(
+            (e - expected).abs() < 2e-3,
+            "events {events}: e = {e}, expected {expected}"
+        );
+        assert_eq!(res.onsets, usize::from(events));
+        // contact closed again at the end, energy lost = ½ m v² (1 − e²)
+        let pen = res.column("gap.penetration").unwrap();
+        assert!(pen[4] < 0.0);
+    }
+}
