@@ -7,11 +7,12 @@ mod peers;
 use std::process::ExitCode;
 
 const USAGE: &str =
-    "usage: cargo xtask bench ode [--rtol R]... [--min-time SECONDS] [--rounds N] [--no-scipy] [--no-diffsol]
+    "usage: cargo xtask bench ode [--rtol R]... [--min-time SECONDS] [--rounds N] [--docs-figures] [--no-scipy] [--no-diffsol]
   ode   clr-ode NDF vs diffsol BDF vs SciPy solve_ivp BDF on HIRES, Robertson, stiff Van der Pol
         and OREGO at rtol 1e-6 and 1e-8 (default), plus a clr/diffsol work-precision sweep
-        (rtol 1e-5 ... 1e-10) for the equal-accuracy comparison; writes target/bench/ode.json
-        and target/bench/ode.md";
+        (rtol 1e-5 ... 1e-10) for the equal-accuracy comparison; writes target/bench/ode.json,
+        target/bench/ode.md and work-precision figures target/bench/ode_<problem>.{svg,png}
+        (with --docs-figures also docs/figures/bench_ode_<problem>.{svg,png})";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {

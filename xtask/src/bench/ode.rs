@@ -16,13 +16,16 @@
 //! the Test Set reference (`clr_ode::test_models`).
 //!
 //! Output: `target/bench/ode.json` `{"machine", "rows": [{problem, solver, rtol, atol, wall_s,
-//! f_evals, steps, scd, repeats}]}` and `target/bench/ode.md` (the table, with the time ratios
-//! diffsol/clr and SciPy/clr).
+//! f_evals, steps, scd, repeats}]}`, `target/bench/ode.md` (the table, with the time ratios
+//! diffsol/clr and SciPy/clr, and the equal-accuracy comparison) and work–precision figures
+//! `target/bench/ode_<problem>.{svg,png}` (also `docs/figures/bench_ode_<problem>.{svg,png}` with
+//! `--docs-figures`).
 
 use std::fmt::Write as _;
 use std::process::ExitCode;
 use std::time::Instant;
 
+use clr_plot::Figure;
 use serde::{Deserialize, Serialize};
 
 use super::clr;
@@ -57,6 +60,7 @@ struct Args {
     rtols: Vec<f64>,
     min_time: f64,
     rounds: usize,
+    docs_figures: bool,
     diffsol: bool,
     scipy: bool,
 }
@@ -66,6 +70,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
         rtols: Vec::new(),
         min_time: 1.0,
         rounds: 3,
+        docs_figures: false,
         diffsol: true,
         scipy: true,
     };
@@ -84,6 +89,7 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             "--rtol" => a.rtols.push(value("--rtol")?),
             "--min-time" => a.min_time = value("--min-time")?,
             "--rounds" => a.rounds = value("--rounds")?.round().max(1.0) as usize,
+            "--docs-figures" => a.docs_figures = true,
             "--no-scipy" => a.scipy = false,
             "--no-diffsol" => a.diffsol = false,
             other => return Err(format!("unknown argument {other}")),
@@ -328,6 +334,37 @@ fn median_of_rounds(rows: Vec<Row>) -> Vec<Row> {
         .collect()
 }
 
+/// Work–precision figure of one problem: scd against median solve time for each solver (lines
+/// over the tolerance sweep, loosest first), saved as `<stem>.svg` and `<stem>.png`.
+fn figure(rows: &[Row], problem: &str, stem: &std::path::Path) -> Result<(), String> {
+    let mut fig = Figure::new(format!("{problem}: accuracy against solve time"))
+        .x_label("median solve time (ms)")
+        .y_label("scd (significant correct digits at t_end)")
+        .log_x();
+    for (solver, label) in [
+        (clr::SOLVER, "clr-ode NDF"),
+        ("diffsol-bdf", "diffsol BDF"),
+        ("scipy-bdf", "SciPy BDF"),
+    ] {
+        let mut pts: Vec<(f64, f64, f64)> = rows
+            .iter()
+            .filter(|r| r.problem == problem && r.solver == solver)
+            .map(|r| (r.rtol, r.wall_s * 1e3, r.scd))
+            .collect();
+        if pts.is_empty() {
+            continue;
+        }
+        pts.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let xy = pts.iter().map(|p| (p.1, p.2)).collect();
+        fig = if pts.len() > 2 {
+            fig.line(label, xy)
+        } else {
+            fig.points(label, xy)
+        };
+    }
+    fig.save(stem).map(|_| ()).map_err(|e| e.to_string())
+}
+
 pub fn run(args: &[String]) -> ExitCode {
     let args = match parse_args(args) {
         Ok(a) => a,
@@ -433,6 +470,17 @@ pub fn run(args: &[String]) -> ExitCode {
             std::fs::write(dir.join("ode.json"), json)
         })
         .and_then(|()| std::fs::write(dir.join("ode.md"), &md));
+    let mut fig_dirs = vec![(dir.clone(), "ode_")];
+    if args.docs_figures {
+        fig_dirs.push((root.join("docs").join("figures"), "bench_ode_"));
+    }
+    for (fig_dir, prefix) in &fig_dirs {
+        for p in clr::PROBLEMS {
+            if let Err(e) = figure(&rows, p, &fig_dir.join(format!("{prefix}{p}"))) {
+                eprintln!("bench ode: figure {p} in {}: {e}", fig_dir.display());
+            }
+        }
+    }
     print!("{md}");
     if let Err(e) = written {
         eprintln!("bench ode: could not write {}: {e}", dir.display());
