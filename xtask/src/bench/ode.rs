@@ -246,19 +246,21 @@ pub fn markdown(machine: &str, rows: &[Row], notes: &[String]) -> String {
 /// Tolerances of the work–precision sweep of clr-ode and diffsol: 1e-5 … 1e-10 by decades plus
 /// the requested ones, loosest first.
 fn sweep_rtols(requested: &[f64]) -> Vec<f64> {
-    let mut v: Vec<f64> = (5..=10).map(|k| 10f64.powi(-k)).collect();
+    // literals, equal to what the peers parse from "1e-6" (10f64.powi(-6) may round differently)
+    let mut v: Vec<f64> = [1e-5, 1e-6, 1e-7, 1e-8, 1e-9, 1e-10].to_vec();
     for &r in requested {
-        if !v.iter().any(|x| (x / r - 1.0).abs() < 1e-9) {
-            v.push(r);
+        match v.iter_mut().find(|x| (**x / r - 1.0).abs() < 1e-9) {
+            Some(x) => *x = r,
+            None => v.push(r),
         }
     }
     v.sort_by(|a, b| b.total_cmp(a));
     v
 }
 
-/// Wall time of `solver` on `problem` at accuracy `scd`, interpolated linearly in
-/// (scd, log10 time) between the two sweep points that bracket it; `None` outside the sweep or
-/// when the curve is not monotone there.
+/// Wall time of `solver` on `problem` at accuracy `scd`: the solver's sweep points are sorted by
+/// scd and log10 time is interpolated linearly between the two neighbours that bracket `scd`;
+/// `None` outside the range of scd the sweep reached.
 pub fn time_at_scd(rows: &[Row], problem: &str, solver: &str, scd: f64) -> Option<f64> {
     let mut pts: Vec<(f64, f64)> = rows
         .iter()
