@@ -29,6 +29,7 @@
 //! assert!((e[10] - e[0]).abs() < 1e-6);
 //! ```
 
+mod clearance;
 pub mod error;
 mod init;
 pub mod model;
@@ -36,7 +37,9 @@ pub mod sim;
 pub mod system;
 
 pub use error::MbdError;
-pub use model::{Anchor, ModelBuilder, RevoluteClearanceSpec, RigidBody, GROUND};
+pub use model::{
+    Anchor, ModelBuilder, RevoluteClearanceSpec, RigidBody, TranslationalClearanceSpec, GROUND,
+};
 pub use sim::{Results, SimOptions, SolverKind};
 pub use system::{
     ContactReport, Energies, Model, Motion, DEFAULT_BAUMGARTE_ALPHA, DEFAULT_BAUMGARTE_BETA,

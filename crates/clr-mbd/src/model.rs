@@ -5,11 +5,14 @@
 
 use std::collections::HashMap;
 
-use clr_contact::{BodyState, FrictionLaw, NormalLaw, RevoluteClearance};
+use clr_contact::{
+    BodyState, FrictionLaw, NormalLaw, RevoluteClearance, SliderShape, TranslationalClearance,
+};
 use nalgebra::Vector2;
 
+use crate::clearance::{Clearance, ClearanceKind};
 use crate::error::MbdError;
-use crate::system::{Clearance, Con, ForceEl, Model, Motion};
+use crate::system::{Con, ForceEl, Model, Motion};
 
 /// Name of the ground body (fixed at the origin, angle 0). It is always defined.
 pub const GROUND: &str = "ground";
@@ -107,6 +110,26 @@ pub struct RevoluteClearanceSpec {
     pub friction: FrictionLaw,
 }
 
+/// A translational clearance joint: a rectangular slider (length L, height h) inside a straight
+/// guide of inner width W > h (Flores, Ambrósio, Claro & Lankarani, J. Comput. Nonlinear Dyn. 3
+/// (2008) 011007; corners as point contacts, clr-contact `TranslationalClearance`).
+pub struct TranslationalClearanceSpec {
+    /// Inner width W of the guide, m.
+    pub guide_width: f64,
+    /// Angle of the guide axis from the guide body's x axis, rad.
+    pub guide_angle: f64,
+    /// Slider length L along its axis, m.
+    pub slider_length: f64,
+    /// Slider height h across the guide, m (< W).
+    pub slider_height: f64,
+    /// Angle of the slider axis from the slider body's x axis, rad.
+    pub slider_angle: f64,
+    /// Normal-force law of each corner contact.
+    pub normal: NormalLaw,
+    /// Friction law of each corner contact.
+    pub friction: FrictionLaw,
+}
+
 enum Item {
     Point {
         name: String,
@@ -180,6 +203,12 @@ enum Item {
         journal: Anchor,
         spec: RevoluteClearanceSpec,
     },
+    TransClearance {
+        name: String,
+        guide: Anchor,
+        slider: Anchor,
+        spec: TranslationalClearanceSpec,
+    },
 }
 
 impl Item {
@@ -196,7 +225,8 @@ impl Item {
             | Item::Force { name, .. }
             | Item::Torque { name, .. }
             | Item::PairTorque { name, .. }
-            | Item::RevClearance { name, .. } => name,
+            | Item::RevClearance { name, .. }
+            | Item::TransClearance { name, .. } => name,
         }
     }
     fn kind(&self) -> &'static str {
@@ -213,6 +243,7 @@ impl Item {
             Item::Torque { .. } => "applied torque",
             Item::PairTorque { .. } => "torque between bodies",
             Item::RevClearance { .. } => "revolute clearance joint",
+            Item::TransClearance { .. } => "translational clearance joint",
         }
     }
 }
@@ -457,6 +488,25 @@ impl ModelBuilder {
             name: name.into(),
             bearing: bearing.into(),
             journal: journal.into(),
+            spec,
+        });
+        self
+    }
+
+    /// A translational clearance joint: the guide frame's origin is anchor `guide` (the guide
+    /// centre line passes through it along `spec.guide_angle`), the slider centre is anchor
+    /// `slider`; a force element (no constraint equation).
+    pub fn translational_clearance(
+        &mut self,
+        name: &str,
+        guide: impl Into<Anchor>,
+        slider: impl Into<Anchor>,
+        spec: TranslationalClearanceSpec,
+    ) -> &mut Self {
+        self.items.push(Item::TransClearance {
+            name: name.into(),
+            guide: guide.into(),
+            slider: slider.into(),
             spec,
         });
         self
@@ -743,9 +793,48 @@ impl ModelBuilder {
                         name,
                         i,
                         j,
-                        geometry,
+                        kind: ClearanceKind::Revolute(geometry),
                         normal: spec.normal,
                         friction: spec.friction,
+                        mem: 0,
+                    });
+                }
+                Item::TransClearance {
+                    guide,
+                    slider,
+                    spec,
+                    ..
+                } => {
+                    let (i, gi) = anchor(&name, &guide)?;
+                    let (j, sj) = anchor(&name, &slider)?;
+                    distinct(&name, i, j)?;
+                    let contact = |source| MbdError::Contact {
+                        item: name.clone(),
+                        source,
+                    };
+                    let shape = SliderShape::new(
+                        spec.slider_length,
+                        spec.slider_height,
+                        sj,
+                        spec.slider_angle,
+                    )
+                    .map_err(contact)?;
+                    let geometry =
+                        TranslationalClearance::new(shape, spec.guide_width, gi, spec.guide_angle)
+                            .map_err(contact)?;
+                    clearances.push(Clearance {
+                        name,
+                        i,
+                        j,
+                        kind: ClearanceKind::Translational {
+                            geometry,
+                            origin: gi,
+                            angle: spec.guide_angle,
+                            width: spec.guide_width,
+                        },
+                        normal: spec.normal,
+                        friction: spec.friction,
+                        mem: 0,
                     });
                 }
             }

@@ -263,7 +263,7 @@ impl Model {
                 c.penetration_rate,
                 c.normal_force,
                 c.friction_force,
-                if c.in_contact { 1.0 } else { 0.0 },
+                c.active_points as f64,
                 c.eccentricity[0],
                 c.eccentricity[1],
             ]);

@@ -14,7 +14,10 @@
 //! with γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt. The first-order system is y = (q, q̇),
 //! ẏ = (q̇, q̈).
 
-use clr_contact::{BodyState, ContactMemory, FrictionLaw, NormalLaw, RevoluteClearance};
+use clr_contact::{BodyState, ContactMemory};
+
+use crate::clearance::Clearance;
+pub use crate::clearance::ContactReport;
 use clr_ode::linalg::DenseLu;
 use clr_ode::{Direction, OdeSystem};
 use nalgebra::Vector2;
@@ -225,34 +228,6 @@ impl ForceEl {
     }
 }
 
-pub(crate) struct Clearance {
-    pub(crate) name: String,
-    pub(crate) i: usize,
-    pub(crate) j: usize,
-    pub(crate) geometry: RevoluteClearance,
-    pub(crate) normal: NormalLaw,
-    pub(crate) friction: FrictionLaw,
-}
-
-/// Quantities of one revolute clearance joint at the last evaluated state.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ContactReport {
-    /// Penetration δ = e − c, m (> 0 in contact).
-    pub penetration: f64,
-    /// Penetration rate δ̇, m/s (> 0 approaching).
-    pub penetration_rate: f64,
-    /// Impact velocity δ̇⁻ used by the law, m/s (0 when not in contact).
-    pub impact_velocity: f64,
-    /// Normal force F_N, N.
-    pub normal_force: f64,
-    /// Friction force F_T on the journal along the tangent, N.
-    pub friction_force: f64,
-    /// True when δ > 0.
-    pub in_contact: bool,
-    /// Journal centre relative to the bearing centre in the bearing body's frame, m.
-    pub eccentricity: [f64; 2],
-}
-
 /// Energies at one state, J.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Energies {
@@ -301,6 +276,8 @@ pub struct Model {
     pub(crate) sol: Vec<f64>,
     pub(crate) contacts: Vec<ContactReport>,
     pub(crate) solve_ok: bool,
+    /// Total number of contact points (revolute 1, translational 4).
+    pub(crate) n_points: usize,
 }
 
 #[inline]
@@ -342,7 +319,7 @@ impl Model {
         mut cons: Vec<Con>,
         motions: Vec<Motion>,
         forces: Vec<ForceEl>,
-        clearances: Vec<Clearance>,
+        mut clearances: Vec<Clearance>,
         gravity: Vector2<f64>,
     ) -> Result<Self, MbdError> {
         let mut m = 0;
@@ -359,6 +336,11 @@ impl Model {
                 requirement: "define at least one rigid body with ModelBuilder::body",
             });
         }
+        let mut mem = 0;
+        for c in clearances.iter_mut() {
+            c.mem = mem;
+            mem += c.points();
+        }
         let min_v = clearances
             .iter()
             .map(|c| c.normal.min_impact_velocity())
@@ -366,15 +348,15 @@ impl Model {
                 clr_contact::NormalLaw::DEFAULT_MIN_IMPACT_VELOCITY,
                 f64::min,
             );
-        let memory =
-            ContactMemory::new(clearances.len(), min_v).map_err(|source| MbdError::Contact {
-                item: "contact memory".into(),
-                source,
-            })?;
+        let memory = ContactMemory::new(mem, min_v).map_err(|source| MbdError::Contact {
+            item: "contact memory".into(),
+            source,
+        })?;
         let mut lu = DenseLu::default();
         lu.resize(n + m);
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
+        let n_points = mem;
         Ok(Model {
             body_names,
             bodies,
@@ -399,6 +381,7 @@ impl Model {
             sol: vec![0.0; n + m],
             contacts: vec![ContactReport::default(); nc],
             solve_ok: true,
+            n_points,
         })
     }
 
@@ -618,27 +601,7 @@ impl Model {
         for (k, cl) in self.clearances.iter().enumerate() {
             let bi = body_state(cl.i, q, qd);
             let bj = body_state(cl.j, q, qd);
-            let ct = cl.geometry.contact(&bi, &bj);
-            let local = bi.to_local(bi.position + ct.eccentricity_vector);
-            let mut rep = ContactReport {
-                penetration: ct.penetration,
-                penetration_rate: ct.normal_velocity,
-                eccentricity: [local.x, local.y],
-                ..Default::default()
-            };
-            if ct.in_contact() {
-                let vm = self
-                    .memory
-                    .impact_velocity(k, ct.penetration, ct.normal_velocity);
-                let jf = ct.forces_from_laws(&cl.normal, &cl.friction, vm);
-                add_gen(qf, cl.i, jf.bearing.as_array());
-                add_gen(qf, cl.j, jf.journal.as_array());
-                rep.in_contact = true;
-                rep.impact_velocity = vm;
-                rep.normal_force = jf.normal_force;
-                rep.friction_force = jf.tangential_force;
-            }
-            self.contacts[k] = rep;
+            self.contacts[k] = cl.apply(&bi, &bj, &mut self.memory, |b, g| add_gen(qf, b, g));
         }
     }
 
@@ -727,8 +690,7 @@ impl Model {
         for cl in &self.clearances {
             let bi = body_state(cl.i, q, qd);
             let bj = body_state(cl.j, q, qd);
-            let d = cl.geometry.penetration(&bi, &bj);
-            e.elastic += elastic_energy(&cl.normal, d);
+            e.elastic += cl.elastic_energy(&bi, &bj);
         }
         e
     }
@@ -820,51 +782,15 @@ impl Model {
     pub(crate) fn commit_contacts(&mut self, y: &[f64]) {
         let n = self.n;
         let (q, qd) = y.split_at(n);
-        for (k, cl) in self.clearances.iter().enumerate() {
+        for cl in &self.clearances {
             let bi = body_state(cl.i, q, qd);
             let bj = body_state(cl.j, q, qd);
-            let ct = cl.geometry.contact(&bi, &bj);
-            self.memory.commit(k, ct.penetration, ct.normal_velocity);
+            for p in 0..cl.points() {
+                let (d, r) = cl.gap(&bi, &bj, p);
+                self.memory.commit(cl.mem + p, d, r);
+            }
         }
     }
-}
-
-/// Elastic energy ∫₀^δ F_e(s) ds of a normal law (J): exact for power laws K δ^{n+1}/(n+1),
-/// 16-point Gauss–Legendre quadrature otherwise.
-fn elastic_energy(law: &NormalLaw, delta: f64) -> f64 {
-    if delta <= 0.0 || !delta.is_finite() {
-        return 0.0;
-    }
-    if let Some((k, e)) = law.elastic().power_parameters() {
-        return k * delta.powf(e + 1.0) / (e + 1.0);
-    }
-    // Gauss–Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun, Table 25.4, n = 16).
-    const X: [f64; 8] = [
-        0.095_012_509_837_637_44,
-        0.281_603_550_779_258_9,
-        0.458_016_777_657_227_4,
-        0.617_876_244_402_643_8,
-        0.755_404_408_355_003,
-        0.865_631_202_387_831_7,
-        0.944_575_023_073_232_6,
-        0.989_400_934_991_649_9,
-    ];
-    const W: [f64; 8] = [
-        0.189_450_610_455_068_5,
-        0.182_603_415_044_923_6,
-        0.169_156_519_395_002_5,
-        0.149_595_988_816_576_7,
-        0.124_628_971_255_533_9,
-        0.095_158_511_682_492_8,
-        0.062_253_523_938_647_9,
-        0.027_152_459_411_754_1,
-    ];
-    let h = 0.5 * delta;
-    let mut s = 0.0;
-    for (x, w) in X.iter().zip(W.iter()) {
-        s += w * (law.elastic_force(h * (1.0 - x)) + law.elastic_force(h * (1.0 + x)));
-    }
-    s * h
 }
 
 #[inline]
@@ -911,20 +837,23 @@ impl OdeSystem for Model {
 
     fn n_events(&self) -> usize {
         if self.events_on {
-            self.clearances.len()
+            self.n_points
         } else {
             0
         }
     }
 
-    /// g_k = penetration δ_k of clearance joint k (m): a rising crossing is a contact onset.
+    /// One event per contact point (1 per revolute, 4 corners per translational clearance joint):
+    /// its signed penetration δ (m); a rising crossing is a contact onset.
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
         let n = self.n;
         let (q, qd) = y.split_at(n);
-        for (cl, gk) in self.clearances.iter().zip(g.iter_mut()) {
+        for cl in &self.clearances {
             let bi = body_state(cl.i, q, qd);
             let bj = body_state(cl.j, q, qd);
-            *gk = cl.geometry.penetration(&bi, &bj);
+            for p in 0..cl.points() {
+                g[cl.mem + p] = cl.gap(&bi, &bj, p).0;
+            }
         }
     }
 

@@ -270,3 +270,60 @@ fn clearance_joint_free_impact_restitution() {
         assert!(pen[4] < 0.0);
     }
 }
+
+/// A flat slider block moving across a straight guide (no gravity) hits the lower surface with
+/// both lower corners at once and rebounds with the law's free-impact restitution, which depends
+/// on χ only (contact-laws.md §1.3), so two equal corner contacts give the same value as one;
+/// frictionless, the sliding velocity along the guide is unchanged and the block does not turn.
+#[test]
+fn translational_clearance_flat_impact_restitution() {
+    use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, NormalLaw};
+    let law = NormalLaw::new(
+        ElasticLaw::hertz(1e9).unwrap(),
+        DampingFactor::LankaraniNikravesh,
+        0.8,
+    )
+    .unwrap();
+    let expected = law.effective_restitution();
+    for events in [true, false] {
+        let mut b = ModelBuilder::new();
+        b.body("block", RigidBody::new(1.0, 1e-3).moving(0.2, -0.5, 0.0))
+            .translational_clearance(
+                "guide",
+                ("ground", [0.0, 0.0]),
+                ("block", [0.0, 0.0]),
+                crate::TranslationalClearanceSpec {
+                    guide_width: 0.021,
+                    guide_angle: 0.0,
+                    slider_length: 0.05,
+                    slider_height: 0.02,
+                    slider_angle: 0.0,
+                    normal: law,
+                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+                },
+            );
+        let mut model = b.build().unwrap();
+        let mut opts = SimOptions::span(0.0, 2e-3, 2).tolerances(1e-9, 1e-12);
+        opts.contact_events = events;
+        let res = model.simulate(&opts).unwrap();
+        let (vx, vy, om) = (
+            res.column("block.vx").unwrap(),
+            res.column("block.vy").unwrap(),
+            res.column("block.omega").unwrap(),
+        );
+        let e = vy[2] / 0.5;
+        assert!(
+            (e - expected).abs() < 2e-3,
+            "events {events}: e = {e}, expected {expected}"
+        );
+        assert!(
+            (vx[2] - 0.2).abs() < 1e-9 && om[2].abs() < 1e-6,
+            "{} {}",
+            vx[2],
+            om[2]
+        );
+        if events {
+            assert!(res.onsets >= 1);
+        }
+    }
+}

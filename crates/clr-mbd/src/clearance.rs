@@ -1,0 +1,204 @@
+//! Contact elements: revolute clearance joint (journal in bearing) and translational clearance
+//! joint (rectangular slider in a straight guide), both force elements built on clr-contact.
+
+use clr_contact::translational::TranslationalClearance;
+use clr_contact::{BodyState, ContactMemory, FrictionLaw, NormalLaw, RevoluteClearance};
+use nalgebra::Vector2;
+
+/// Geometry of a contact element.
+pub(crate) enum ClearanceKind {
+    /// Journal (body j) in bearing (body i).
+    Revolute(RevoluteClearance),
+    /// Slider (body j) in a guide (body i) whose frame sits at `origin` (local to i) rotated by
+    /// `angle`; inner width `width`.
+    Translational {
+        geometry: TranslationalClearance,
+        origin: Vector2<f64>,
+        angle: f64,
+        width: f64,
+    },
+}
+
+pub(crate) struct Clearance {
+    pub(crate) name: String,
+    /// Bearing or guide body.
+    pub(crate) i: usize,
+    /// Journal or slider body.
+    pub(crate) j: usize,
+    pub(crate) kind: ClearanceKind,
+    pub(crate) normal: NormalLaw,
+    pub(crate) friction: FrictionLaw,
+    /// First index of this element's contact points in the model's contact memory.
+    pub(crate) mem: usize,
+}
+
+/// Quantities of one contact element at the last evaluated state.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactReport {
+    /// Largest penetration over the element's contact points, m (> 0 in contact; the signed
+    /// gap when no point is in contact).
+    pub penetration: f64,
+    /// Penetration rate of the point with the largest penetration, m/s (> 0 approaching).
+    pub penetration_rate: f64,
+    /// Normal force, summed over the active points, N.
+    pub normal_force: f64,
+    /// Friction force, summed over the active points, N.
+    pub friction_force: f64,
+    /// Number of active contact points (0 or 1 for a revolute clearance joint, 0–4 corners for
+    /// a translational one).
+    pub active_points: usize,
+    /// Revolute: journal centre relative to the bearing centre in the bearing body's frame;
+    /// translational: slider reference point in the guide frame, m.
+    pub eccentricity: [f64; 2],
+}
+
+impl Clearance {
+    /// Number of contact points (1 revolute, 4 corners translational).
+    pub(crate) fn points(&self) -> usize {
+        match self.kind {
+            ClearanceKind::Revolute(_) => 1,
+            ClearanceKind::Translational { .. } => 4,
+        }
+    }
+
+    /// Signed penetration δ (m, > 0 in contact) and its rate δ̇ (m/s) of contact point k.
+    pub(crate) fn gap(&self, bi: &BodyState, bj: &BodyState, k: usize) -> (f64, f64) {
+        match &self.kind {
+            ClearanceKind::Revolute(g) => {
+                let c = g.contact(bi, bj);
+                (c.penetration, c.normal_velocity)
+            }
+            ClearanceKind::Translational {
+                geometry,
+                origin,
+                angle,
+                width,
+            } => {
+                let o = bi.point(*origin);
+                let ay = bi.rotate(Vector2::new(-angle.sin(), angle.cos()));
+                let p = geometry.corners(bj)[k];
+                let y = (p - o).dot(&ay);
+                let n = if y >= 0.0 { ay } else { -ay };
+                let v = bj.point_velocity(p) - bi.point_velocity(p);
+                (y.abs() - 0.5 * width, v.dot(&n))
+            }
+        }
+    }
+
+    /// Add the contact forces to `qf` through `add(body, [f_x, f_y, m])` and return the report.
+    pub(crate) fn apply(
+        &self,
+        bi: &BodyState,
+        bj: &BodyState,
+        memory: &mut ContactMemory,
+        mut add: impl FnMut(usize, [f64; 3]),
+    ) -> ContactReport {
+        let mut rep = ContactReport::default();
+        match &self.kind {
+            ClearanceKind::Revolute(g) => {
+                let ct = g.contact(bi, bj);
+                let local = bi.to_local(bi.position + ct.eccentricity_vector);
+                rep.penetration = ct.penetration;
+                rep.penetration_rate = ct.normal_velocity;
+                rep.eccentricity = [local.x, local.y];
+                if ct.in_contact() {
+                    let vm = memory.impact_velocity(self.mem, ct.penetration, ct.normal_velocity);
+                    let jf = ct.forces_from_laws(&self.normal, &self.friction, vm);
+                    add(self.i, jf.bearing.as_array());
+                    add(self.j, jf.journal.as_array());
+                    rep.active_points = 1;
+                    rep.normal_force = jf.normal_force;
+                    rep.friction_force = jf.tangential_force;
+                }
+            }
+            ClearanceKind::Translational {
+                geometry,
+                origin,
+                angle,
+                ..
+            } => {
+                let ct = geometry.contact(bi, bj);
+                let local = bi.to_local(bj.position);
+                let rel = local - *origin;
+                let (s, c) = angle.sin_cos();
+                rep.eccentricity = [c * rel.x + s * rel.y, -s * rel.x + c * rel.y];
+                let (normal, friction) = (&self.normal, &self.friction);
+                let mut n_active = 0;
+                let f = ct.generalized_forces(|corner| {
+                    let pc = &corner.contact;
+                    let vm = memory.impact_velocity(
+                        self.mem + corner.corner,
+                        pc.penetration,
+                        pc.normal_velocity,
+                    );
+                    let f_n = normal.force(pc.penetration, pc.normal_velocity, vm);
+                    n_active += 1;
+                    (f_n, friction.force(pc.tangential_velocity, f_n))
+                });
+                if n_active > 0 {
+                    add(self.i, f.guide.as_array());
+                    add(self.j, f.slider.as_array());
+                }
+                rep.active_points = n_active;
+                rep.normal_force = f.corner_forces.iter().map(|c| c.0).sum();
+                rep.friction_force = f.corner_forces.iter().map(|c| c.1).sum();
+                let (mut dmax, mut rate) = (f64::NEG_INFINITY, 0.0);
+                for k in 0..4 {
+                    let (d, r) = self.gap(bi, bj, k);
+                    if d > dmax {
+                        dmax = d;
+                        rate = r;
+                    }
+                }
+                rep.penetration = dmax;
+                rep.penetration_rate = rate;
+            }
+        }
+        rep
+    }
+
+    /// Elastic energy ∫F_e dδ summed over the contact points, J.
+    pub(crate) fn elastic_energy(&self, bi: &BodyState, bj: &BodyState) -> f64 {
+        (0..self.points())
+            .map(|k| elastic_energy(&self.normal, self.gap(bi, bj, k).0))
+            .sum()
+    }
+}
+
+/// Elastic energy ∫₀^δ F_e(s) ds of a normal law (J): exact for power laws K δ^{n+1}/(n+1),
+/// 16-point Gauss–Legendre quadrature otherwise.
+fn elastic_energy(law: &NormalLaw, delta: f64) -> f64 {
+    if delta <= 0.0 || !delta.is_finite() {
+        return 0.0;
+    }
+    if let Some((k, e)) = law.elastic().power_parameters() {
+        return k * delta.powf(e + 1.0) / (e + 1.0);
+    }
+    // Gauss–Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun, Table 25.4, n = 16).
+    const X: [f64; 8] = [
+        0.095_012_509_837_637_44,
+        0.281_603_550_779_258_9,
+        0.458_016_777_657_227_4,
+        0.617_876_244_402_643_8,
+        0.755_404_408_355_003,
+        0.865_631_202_387_831_7,
+        0.944_575_023_073_232_6,
+        0.989_400_934_991_649_9,
+    ];
+    const W: [f64; 8] = [
+        0.189_450_610_455_068_5,
+        0.182_603_415_044_923_6,
+        0.169_156_519_395_002_5,
+        0.149_595_988_816_576_7,
+        0.124_628_971_255_533_9,
+        0.095_158_511_682_492_8,
+        0.062_253_523_938_647_9,
+        0.027_152_459_411_754_1,
+    ];
+    let h = 0.5 * delta;
+    let mut s = 0.0;
+    for (x, w) in X.iter().zip(W.iter()) {
+        s += w * (law.elastic_force(h * (1.0 - x)) + law.elastic_force(h * (1.0 + x)));
+    }
+    s * h
+}
