@@ -274,3 +274,57 @@ fn main() {
         std::process::exit(1);
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clr_ode::test_models::Problem as ClrProblem;
+
+    /// The peer's f and J·v against clr-ode's own Test Set models (written independently in
+    /// `clr_ode::test_models`): same right-hand side and same Jacobian at a generic state, so
+    /// that both solvers integrate the same problems.
+    #[test]
+    fn problems_match_clr_ode_test_models() {
+        for p in &PROBLEMS {
+            let clr = ClrProblem::ODES
+                .into_iter()
+                .find(|c| c.name() == p.name)
+                .expect("every peer problem is a clr-ode test model");
+            assert_eq!(clr.y0(), p.y0, "{}: y0", p.name);
+            assert_eq!(clr.t_end(), p.t_end, "{}: t_end", p.name);
+            let n = p.y0.len();
+            let mut sys = clr.system();
+            // a state near y0 with every component non-zero
+            let y: Vec<f64> =
+                p.y0.iter()
+                    .enumerate()
+                    .map(|(i, v)| v * (1.0 + 0.1 * i as f64) + 1e-3 * (i + 1) as f64)
+                    .collect();
+            let (mut f_peer, mut f_clr) = (vec![0.0; n], vec![0.0; n]);
+            (p.f)(&y, &mut f_peer);
+            sys.rhs(0.0, &y, &mut f_clr);
+            let mut jac = vec![0.0; n * n];
+            sys.jacobian(0.0, &y, &mut jac);
+            for i in 0..n {
+                let tol = 1e-12 * (1.0 + f_clr[i].abs());
+                assert!((f_peer[i] - f_clr[i]).abs() <= tol, "{}: f[{i}]", p.name);
+            }
+            // J·e_j is column j of clr-ode's column-major Jacobian
+            let (mut e, mut col) = (vec![0.0; n], vec![0.0; n]);
+            for j in 0..n {
+                e.fill(0.0);
+                e[j] = 1.0;
+                (p.jv)(&y, &e, &mut col);
+                for i in 0..n {
+                    let c = jac[i + j * n];
+                    assert!(
+                        (col[i] - c).abs() <= 1e-12 * (1.0 + c.abs()),
+                        "{}: J[{i},{j}] peer {} vs clr-ode {c}",
+                        p.name,
+                        col[i]
+                    );
+                }
+            }
+        }
+    }
+}
