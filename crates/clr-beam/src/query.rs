@@ -85,7 +85,8 @@ pub struct SurfacePoint {
     pub normal_rate: [f64; 2],
 }
 
-/// Generalized nodal forces of a point force (F_x, F_y): Q[dofs[j]] += fx[j] F_x + fy[j] F_y.
+/// Generalized nodal forces of a point force (F_x, F_y):
+/// `Q[dofs[j]] += fx[j] * F_x + fy[j] * F_y`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct LoadRow {
     /// Full DOF indices.

@@ -563,3 +563,77 @@ fn subspace_iteration_matches_dense_solver() {
         }
     }
 }
+
+/// Prescribed tip displacement δ of a cantilever (support settlement): the tip reaction is
+/// 3EIδ/L³ and the clamp moment 3EIδ/L² (Roark 8th ed. Table 8.1 case 1a with P = 3EIδ/L³).
+#[test]
+fn prescribed_displacement_and_reactions() {
+    let n = 6;
+    let mut b = cantilever(n);
+    let delta = 2e-3;
+    b.prescribe(n, 1, delta).unwrap();
+    let sol = b.solve_static(&Loads::new()).unwrap();
+    let ei = mat().youngs_modulus * sec().second_moment;
+    assert_eq!(sol.displacements[3 * n + 1], delta);
+    assert_relative_eq!(
+        sol.reactions[3 * n + 1],
+        3.0 * ei * delta / L.powi(3),
+        max_relative = 1e-10
+    );
+    assert_relative_eq!(
+        sol.reactions[1],
+        -3.0 * ei * delta / L.powi(3),
+        max_relative = 1e-10
+    );
+    assert_relative_eq!(
+        sol.reactions[2],
+        -3.0 * ei * delta / L.powi(2),
+        max_relative = 1e-10
+    );
+    assert_relative_eq!(
+        sol.displacements[3 * n + 2],
+        1.5 * delta / L,
+        max_relative = 1e-10
+    );
+    // The transient system sees the prescribed value as a constant load: at rest in the static
+    // state, the accelerations vanish.
+    let mut sys = TransientSystem::new(&b).unwrap();
+    let n_free = sys.dim() / 2;
+    let mut y = vec![0.0; 2 * n_free];
+    for (i, &d) in sys.dofs().free.clone().iter().enumerate() {
+        y[i] = sol.displacements[d];
+    }
+    let mut dy = vec![0.0; 2 * n_free];
+    sys.rhs(0.0, &y, &mut dy);
+    let scale = 3.0 * ei * delta / L.powi(3) / b.total_mass();
+    assert!(dy.iter().all(|v| v.abs() < 1e-6 * scale));
+    assert_eq!(sys.displacements(&b, &y), sol.displacements);
+}
+
+/// Craig–Bampton on a free–free beam with the interface at one end is fine (the interior is
+/// held by the interface); with an interior piece that floats it is a typed error.
+#[test]
+fn craig_bampton_free_free_and_floating_interior() {
+    let ff = BeamModel::straight([0.0, 0.0], [L, 0.0], 12, mat(), sec()).unwrap();
+    let cb = ff.craig_bampton(&[0], 6).unwrap();
+    // The reduced model keeps the three rigid-body modes and the lowest elastic frequency.
+    let (lam, _) =
+        clr_beam::modal::lowest_modes(cb.stiffness.as_ref(), cb.mass.as_ref(), 4, ff.lambda_ref())
+            .unwrap();
+    assert_eq!(&lam[..3], &[0.0, 0.0, 0.0]);
+    assert_relative_eq!(
+        lam[3].sqrt(),
+        4.730040745f64.powi(2) * scale(),
+        max_relative = 1e-3
+    );
+    // Two separate members, interface only on the first: the second one floats.
+    let mut two = BeamModel::new();
+    let (a, b) = (two.add_node([0.0, 0.0]), two.add_node([1.0, 0.0]));
+    let (c, d) = (two.add_node([0.0, 1.0]), two.add_node([1.0, 1.0]));
+    two.add_member(a, b, 2, mat(), sec()).unwrap();
+    two.add_member(c, d, 2, mat(), sec()).unwrap();
+    assert!(matches!(
+        two.craig_bampton(&[a], 2),
+        Err(BeamError::SingularStiffness { .. })
+    ));
+}
