@@ -192,6 +192,14 @@ impl Method for Dopri5Method {
         let opts = ctx.opts;
         let t = self.t;
         let mut nonfinite = 0usize;
+        if t >= t_end {
+            // nothing left to integrate; the driver never asks for this
+            return Err(Failure::Underflow {
+                t,
+                h: 0.0,
+                h_min: 0.0,
+            });
+        }
         loop {
             let floor = opts.h_min.max(10.0 * ulp(t));
             let mut h = self.h.min(opts.h_max);

@@ -83,6 +83,8 @@ pub struct NdfMethod {
     jac_current: bool,
     last_error_norm: f64,
     last_safety: f64,
+    /// Order and step ratio chosen after the last step, applied when the next step begins.
+    pending: Option<(usize, f64)>,
 }
 
 #[inline]
@@ -332,6 +334,7 @@ impl NdfMethod {
         self.h_abs = h;
         self.fixed_order = true;
         self.lu_valid = false;
+        self.pending = None;
     }
 }
 
@@ -403,6 +406,7 @@ impl Method for NdfMethod {
         self.jac_current = false;
         self.last_error_norm = 0.0;
         self.last_safety = 0.9;
+        self.pending = None;
         self.d.fill(0.0);
         self.d[..n].copy_from_slice(y);
         self.y_new.copy_from_slice(y);
@@ -478,6 +482,20 @@ impl Method for NdfMethod {
         let opts = ctx.opts;
         let fixed = opts.fixed_step;
         let t = self.t;
+        if t >= t_end {
+            // nothing left to integrate; the driver never asks for this
+            return Err(Failure::Underflow {
+                t,
+                h: 0.0,
+                h_min: 0.0,
+            });
+        }
+        if let Some((order, factor)) = self.pending.take() {
+            self.order = order;
+            if factor != 1.0 {
+                self.change_d(factor);
+            }
+        }
         let floor = opts.h_min.max(10.0 * crate::dopri5::ulp(t));
         if self.h_abs > opts.h_max {
             let f = opts.h_max / self.h_abs;
@@ -658,7 +676,7 @@ impl Method for NdfMethod {
         let k = self.order;
         if ctx.opts.fixed_step {
             if !self.fixed_order && k < self.max_order {
-                self.order += 1;
+                self.pending = Some((k + 1, 1.0));
             }
             return;
         }
@@ -702,9 +720,10 @@ impl Method for NdfMethod {
             self.n_equal_steps = 0;
             return;
         }
-        self.order = k + best - 1;
+        // applied at the start of the next step, so that the dense output of the step just taken
+        // stays valid until then
+        self.pending = Some((k + best - 1, factor));
         self.h_abs *= factor;
-        self.change_d(factor);
         self.n_equal_steps = 0;
         self.lu_valid = false;
     }

@@ -540,10 +540,10 @@ impl<M: Method> Solver<M> {
             return Err(invalid("advance before start: call start (or solve) first"));
         }
         if self.finished {
-            if self.solution.stop == StopReason::Running {
-                self.solution.stop = StopReason::EndReached;
-            }
-            return Ok(self.solution.stop);
+            // t_end was reached (possibly in a step that also stopped for an event or the
+            // observer): nothing is left to integrate
+            self.solution.stop = StopReason::EndReached;
+            return Ok(StopReason::EndReached);
         }
         let n = self.n;
         loop {
@@ -647,12 +647,14 @@ impl<M: Method> Solver<M> {
                 self.method.finish_step(&mut ctx);
             }
             std::mem::swap(&mut self.g_old, &mut self.g_new);
+            if t_new >= self.t_end {
+                self.finished = true;
+            }
             let stop = if let Some((_, i)) = terminal {
                 Some(StopReason::TerminalEvent(i))
             } else if ctl == Control::Stop {
                 Some(StopReason::Observer)
-            } else if t_new >= self.t_end {
-                self.finished = true;
+            } else if self.finished {
                 Some(StopReason::EndReached)
             } else {
                 None

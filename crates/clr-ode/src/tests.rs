@@ -383,6 +383,40 @@ fn terminal_event_cuts_requested_output_and_observer_sees_event_state() {
     assert!(last.1.abs() < 1e-8);
 }
 
+#[test]
+fn public_dense_output_is_valid_between_advances() {
+    // stop after every step and interpolate in the middle of the step just taken
+    for use_ndf in [true, false] {
+        let mut sys = oscillator();
+        let opts = Options::default().rtol(1e-9).atol(1e-12);
+        let mut worst: f64 = 0.0;
+        macro_rules! walk {
+            ($s:expr) => {{
+                let s = &mut $s;
+                s.start(&mut sys, 0.0, &[1.0, 0.0], 5.0).unwrap();
+                let mut t_prev = 0.0;
+                let mut y = [0.0; 2];
+                while s
+                    .advance_observed(&mut sys, &mut |_t, _y: &[f64]| Control::Stop)
+                    .unwrap()
+                    == StopReason::Observer
+                {
+                    let tm = 0.5 * (t_prev + s.t());
+                    s.interpolate(tm, &mut y);
+                    worst = worst.max((y[0] - tm.cos()).abs());
+                    t_prev = s.t();
+                }
+            }};
+        }
+        if use_ndf {
+            walk!(Ndf::new(opts));
+        } else {
+            walk!(Dopri5::new(opts));
+        }
+        assert!(worst < 1e-7, "ndf {use_ndf}: {worst}");
+    }
+}
+
 mod properties {
     use crate::*;
     use proptest::prelude::*;
