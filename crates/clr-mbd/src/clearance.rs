@@ -50,6 +50,9 @@ pub struct ContactReport {
     /// Revolute: journal centre relative to the bearing centre in the bearing body's frame;
     /// translational: slider reference point in the guide frame, m.
     pub eccentricity: [f64; 2],
+    /// Power dissipated by contact damping and friction, (F_N − F_e(δ))·δ̇ − F_T·v_T summed over
+    /// the active points, W.
+    pub dissipated_power: f64,
 }
 
 impl Clearance {
@@ -109,6 +112,10 @@ impl Clearance {
                     rep.active_points = 1;
                     rep.normal_force = jf.normal_force;
                     rep.friction_force = jf.tangential_force;
+                    rep.dissipated_power = (jf.normal_force
+                        - self.normal.elastic_force(ct.penetration))
+                        * ct.normal_velocity
+                        - jf.tangential_force * ct.tangential_velocity;
                 }
             }
             ClearanceKind::Translational {
@@ -124,6 +131,7 @@ impl Clearance {
                 rep.eccentricity = [c * rel.x + s * rel.y, -s * rel.x + c * rel.y];
                 let (normal, friction) = (&self.normal, &self.friction);
                 let mut n_active = 0;
+                let mut power = 0.0;
                 let f = ct.generalized_forces(|corner| {
                     let pc = &corner.contact;
                     let vm = memory.impact_velocity(
@@ -132,9 +140,13 @@ impl Clearance {
                         pc.normal_velocity,
                     );
                     let f_n = normal.force(pc.penetration, pc.normal_velocity, vm);
+                    let f_t = friction.force(pc.tangential_velocity, f_n);
                     n_active += 1;
-                    (f_n, friction.force(pc.tangential_velocity, f_n))
+                    power += (f_n - normal.elastic_force(pc.penetration)) * pc.normal_velocity
+                        - f_t * pc.tangential_velocity;
+                    (f_n, f_t)
                 });
+                rep.dissipated_power = power;
                 if n_active > 0 {
                     add(self.i, f.guide.as_array());
                     add(self.j, f.slider.as_array());

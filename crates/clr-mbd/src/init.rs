@@ -114,7 +114,7 @@ impl Model {
         }
     }
 
-    /// Project y = (q, q̇) onto Φ = 0 (Newton) and Φ̇ = 0 (one linear solve) at time t.
+    /// Project y = (q, q̇, …) onto Φ = 0 (Newton) and Φ̇ = 0 (one linear solve) at time t.
     /// Returns the number of Newton iterations.
     ///
     /// # Errors
@@ -169,7 +169,8 @@ impl Model {
             it += 1;
         }
         // velocities: Φ̇(q, q̇) = Φ_q q̇ + Φ_t is affine in q̇, so one correction is exact
-        let (q, qd) = y.split_at_mut(n);
+        let (q, rest) = y.split_at_mut(n);
+        let qd = &mut rest[..n];
         self.eval_constraints(t, q, qd);
         if !self.factor_s(&mut lu) {
             self.check_rank(t, q)?;

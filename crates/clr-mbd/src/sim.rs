@@ -117,7 +117,8 @@ impl SimOptions {
 /// joint or driver `J.Fx J.Fy J.M` (reaction on its second body, or on its first when the second
 /// is the ground, about that body's centre of mass); per clearance joint `C.penetration
 /// C.rate C.normal_force C.friction_force C.contact C.ex C.ey` (eccentricity in the bearing
-/// body's frame); `energy.kinetic energy.potential energy.elastic energy.total`;
+/// body's frame); `energy.kinetic energy.potential energy.elastic energy.total
+/// energy.dissipated` (energy dissipated since t0 by dampers, contact damping and friction);
 /// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Results {
@@ -133,7 +134,7 @@ pub struct Results {
     pub projections: usize,
     /// Largest ‖Φ‖∞ seen after accepted steps (before any projection), m or rad.
     pub max_position_violation: f64,
-    /// Final state (q, q̇).
+    /// Final state (q, q̇, dissipated energy).
     pub y_final: Vec<f64>,
 }
 
@@ -235,6 +236,7 @@ impl Model {
             "energy.potential",
             "energy.elastic",
             "energy.total",
+            "energy.dissipated",
             "violation.position",
             "violation.velocity",
         ] {
@@ -271,7 +273,15 @@ impl Model {
         let e = self.energies(q, qd);
         let pv = self.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let vv = self.phid.iter().fold(0.0f64, |a, v| a.max(v.abs()));
-        out.extend_from_slice(&[e.kinetic, e.potential, e.elastic, e.total(), pv, vv]);
+        out.extend_from_slice(&[
+            e.kinetic,
+            e.potential,
+            e.elastic,
+            e.total(),
+            y[2 * n],
+            pv,
+            vv,
+        ]);
     }
 
     /// World position (m) of a body-fixed point `local` on body k at coordinates q.
@@ -312,11 +322,12 @@ impl Model {
                 "output times must be increasing and inside [t0, t_end]".into(),
             ));
         }
-        if y0.len() != 2 * self.n {
+        if y0.len() != 2 * self.n + 1 {
             return Err(MbdError::Options(format!(
-                "the initial state has {} components; the model needs 2n = {}",
+                "the initial state has {} components; the model needs 2n + 1 = {} (q, q̇, \
+                 dissipated energy)",
                 y0.len(),
-                2 * self.n
+                2 * self.n + 1
             )));
         }
         self.events_on = opts.contact_events;
@@ -332,7 +343,7 @@ impl Model {
         };
         let columns = self.columns();
         let mut data = Vec::new();
-        let n2 = 2 * self.n;
+        let n2 = 2 * self.n + 1;
         let mut y = y0.to_vec();
         let mut y_out = vec![0.0; n2];
         self.memory.reset();

@@ -247,8 +247,9 @@ impl Energies {
 }
 
 /// A built multibody model and its solver workspace. It is a clr-ode [`OdeSystem`] on
-/// y = (q, q̇) of dimension 2·[`Model::n_coordinates`]; use [`Model::initial_state`] for a
-/// consistent start, or [`Model::simulate`](crate::Model::simulate) for the full driver.
+/// y = (q, q̇, E_d) of dimension 2·[`Model::n_coordinates`] + 1; use [`Model::initial_state`] for a
+/// consistent start, or [`Model::simulate`](crate::Model::simulate) for the full driver. The
+/// state carries one more component, the dissipated energy (see [`OdeSystem::dim`]).
 pub struct Model {
     pub(crate) body_names: Vec<String>,
     pub(crate) bodies: Vec<RigidBody>,
@@ -278,6 +279,8 @@ pub struct Model {
     pub(crate) solve_ok: bool,
     /// Total number of contact points (revolute 1, translational 4).
     pub(crate) n_points: usize,
+    /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
+    pub(crate) p_diss: f64,
 }
 
 #[inline]
@@ -382,6 +385,7 @@ impl Model {
             contacts: vec![ContactReport::default(); nc],
             solve_ok: true,
             n_points,
+            p_diss: 0.0,
         })
     }
 
@@ -437,10 +441,11 @@ impl Model {
         self.events_on = on;
     }
 
-    /// Initial coordinates and velocities as given to the builder (not yet consistent).
+    /// Initial state as given to the builder (not yet consistent): y = (q, q̇, E_d) with the
+    /// dissipated energy E_d = 0.
     pub fn given_state(&self) -> Vec<f64> {
         let n = self.n;
-        let mut y = vec![0.0; 2 * n];
+        let mut y = vec![0.0; 2 * n + 1];
         for (k, b) in self.bodies.iter().enumerate() {
             y[3 * k] = b.position[0];
             y[3 * k + 1] = b.position[1];
@@ -542,6 +547,7 @@ impl Model {
             self.qf[3 * k + 1] += b.mass * self.gravity.y;
         }
         let qf = &mut self.qf;
+        let mut p_diss = 0.0;
         for f in &self.forces {
             match f {
                 ForceEl::Spring {
@@ -566,7 +572,9 @@ impl Model {
                     let vrel = bj.velocity + bj.angular_velocity * perp(aj)
                         - bi.velocity
                         - bi.angular_velocity * perp(ai);
-                    let tension = k * (l - l0) + c * u.dot(&vrel);
+                    let ldot = u.dot(&vrel);
+                    let tension = k * (l - l0) + c * ldot;
+                    p_diss += c * ldot * ldot;
                     add_force(qf, *i, ai, tension * u);
                     add_force(qf, *j, aj, -tension * u);
                 }
@@ -575,8 +583,9 @@ impl Model {
                 } => {
                     let bi = body_state(*i, q, qd);
                     let bj = body_state(*j, q, qd);
-                    let tau = -k * (bj.angle - bi.angle - angle0)
-                        - c * (bj.angular_velocity - bi.angular_velocity);
+                    let wrel = bj.angular_velocity - bi.angular_velocity;
+                    let tau = -k * (bj.angle - bi.angle - angle0) - c * wrel;
+                    p_diss += c * wrel * wrel;
                     add_torque(qf, *j, tau);
                     add_torque(qf, *i, -tau);
                 }
@@ -602,7 +611,9 @@ impl Model {
             let bi = body_state(cl.i, q, qd);
             let bj = body_state(cl.j, q, qd);
             self.contacts[k] = cl.apply(&bi, &bj, &mut self.memory, |b, g| add_gen(qf, b, g));
+            p_diss += self.contacts[k].dissipated_power;
         }
+        self.p_diss = p_diss;
     }
 
     /// Solve the augmented system at (t, q, q̇): afterwards `sol` = [q̈; λ]. Returns false when
@@ -823,16 +834,19 @@ fn add_gen(qf: &mut [f64], k: usize, g: [f64; 3]) {
 }
 
 impl OdeSystem for Model {
+    /// 2n + 1: y = (q, q̇, E_d), E_d the energy dissipated by dampers, contact damping and
+    /// friction (J), integrated alongside.
     fn dim(&self) -> usize {
-        2 * self.n
+        2 * self.n + 1
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let n = self.n;
-        let (q, qd) = y.split_at(n);
+        let (q, qd) = (&y[..n], &y[n..2 * n]);
         self.solve_accelerations(t, q, qd);
         dydt[..n].copy_from_slice(qd);
-        dydt[n..].copy_from_slice(&self.sol[..n]);
+        dydt[n..2 * n].copy_from_slice(&self.sol[..n]);
+        dydt[2 * n] = self.p_diss;
     }
 
     fn n_events(&self) -> usize {

@@ -265,9 +265,13 @@ fn clearance_joint_free_impact_restitution() {
             "events {events}: e = {e}, expected {expected}"
         );
         assert_eq!(res.onsets, usize::from(events));
-        // contact closed again at the end, energy lost = ½ m v² (1 − e²)
+        // contact closed again at the end; the integrated dissipation equals the kinetic
+        // energy lost, ½ m v² (1 − e²) with the closed-form e
         let pen = res.column("gap.penetration").unwrap();
         assert!(pen[4] < 0.0);
+        let ed = res.column("energy.dissipated").unwrap();
+        let lost = 0.5 * 0.25 * (1.0 - expected * expected);
+        assert!((ed[4] - lost).abs() < 5e-3 * lost, "{} vs {lost}", ed[4]);
     }
 }
 
@@ -325,5 +329,8 @@ fn translational_clearance_flat_impact_restitution() {
         if events {
             assert!(res.onsets >= 1);
         }
+        let ed = res.column("energy.dissipated").unwrap();
+        let lost = 0.5 * 0.25 * (1.0 - expected * expected);
+        assert!((ed[2] - lost).abs() < 5e-3 * lost, "{} vs {lost}", ed[2]);
     }
 }

@@ -638,6 +638,75 @@ fn clearance_pendulum() -> Result<Model, String> {
     b.build().map_err(|e| e.to_string())
 }
 
+/// Energy balance of a dissipative, undriven system: a rod on a clearance pin with
+/// Lankarani–Nikravesh damping (c_e = 0.5), Coulomb friction (μ = 0.1) and a rotational damper
+/// to the ground; E_kin + E_pot + E_el + E_dissipated is constant.
+fn balance_case(out: &mut Vec<Case>) {
+    let src = "energy balance E(t) + E_dissipated(t) = E(0) of an undriven system (dampers, \
+               contact damping and friction integrated as an extra state); tolerance 1e-6 \
+               relative to the largest kinetic energy";
+    let run = || -> Result<(f64, String), String> {
+        let jb = JournalBearing {
+            bearing: Material::steel(),
+            journal: Material::steel(),
+            r_bearing: R_BEARING,
+            r_journal: R_JOURNAL,
+            length: 0.01,
+        };
+        let normal = NormalLaw::preset("LN", &jb, 0.5).map_err(|e| e.to_string())?;
+        let mut b = ModelBuilder::new();
+        b.gravity(0.0, -G)
+            .body("rod", RigidBody::new(1.0, 0.16 / 12.0).at(0.2, 0.0, 0.0))
+            .revolute_clearance(
+                "pin",
+                ("ground", [0.0, 0.0]),
+                ("rod", [-0.2, 0.0]),
+                RevoluteClearanceSpec {
+                    bearing_radius: R_BEARING,
+                    journal_radius: R_JOURNAL,
+                    normal,
+                    friction: FrictionLaw::coulomb(0.1, 1e-3).map_err(|e| e.to_string())?,
+                },
+            )
+            .rotational_spring_damper("damper", "ground", "rod", 0.0, 0.02, 0.0);
+        let mut m = b.build().map_err(|e| e.to_string())?;
+        let opts = SimOptions::span(0.0, 1.0, 500)
+            .tolerances(1e-9, 1e-12)
+            .solver(SolverKind::Dopri5);
+        let res = m.simulate(&opts).map_err(|e| e.to_string())?;
+        let e = col(&res, "energy.total");
+        let d = col(&res, "energy.dissipated");
+        let kmax = col(&res, "energy.kinetic")
+            .iter()
+            .fold(0.0f64, |a, &v| a.max(v));
+        let drift = e
+            .iter()
+            .zip(d.iter())
+            .map(|(ei, di)| (ei + di - e[0]).abs())
+            .fold(0.0f64, f64::max);
+        Ok((
+            drift / kmax,
+            format!(
+                "DOPRI5 rtol 1e-9, 1 s: dissipated {:.4e} J of max E_kin {kmax:.4e} J, balance \
+                 error {drift:.3e} J, {} steps, {} onsets",
+                d.last().copied().unwrap_or(f64::NAN),
+                res.stats.accepted,
+                res.onsets
+            ),
+        ))
+    };
+    let case = Case::new(
+        "mbd.energy.balance_dissipative",
+        "max |E(t) + E_d(t) − E(0)| / max E_kin",
+        "-",
+        src,
+    );
+    out.push(match run() {
+        Ok((v, note)) => case.at_most(v, 1e-6).note(note),
+        Err(e) => case.failed(1e-6, e),
+    });
+}
+
 /// Wan et al. (2022) slider–crank validation: peak slider acceleration after the first crank
 /// revolution for clearances 0.1, 0.3, 0.5 mm (paper-systems.md §1.1/§1.2).
 fn wan_cases(filter: &Filter, out: &mut Vec<Case>) {
@@ -772,6 +841,9 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
             // Newton iteration has no round-off floor in its convergence test); see docs/mbd.md.
             SolverKind::Dopri5,
         ));
+    }
+    if filter.wants("mbd.energy.balance_dissipative") {
+        balance_case(&mut out);
     }
     if filter.wants("mbd.clearance_slider_crank.early") {
         early_case(&mut out);
