@@ -1,0 +1,182 @@
+//! Command-line parsing and dispatch.
+
+mod job;
+mod output;
+mod plot;
+mod progress;
+mod sweep;
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use clr::spec::{parse_assignment, Assignment, SpecError};
+
+/// clr: planar mechanisms with clearance joints, contact, friction and flexible links.
+#[derive(Parser)]
+#[command(name = "clr", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+/// Settings shared by `run` and `sweep`.
+#[derive(clap::Args, Clone)]
+pub(crate) struct RunArgs {
+    /// A built-in model name (see `clr list`) or a model file (`.toml`).
+    pub target: String,
+    /// Override a parameter: `name=value` (dotted path; repeatable).
+    #[arg(long = "set", value_name = "NAME=VALUE")]
+    pub set: Vec<String>,
+    /// End time of the simulation, s.
+    #[arg(long, value_name = "S")]
+    pub t_end: Option<f64>,
+    /// Relative tolerance of the integrator.
+    #[arg(long, value_name = "R")]
+    pub rtol: Option<f64>,
+    /// No progress bar.
+    #[arg(long, short)]
+    pub quiet: bool,
+    /// Do not draw figures.
+    #[arg(long)]
+    pub no_figures: bool,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// List the built-in models.
+    List,
+    /// Run one model: writes results.csv, summary.json and figures into --out.
+    Run {
+        #[command(flatten)]
+        args: RunArgs,
+        /// Output folder.
+        #[arg(long, default_value = "clr-out")]
+        out: PathBuf,
+    },
+    /// Run the cartesian product of parameter values (in parallel).
+    Sweep {
+        #[command(flatten)]
+        args: RunArgs,
+        /// A varied parameter: `name=v1,v2,...` (repeatable; the product is run).
+        #[arg(long, value_name = "NAME=V1,V2,...", required = true)]
+        vary: Vec<String>,
+        /// Worker threads (default: all cores).
+        #[arg(long, value_name = "N")]
+        jobs: Option<usize>,
+        /// Run only shard I of N (I from 0 to N−1): points k with k mod N = I.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Output folder.
+        #[arg(long, default_value = "clr-sweep")]
+        out: PathBuf,
+    },
+    /// Join the outputs of sweep shards into one sweep.csv with comparison figures.
+    Merge {
+        /// Shard output folders.
+        #[arg(required = true)]
+        dirs: Vec<PathBuf>,
+        /// Output folder of the merged sweep.
+        #[arg(long, default_value = "clr-sweep-merged")]
+        out: PathBuf,
+    },
+    /// Plot columns of a results.csv.
+    Plot {
+        /// A results.csv written by `clr run`.
+        csv: PathBuf,
+        /// Column on the x axis (`time` is an alias of `t`).
+        #[arg(long, default_value = "t")]
+        x: String,
+        /// Columns on the y axis, comma-separated.
+        #[arg(long, value_delimiter = ',', required = true)]
+        y: Vec<String>,
+        /// Output file (.svg, .png, or a stem for both).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Write a built-in model as a model file that reproduces its run bit for bit.
+    Export {
+        /// Built-in model name.
+        model: String,
+        /// Override a parameter: `name=value` (repeatable).
+        #[arg(long = "set", value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// Output file (default: standard output).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+}
+
+/// A failure of a command, with its exit code.
+#[derive(Debug)]
+pub(crate) enum CliError {
+    /// Bad input: exit code 2.
+    Input(String),
+    /// Simulation failure (partial results written): exit code 1.
+    Simulation(String),
+}
+
+impl From<SpecError> for CliError {
+    fn from(e: SpecError) -> Self {
+        CliError::Input(e.to_string())
+    }
+}
+
+pub(crate) fn assignments(set: &[String]) -> Result<Vec<Assignment>, CliError> {
+    set.iter()
+        .map(|s| parse_assignment(s).map_err(CliError::from))
+        .collect()
+}
+
+pub(crate) fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let code = if e.use_stderr() { 2 } else { 0 };
+            let _ = e.print();
+            return ExitCode::from(code);
+        }
+    };
+    let r = match cli.command {
+        Command::List => {
+            list();
+            Ok(())
+        }
+        Command::Run { args, out } => job::run_command(&args, &out),
+        Command::Sweep {
+            args,
+            vary,
+            jobs,
+            shard,
+            out,
+        } => sweep::sweep_command(&args, &vary, jobs, shard.as_deref(), &out),
+        Command::Merge { dirs, out } => sweep::merge_command(&dirs, &out),
+        Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
+        Command::Export { model, set, out } => job::export_command(&model, &set, out.as_deref()),
+    };
+    match r {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(CliError::Input(m)) => {
+            eprintln!("clr: error: {m}");
+            ExitCode::from(2)
+        }
+        Err(CliError::Simulation(m)) => {
+            eprintln!("clr: simulation failed: {m}");
+            ExitCode::from(1)
+        }
+    }
+}
+
+fn list() {
+    let entries = clr_models::catalog::entries();
+    println!("Built-in models (clr run <name>, clr export <name>):");
+    let w = entries.iter().map(|e| e.name.len()).max().unwrap_or(0);
+    for e in &entries {
+        println!("  {:w$}  {}", e.name, e.description);
+    }
+    if entries.is_empty() {
+        println!("  (none yet)");
+    }
+    println!("Model files: clr run path/to/model.toml (format: docs/model-file.md)");
+}

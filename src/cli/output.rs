@@ -1,0 +1,388 @@
+//! What a run writes: results.csv, summary.json and figures.
+
+use std::io::Write;
+use std::path::Path;
+
+use clr_models::{Metric, RunOutput};
+use clr_plot::Figure;
+
+use super::CliError;
+
+/// The outcome of one run, from a built-in model or a model file.
+pub(crate) struct Record {
+    /// Model name.
+    pub model: String,
+    /// `builtin` or the model file path.
+    pub source: String,
+    /// Time histories.
+    pub results: clr_mbd::Results,
+    /// Unit of each column.
+    pub units: Vec<String>,
+    /// Scalar metrics.
+    pub metrics: Vec<Metric>,
+    /// Full resolved parameters.
+    pub parameters: serde_json::Value,
+    /// Wall time of the simulation, s.
+    pub wall_s: f64,
+    /// The solver's error when the run failed (results are then partial).
+    pub error: Option<String>,
+}
+
+/// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`).
+pub(crate) fn unit_of(column: &str) -> &'static str {
+    if column == "t" {
+        return "s";
+    }
+    if column == "violation.position" {
+        return "m or rad";
+    }
+    if column == "violation.velocity" {
+        return "m/s or rad/s";
+    }
+    if column.starts_with("energy.") {
+        return "J";
+    }
+    match column.rsplit('.').next().unwrap_or("") {
+        "x" | "y" | "penetration" | "ex" | "ey" => "m",
+        "theta" => "rad",
+        "vx" | "vy" | "rate" => "m/s",
+        "omega" => "rad/s",
+        "ax" | "ay" => "m/s^2",
+        "alpha" => "rad/s^2",
+        "Fx" | "Fy" | "normal_force" | "friction_force" => "N",
+        "M" => "N*m",
+        _ => "-",
+    }
+}
+
+impl Record {
+    pub(crate) fn from_output(
+        o: RunOutput,
+        source: &str,
+        wall_s: f64,
+        error: Option<String>,
+    ) -> Self {
+        let units = if o.units.len() == o.results.columns.len() {
+            o.units
+        } else {
+            o.results
+                .columns
+                .iter()
+                .map(|c| unit_of(c).to_string())
+                .collect()
+        };
+        Self {
+            model: o.model,
+            source: source.to_string(),
+            results: o.results,
+            units,
+            metrics: o.metrics,
+            parameters: o.parameters,
+            wall_s,
+            error,
+        }
+    }
+
+    pub(crate) fn from_results(
+        model: &str,
+        source: &str,
+        results: clr_mbd::Results,
+        metrics: Vec<Metric>,
+        parameters: serde_json::Value,
+        wall_s: f64,
+        error: Option<String>,
+    ) -> Self {
+        let units = results
+            .columns
+            .iter()
+            .map(|c| unit_of(c).to_string())
+            .collect();
+        Self {
+            model: model.to_string(),
+            source: source.to_string(),
+            results,
+            units,
+            metrics,
+            parameters,
+            wall_s,
+            error,
+        }
+    }
+
+    pub(crate) fn empty(
+        model: &str,
+        parameters: serde_json::Value,
+        wall_s: f64,
+        error: String,
+    ) -> Self {
+        Self {
+            model: model.to_string(),
+            source: "builtin".into(),
+            results: clr_mbd::Results {
+                columns: vec!["t".into()],
+                data: Vec::new(),
+                stats: Default::default(),
+                onsets: 0,
+                projections: 0,
+                max_position_violation: f64::NAN,
+                y_final: Vec::new(),
+            },
+            units: vec!["s".into()],
+            metrics: Vec::new(),
+            parameters,
+            wall_s,
+            error: Some(error),
+        }
+    }
+}
+
+fn io(path: &Path, e: std::io::Error) -> CliError {
+    CliError::Input(format!("cannot write {}: {e}", path.display()))
+}
+
+/// Write `results.csv`: a header of `name [unit]` and one row per output time, every value in
+/// Rust's shortest round-trip form (so two equal runs give identical files).
+pub(crate) fn write_csv(path: &Path, rec: &Record) -> Result<(), CliError> {
+    let f = std::fs::File::create(path).map_err(|e| io(path, e))?;
+    let mut w = std::io::BufWriter::new(f);
+    let header: Vec<String> = rec
+        .results
+        .columns
+        .iter()
+        .zip(&rec.units)
+        .map(|(c, u)| format!("{c} [{u}]"))
+        .collect();
+    let mut body = header.join(",");
+    body.push('\n');
+    w.write_all(body.as_bytes()).map_err(|e| io(path, e))?;
+    let mut line = String::new();
+    for r in 0..rec.results.len() {
+        line.clear();
+        for (k, v) in rec.results.row(r).iter().enumerate() {
+            if k > 0 {
+                line.push(',');
+            }
+            line.push_str(&format!("{v:e}"));
+        }
+        line.push('\n');
+        w.write_all(line.as_bytes()).map_err(|e| io(path, e))?;
+    }
+    w.flush().map_err(|e| io(path, e))
+}
+
+/// Columns of a results.csv: names (units stripped), units and rows.
+pub(crate) struct Table {
+    pub names: Vec<String>,
+    pub units: Vec<String>,
+    pub rows: Vec<Vec<f64>>,
+}
+
+impl Table {
+    pub(crate) fn column(&self, k: usize) -> Vec<f64> {
+        self.rows.iter().map(|r| r[k]).collect()
+    }
+}
+
+/// Read a CSV written by [`write_csv`] (or any CSV of numbers with a header).
+pub(crate) fn read_csv(path: &Path) -> Result<Table, CliError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| CliError::Input(format!("cannot read {}: {e}", path.display())))?;
+    let mut lines = text.lines();
+    let header = lines
+        .next()
+        .ok_or_else(|| CliError::Input(format!("{}: the file is empty", path.display())))?;
+    let (mut names, mut units) = (Vec::new(), Vec::new());
+    for h in header.split(',') {
+        let h = h.trim();
+        match h.rsplit_once(" [") {
+            Some((n, u)) if u.ends_with(']') => {
+                names.push(n.to_string());
+                units.push(u.trim_end_matches(']').to_string());
+            }
+            _ => {
+                names.push(h.to_string());
+                units.push(String::new());
+            }
+        }
+    }
+    let mut rows = Vec::new();
+    for (i, l) in lines.enumerate() {
+        if l.trim().is_empty() {
+            continue;
+        }
+        let row: Result<Vec<f64>, _> = l.split(',').map(|v| v.trim().parse::<f64>()).collect();
+        let row = row.map_err(|_| {
+            CliError::Input(format!(
+                "{}:{}: not a row of numbers",
+                path.display(),
+                i + 2
+            ))
+        })?;
+        if row.len() != names.len() {
+            return Err(CliError::Input(format!(
+                "{}:{}: {} values for {} columns",
+                path.display(),
+                i + 2,
+                row.len(),
+                names.len()
+            )));
+        }
+        rows.push(row);
+    }
+    Ok(Table { names, units, rows })
+}
+
+/// The summary of a run as JSON.
+pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> serde_json::Value {
+    let s = &rec.results.stats;
+    let finite = |x: f64| if x.is_finite() { Some(x) } else { None };
+    let t_last = rec.results.column("t").and_then(|t| t.last().copied());
+    serde_json::json!({
+        "model": rec.model,
+        "source": rec.source,
+        "status": if rec.error.is_some() { "failed" } else { "ok" },
+        "error": rec.error,
+        "t_end_requested": t_end,
+        "rtol_requested": rtol,
+        "t_last": t_last,
+        "rows": rec.results.len(),
+        "wall_time_s": rec.wall_s,
+        "metrics": rec.metrics.iter().map(|m| serde_json::json!({
+            "name": m.name, "value": finite(m.value), "unit": m.unit, "description": m.description
+        })).collect::<Vec<_>>(),
+        "solver": {
+            "accepted_steps": s.accepted,
+            "rejected_steps": s.rejected,
+            "f_evals": s.f_evals,
+            "jacobians": s.jac_evals,
+            "lu_factorizations": s.lu_factorizations,
+            "newton_iterations": s.newton_iters,
+            "events": s.events,
+            "contact_onsets": rec.results.onsets,
+            "projections": rec.results.projections,
+            "max_position_violation": finite(rec.results.max_position_violation),
+        },
+        "parameters": rec.parameters,
+    })
+}
+
+/// Write results.csv, summary.json and (optionally) the figures into `dir`.
+pub(crate) fn write_run(
+    dir: &Path,
+    rec: &Record,
+    t_end: Option<f64>,
+    rtol: Option<f64>,
+    figures: bool,
+) -> Result<(), CliError> {
+    std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    write_csv(&dir.join("results.csv"), rec)?;
+    let p = dir.join("summary.json");
+    let text = serde_json::to_string_pretty(&summary(rec, t_end, rtol))
+        .map_err(|e| CliError::Input(format!("summary: {e}")))?;
+    std::fs::write(&p, text + "\n").map_err(|e| io(&p, e))?;
+    if figures {
+        for w in run_figures(dir, rec) {
+            eprintln!("clr: warning: {w}");
+        }
+    }
+    Ok(())
+}
+
+fn pairs(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {
+    x.iter().copied().zip(y.iter().copied()).collect()
+}
+
+/// Draw the run's figures; returns warnings for figures that could not be drawn.
+fn run_figures(dir: &Path, rec: &Record) -> Vec<String> {
+    let r = &rec.results;
+    let mut warn = Vec::new();
+    let Some(t) = r.column("t") else {
+        return warn;
+    };
+    if t.len() < 2 {
+        return warn;
+    }
+    let mut save = |f: Figure, stem: &str| {
+        if let Err(e) = f.save(dir.join(stem)) {
+            warn.push(e.to_string());
+        }
+    };
+    let bodies: Vec<&str> = r
+        .columns
+        .iter()
+        .filter_map(|c| c.strip_suffix(".theta"))
+        .collect();
+    if !bodies.is_empty() {
+        let mut f = Figure::new(format!("{}: body angles", rec.model))
+            .x_label("time (s)")
+            .y_label("angle (rad)");
+        let mut fx = Figure::new(format!("{}: body positions", rec.model))
+            .x_label("time (s)")
+            .y_label("centre of mass (m)");
+        for b in bodies.iter().take(8) {
+            if let Some(th) = r.column(&format!("{b}.theta")) {
+                f = f.line(*b, pairs(&t, &th));
+            }
+            for c in ["x", "y"] {
+                if let Some(v) = r.column(&format!("{b}.{c}")) {
+                    fx = fx.line(format!("{b}.{c}"), pairs(&t, &v));
+                }
+            }
+        }
+        save(f, "angles");
+        save(fx, "positions");
+    }
+    if r.index("energy.total").is_some() {
+        let mut f = Figure::new(format!("{}: energy", rec.model))
+            .x_label("time (s)")
+            .y_label("energy (J)");
+        for c in ["kinetic", "potential", "elastic", "total"] {
+            if let Some(v) = r.column(&format!("energy.{c}")) {
+                f = f.line(c, pairs(&t, &v));
+            }
+        }
+        save(f, "energy");
+    }
+    let clearances: Vec<&str> = r
+        .columns
+        .iter()
+        .filter_map(|c| c.strip_suffix(".normal_force"))
+        .collect();
+    if !clearances.is_empty() {
+        let mut f = Figure::new(format!("{}: contact forces", rec.model))
+            .x_label("time (s)")
+            .y_label("normal force (N)");
+        for c in &clearances {
+            if let Some(v) = r.column(&format!("{c}.normal_force")) {
+                f = f.line(*c, pairs(&t, &v));
+            }
+        }
+        save(f, "contact_forces");
+    }
+    for c in &clearances {
+        let (Some(ex), Some(ey), Some(pen)) = (
+            r.column(&format!("{c}.ex")),
+            r.column(&format!("{c}.ey")),
+            r.column(&format!("{c}.penetration")),
+        ) else {
+            continue;
+        };
+        // radial clearance from δ = |e| − c at the first row (exact for any row)
+        let radial = (ex[0].hypot(ey[0]) - pen[0]).abs();
+        let circle: Vec<(f64, f64)> = (0..=200)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / 200.0;
+                (radial * a.cos(), radial * a.sin())
+            })
+            .collect();
+        let f = Figure::new(format!("{}: journal centre orbit in `{c}`", rec.model))
+            .x_label("e_x (m, bearing frame)")
+            .y_label("e_y (m, bearing frame)")
+            .equal_aspect()
+            .line("clearance circle", circle)
+            .line("journal centre", pairs(&ex, &ey));
+        let stem = format!("orbit_{}", c.replace(|ch: char| !ch.is_alphanumeric(), "_"));
+        save(f, &stem);
+    }
+    warn
+}

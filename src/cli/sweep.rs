@@ -1,0 +1,398 @@
+//! `clr sweep` (cartesian product of parameter values, run with rayon, shardable) and
+//! `clr merge` (join shard outputs).
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use clr::spec::{overrides_value, Assignment};
+use clr_plot::Figure;
+use rayon::prelude::*;
+
+use super::job::{execute, resolve, Job};
+use super::output::{write_run, Record};
+use super::progress::Progress;
+use super::{assignments, CliError, RunArgs};
+
+/// One varied parameter.
+struct Vary {
+    name: String,
+    values: Vec<String>,
+}
+
+fn parse_vary(text: &str) -> Result<Vary, CliError> {
+    let Some((n, vs)) = text.split_once('=') else {
+        return Err(CliError::Input(format!(
+            "--vary {text}: expected name=v1,v2,... (e.g. --vary solver.rtol=1e-6,1e-8)"
+        )));
+    };
+    let values: Vec<String> = vs.split(',').map(|v| v.trim().to_string()).collect();
+    if n.trim().is_empty() || values.iter().any(String::is_empty) {
+        return Err(CliError::Input(format!(
+            "--vary {text}: the name or a value is empty"
+        )));
+    }
+    Ok(Vary {
+        name: n.trim().to_string(),
+        values,
+    })
+}
+
+/// Parse `I/N` with 0 ≤ I < N.
+fn parse_shard(s: &str) -> Result<(usize, usize), CliError> {
+    let bad = || {
+        CliError::Input(format!(
+            "--shard {s}: expected I/N with 0 ≤ I < N (e.g. --shard 3/16; I is a Slurm \
+             SLURM_ARRAY_TASK_ID of --array=0-15)"
+        ))
+    };
+    let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    let i: usize = i.trim().parse().map_err(|_| bad())?;
+    let n: usize = n.trim().parse().map_err(|_| bad())?;
+    if n == 0 || i >= n {
+        return Err(bad());
+    }
+    Ok((i, n))
+}
+
+/// Index → one value index per varied parameter (the last varies fastest).
+fn combination(mut k: usize, varies: &[Vary]) -> Vec<usize> {
+    let mut idx = vec![0; varies.len()];
+    for (j, v) in varies.iter().enumerate().rev() {
+        idx[j] = k % v.values.len();
+        k /= v.values.len();
+    }
+    idx
+}
+
+struct Row {
+    point: usize,
+    values: Vec<String>,
+    status: String,
+    wall_s: f64,
+    metrics: Vec<(String, String, f64)>,
+}
+
+pub(crate) fn sweep_command(
+    args: &RunArgs,
+    vary: &[String],
+    jobs: Option<usize>,
+    shard: Option<&str>,
+    out: &Path,
+) -> Result<(), CliError> {
+    let base = assignments(&args.set)?;
+    let varies: Vec<Vary> = vary
+        .iter()
+        .map(|v| parse_vary(v))
+        .collect::<Result<_, _>>()?;
+    let total: usize = varies.iter().map(|v| v.values.len()).product();
+    let (si, sn) = match shard {
+        Some(s) => parse_shard(s)?,
+        None => (0, 1),
+    };
+    // resolve every point first: bad input stops the sweep before anything runs
+    let mut points: Vec<(usize, Vec<String>, Job)> = Vec::new();
+    for k in (0..total).filter(|k| k % sn == si) {
+        let idx = combination(k, &varies);
+        let values: Vec<String> = varies
+            .iter()
+            .zip(&idx)
+            .map(|(v, &i)| v.values[i].clone())
+            .collect();
+        let mut sets = base.clone();
+        for (v, val) in varies.iter().zip(&values) {
+            sets.push(Assignment {
+                path: v.name.clone(),
+                value: overrides_value(val),
+            });
+        }
+        let job = resolve(&args.target, &sets, args.t_end, args.rtol).map_err(|e| match e {
+            CliError::Input(m) => CliError::Input(format!("sweep point {k}: {m}")),
+            other => other,
+        })?;
+        points.push((k, values, job));
+    }
+    std::fs::create_dir_all(out)
+        .map_err(|e| CliError::Input(format!("cannot create {}: {e}", out.display())))?;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(jobs.unwrap_or(0))
+        .build()
+        .map_err(|e| CliError::Input(format!("--jobs: {e}")))?;
+    let progress = Progress::new(args.quiet);
+    let bar = progress.points(points.len() as u64);
+    let rows: Vec<Result<Row, CliError>> = pool.install(|| {
+        points
+            .par_iter()
+            .map(|(k, values, job)| {
+                let rec: Record = execute(job, args.t_end, args.rtol, None)?;
+                let dir = out.join(format!("point-{k:05}"));
+                write_run(&dir, &rec, args.t_end, args.rtol, !args.no_figures)?;
+                if let Some(b) = &bar {
+                    b.inc(1);
+                }
+                Ok(Row {
+                    point: *k,
+                    values: values.clone(),
+                    status: match &rec.error {
+                        None => "ok".into(),
+                        Some(_) => "failed".into(),
+                    },
+                    wall_s: rec.wall_s,
+                    metrics: rec
+                        .metrics
+                        .iter()
+                        .map(|m| (m.name.clone(), m.unit.clone(), m.value))
+                        .collect(),
+                })
+            })
+            .collect()
+    });
+    progress.finish();
+    let rows: Vec<Row> = rows.into_iter().collect::<Result<_, _>>()?;
+    let table = sweep_table(&varies, &rows);
+    write_text(&out.join("sweep.csv"), &table)?;
+    let meta = serde_json::json!({
+        "target": args.target,
+        "set": args.set,
+        "vary": varies.iter().map(|v| serde_json::json!({"name": v.name, "values": v.values})).collect::<Vec<_>>(),
+        "total_points": total,
+        "shard": [si, sn],
+        "points": rows.iter().map(|r| r.point).collect::<Vec<_>>(),
+    });
+    write_text(
+        &out.join("sweep.json"),
+        &(serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n"),
+    )?;
+    compare_figures(out, &table);
+    let failed: Vec<usize> = rows
+        .iter()
+        .filter(|r| r.status != "ok")
+        .map(|r| r.point)
+        .collect();
+    if !args.quiet {
+        eprintln!(
+            "clr: sweep of {} point(s) (shard {si}/{sn} of {total}) → {}",
+            rows.len(),
+            out.display()
+        );
+    }
+    if failed.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::Simulation(format!(
+            "{} sweep point(s) failed: {failed:?}; see point-NNNNN/summary.json",
+            failed.len()
+        )))
+    }
+}
+
+fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
+    std::fs::write(path, text)
+        .map_err(|e| CliError::Input(format!("cannot write {}: {e}", path.display())))
+}
+
+/// sweep.csv as text: `point,folder,<varied>...,status,wall_s,<metric [unit]>...`.
+fn sweep_table(varies: &[Vary], rows: &[Row]) -> String {
+    let mut metrics: Vec<(String, String)> = Vec::new();
+    for r in rows {
+        for (n, u, _) in &r.metrics {
+            if !metrics.iter().any(|(m, _)| m == n) {
+                metrics.push((n.clone(), u.clone()));
+            }
+        }
+    }
+    let mut s = String::from("point,folder");
+    for v in varies {
+        s.push(',');
+        s.push_str(&v.name);
+    }
+    s.push_str(",status,wall_s [s]");
+    for (n, u) in &metrics {
+        s.push_str(&format!(",{n} [{u}]"));
+    }
+    s.push('\n');
+    let mut rows: Vec<&Row> = rows.iter().collect();
+    rows.sort_by_key(|r| r.point);
+    for r in rows {
+        s.push_str(&format!("{},point-{:05}", r.point, r.point));
+        for v in &r.values {
+            s.push(',');
+            s.push_str(v);
+        }
+        s.push_str(&format!(",{},{:e}", r.status, r.wall_s));
+        for (n, _) in &metrics {
+            match r.metrics.iter().find(|(m, _, _)| m == n) {
+                Some((_, _, v)) => s.push_str(&format!(",{v:e}")),
+                None => s.push(','),
+            }
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// Comparison figures: every metric against the first varied parameter (one line per value of
+/// the others), `compare_<metric>.svg/png`.
+fn compare_figures(out: &Path, table: &str) {
+    let mut lines = table.lines();
+    let Some(header) = lines.next() else { return };
+    let head: Vec<&str> = header.split(',').collect();
+    let Some(status) = head.iter().position(|h| *h == "status") else {
+        return;
+    };
+    let n_vary = status - 2;
+    if n_vary == 0 {
+        return;
+    }
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    let numeric_x = rows.iter().all(|r| r[2].parse::<f64>().is_ok());
+    for (m, name) in head.iter().enumerate().skip(status + 2).take(16) {
+        let mut groups: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
+        for r in &rows {
+            let Ok(y) = r[m].parse::<f64>() else { continue };
+            let x = if numeric_x {
+                r[2].parse::<f64>().unwrap_or(f64::NAN)
+            } else {
+                r[0].parse::<f64>().unwrap_or(f64::NAN)
+            };
+            let key: Vec<String> = (3..2 + n_vary)
+                .map(|j| format!("{}={}", head[j], r[j]))
+                .collect();
+            groups.entry(key.join(" ")).or_default().push((x, y));
+        }
+        let x_label = if numeric_x {
+            head[2].to_string()
+        } else {
+            format!("point (values of {})", head[2])
+        };
+        let mut f = Figure::new(format!("sweep: {name}"))
+            .x_label(x_label)
+            .y_label(name.to_string());
+        for (k, mut pts) in groups {
+            pts.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let label = if k.is_empty() { name.to_string() } else { k };
+            f = f.series(label, pts, clr_plot::Style::LinePoints);
+        }
+        let stem: String = name
+            .split(" [")
+            .next()
+            .unwrap_or(name)
+            .chars()
+            .map(|c| if c.is_alphanumeric() { c } else { '_' })
+            .collect();
+        if let Err(e) = f.save(out.join(format!("compare_{stem}"))) {
+            eprintln!("clr: warning: {e}");
+        }
+    }
+}
+
+/// `clr merge DIR... --out DIR`.
+pub(crate) fn merge_command(dirs: &[PathBuf], out: &Path) -> Result<(), CliError> {
+    let read = |p: PathBuf| {
+        std::fs::read_to_string(&p)
+            .map_err(|e| CliError::Input(format!("cannot read {}: {e}", p.display())))
+    };
+    let mut header: Option<String> = None;
+    let mut meta0: Option<serde_json::Value> = None;
+    let mut rows: BTreeMap<usize, (String, PathBuf)> = BTreeMap::new();
+    for d in dirs {
+        let meta: serde_json::Value = serde_json::from_str(&read(d.join("sweep.json"))?)
+            .map_err(|e| CliError::Input(format!("{}: {e}", d.join("sweep.json").display())))?;
+        match &meta0 {
+            None => meta0 = Some(meta.clone()),
+            Some(m0) => {
+                for key in ["target", "set", "vary", "total_points"] {
+                    if m0[key] != meta[key] {
+                        return Err(CliError::Input(format!(
+                            "{}: `{key}` differs from {}'s; merge only shards of one sweep",
+                            d.display(),
+                            dirs[0].display()
+                        )));
+                    }
+                }
+            }
+        }
+        let text = read(d.join("sweep.csv"))?;
+        let mut lines = text.lines();
+        let h = lines.next().unwrap_or("").to_string();
+        for l in lines.filter(|l| !l.trim().is_empty()) {
+            let k: usize = l
+                .split(',')
+                .next()
+                .and_then(|s| s.parse().ok())
+                .ok_or_else(|| CliError::Input(format!("{}: bad row `{l}`", d.display())))?;
+            if let Some((_, first)) = rows.get(&k) {
+                return Err(CliError::Input(format!(
+                    "point {k} appears in both {} and {}; give each shard once",
+                    first.display(),
+                    d.display()
+                )));
+            }
+            // align the metric columns with the first header
+            let line = match &header {
+                Some(h0) if *h0 != h => realign(&h, h0, l)?,
+                _ => l.to_string(),
+            };
+            rows.insert(k, (line, d.clone()));
+        }
+        if header.is_none() {
+            header = Some(h);
+        }
+    }
+    let meta0 = meta0.unwrap_or_default();
+    let header = header.unwrap_or_default();
+    let total = meta0["total_points"].as_u64().unwrap_or(0) as usize;
+    let mut text = header.clone();
+    text.push('\n');
+    for (line, _) in rows.values() {
+        text.push_str(line);
+        text.push('\n');
+    }
+    std::fs::create_dir_all(out)
+        .map_err(|e| CliError::Input(format!("cannot create {}: {e}", out.display())))?;
+    write_text(&out.join("sweep.csv"), &text)?;
+    let mut meta = meta0.clone();
+    meta["shard"] = serde_json::json!([0, 1]);
+    meta["points"] = serde_json::json!(rows.keys().collect::<Vec<_>>());
+    meta["merged_from"] = serde_json::json!(dirs
+        .iter()
+        .map(|d| d.display().to_string())
+        .collect::<Vec<_>>());
+    write_text(
+        &out.join("sweep.json"),
+        &(serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n"),
+    )?;
+    compare_figures(out, &text);
+    let missing: Vec<usize> = (0..total).filter(|k| !rows.contains_key(k)).collect();
+    eprintln!(
+        "clr: merged {} of {total} point(s) from {} folder(s) → {}",
+        rows.len(),
+        dirs.len(),
+        out.display()
+    );
+    if missing.is_empty() {
+        Ok(())
+    } else {
+        Err(CliError::Simulation(format!(
+            "the merge is incomplete: points {missing:?} are in no shard (rerun their shards)"
+        )))
+    }
+}
+
+/// Reorder the cells of `line` (written under `from`) to the columns of `to`.
+fn realign(from: &str, to: &str, line: &str) -> Result<String, CliError> {
+    let f: Vec<&str> = from.split(',').collect();
+    let cells: Vec<&str> = line.split(',').collect();
+    let mut outv = Vec::new();
+    for col in to.split(',') {
+        match f.iter().position(|c| *c == col) {
+            Some(i) => outv.push(cells.get(i).copied().unwrap_or("")),
+            None => outv.push(""),
+        }
+    }
+    if f.iter().any(|c| !to.split(',').any(|t| t == *c)) {
+        return Err(CliError::Input(format!(
+            "shard columns differ: `{from}` vs `{to}`; merge only shards of one sweep"
+        )));
+    }
+    Ok(outv.join(","))
+}

@@ -1,0 +1,1071 @@
+//! Validation of a generic model file and its conversion into a clr-mbd model.
+
+use std::collections::HashMap;
+
+use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
+use clr_mbd::{Anchor, Model, ModelBuilder, Motion, RevoluteClearanceSpec, RigidBody, SimOptions};
+use clr_mbd::{SolverKind, GROUND};
+use nalgebra::Vector2;
+
+use super::file::{ClearanceFile, FrictionFile, MaterialFile, ModelFile, NormalFile};
+use super::locate::{suggestion, FieldPath};
+use super::timefn::{TimeFn, TIME_FN_KINDS};
+use super::SpecError;
+
+#[derive(Debug, Clone)]
+enum ItemSpec {
+    Revolute(String, Anchor, Anchor),
+    Fixed(String, Anchor, Anchor),
+    Translational(String, Anchor, Anchor, [f64; 2]),
+    DriveAngle(String, String, String, TimeFn),
+    DriveDisplacement(String, Anchor, Anchor, [f64; 2], TimeFn),
+    Spring(String, Anchor, Anchor, [f64; 3]),
+    RotSpring(String, String, String, [f64; 3]),
+    Force(String, Anchor, TimeFn, TimeFn),
+    Torque(String, String, TimeFn),
+    PairTorque(String, String, String, TimeFn),
+    Clearance(String, Anchor, Anchor, f64, f64, NormalLaw, FrictionLaw),
+}
+
+/// A validated generic model: everything needed to build a `clr_mbd::Model` and its run
+/// settings. Plain data (`Send`), so sweeps can build one model per thread.
+#[derive(Debug, Clone)]
+pub struct ModelSpec {
+    /// File the model came from (for messages).
+    pub file: String,
+    /// The file's text (for locating build errors).
+    src: String,
+    /// Model name.
+    pub name: String,
+    /// Description.
+    pub description: String,
+    gravity: [f64; 2],
+    bodies: Vec<(String, RigidBody)>,
+    points: Vec<(String, String, [f64; 2])>,
+    items: Vec<ItemSpec>,
+    /// Integrator settings (t0, t_end, output times, tolerances, solver, projection, events).
+    pub options: SimOptions,
+    /// Baumgarte (α, β), 1/s.
+    pub baumgarte: (f64, f64),
+    /// Radial clearance c = R_bearing − R_journal of each clearance joint by name, m.
+    pub clearances: Vec<(String, f64)>,
+    /// The file as validated, with every default filled in (for `summary.json`).
+    pub resolved: serde_json::Value,
+}
+
+/// A built model with its run settings.
+pub struct Built {
+    /// The clr-mbd model (Baumgarte coefficients already set).
+    pub model: Model,
+    /// Simulation options.
+    pub options: SimOptions,
+}
+
+struct V<'a> {
+    file: &'a str,
+    src: &'a str,
+}
+
+impl V<'_> {
+    fn err(&self, path: &FieldPath, m: impl Into<String>) -> SpecError {
+        SpecError::at(self.file, self.src, path, m)
+    }
+    fn req<T: Clone>(&self, path: &FieldPath, v: &Option<T>, what: &str) -> Result<T, SpecError> {
+        v.clone()
+            .ok_or_else(|| self.err(path, format!("missing value: give {what}")))
+    }
+    fn positive(&self, path: &FieldPath, v: f64, unit: &str) -> Result<f64, SpecError> {
+        if v.is_finite() && v > 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(
+                path,
+                format!("{v} {unit} must be positive and finite (give a value > 0)"),
+            ))
+        }
+    }
+    fn non_negative(&self, path: &FieldPath, v: f64, unit: &str) -> Result<f64, SpecError> {
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(self.err(path, format!("{v} {unit} must be finite and ≥ 0")))
+        }
+    }
+    fn finite(&self, path: &FieldPath, v: f64) -> Result<f64, SpecError> {
+        if v.is_finite() {
+            Ok(v)
+        } else {
+            Err(self.err(path, format!("{v} must be finite")))
+        }
+    }
+    fn finite2(&self, path: &FieldPath, v: [f64; 2]) -> Result<[f64; 2], SpecError> {
+        self.finite(path, v[0])?;
+        self.finite(path, v[1])?;
+        Ok(v)
+    }
+    fn kind<'k>(
+        &self,
+        path: &FieldPath,
+        v: &Option<String>,
+        valid: &[&'k str],
+        what: &str,
+    ) -> Result<&'k str, SpecError> {
+        let k = self.req(
+            path,
+            v,
+            &format!("the {what} type, one of {}", valid.join(", ")),
+        )?;
+        let norm = k.trim().to_ascii_lowercase().replace('-', "_");
+        valid
+            .iter()
+            .find(|v| v.replace('-', "_") == norm)
+            .copied()
+            .ok_or_else(|| {
+                self.err(
+                    path,
+                    format!(
+                        "unknown {what} type `{k}`; {}",
+                        suggestion(&k, valid.iter().copied())
+                    ),
+                )
+            })
+    }
+}
+
+struct Names {
+    bodies: Vec<String>,
+    points: Vec<String>,
+}
+
+impl Names {
+    fn body(&self, v: &V, path: &FieldPath, name: &str) -> Result<String, SpecError> {
+        if name == GROUND || self.bodies.iter().any(|b| b == name) {
+            Ok(name.to_string())
+        } else {
+            let all: Vec<&str> = std::iter::once(GROUND)
+                .chain(self.bodies.iter().map(String::as_str))
+                .collect();
+            Err(v.err(
+                path,
+                format!(
+                    "unknown body `{name}`; {}",
+                    suggestion(name, all.iter().copied())
+                ),
+            ))
+        }
+    }
+    fn body_opt(
+        &self,
+        v: &V,
+        path: &FieldPath,
+        name: &Option<String>,
+    ) -> Result<String, SpecError> {
+        let n = v.req(path, name, "a body name (or `ground`)")?;
+        self.body(v, path, &n)
+    }
+    fn anchor(
+        &self,
+        v: &V,
+        path: &FieldPath,
+        a: &Option<toml::Value>,
+    ) -> Result<Anchor, SpecError> {
+        let a = v.req(
+            path,
+            a,
+            "an anchor: a point name, or { body = \"name\", at = [x, y] } (m)",
+        )?;
+        match &a {
+            toml::Value::String(p) => {
+                if self.points.iter().any(|q| q == p) {
+                    Ok(Anchor::Point(p.clone()))
+                } else {
+                    Err(v.err(
+                        path,
+                        format!(
+                            "unknown point `{p}`; {} (or write {{ body = \"name\", at = [x, y] }})",
+                            suggestion(p, self.points.iter().map(String::as_str))
+                        ),
+                    ))
+                }
+            }
+            toml::Value::Table(t) => {
+                for k in t.keys() {
+                    if k != "body" && k != "at" {
+                        return Err(v.err(
+                            &path.key(k),
+                            format!(
+                                "unknown field `{k}` in an anchor; {}",
+                                suggestion(k, ["body", "at"])
+                            ),
+                        ));
+                    }
+                }
+                let body = match t.get("body") {
+                    Some(toml::Value::String(b)) => self.body(v, &path.key("body"), b)?,
+                    Some(_) => return Err(v.err(&path.key("body"), "the body must be a name")),
+                    None => {
+                        return Err(v.err(
+                            &path.key("body"),
+                            "missing value: give the anchor's body (or `ground`)",
+                        ))
+                    }
+                };
+                let at = match t.get("at") {
+                    None => [0.0, 0.0],
+                    Some(x) => vec2(x).ok_or_else(|| {
+                        v.err(&path.key("at"), "expected two numbers [x, y] in m")
+                    })?,
+                };
+                v.finite2(&path.key("at"), at)?;
+                Ok(Anchor::Local(body, at))
+            }
+            _ => Err(v.err(
+                path,
+                "an anchor is a point name or { body = \"name\", at = [x, y] }",
+            )),
+        }
+    }
+}
+
+fn num(v: &toml::Value) -> Option<f64> {
+    match v {
+        toml::Value::Float(f) => Some(*f),
+        toml::Value::Integer(i) => Some(*i as f64),
+        _ => None,
+    }
+}
+
+fn vec2(v: &toml::Value) -> Option<[f64; 2]> {
+    let a = v.as_array()?;
+    if a.len() != 2 {
+        return None;
+    }
+    Some([num(&a[0])?, num(&a[1])?])
+}
+
+fn time_fn(v: &V, path: &FieldPath, t: &Option<toml::Table>) -> Result<TimeFn, SpecError> {
+    let t = v.req(
+        path,
+        t,
+        "a function of time, e.g. { type = \"linear\", initial = 0.0, rate = 10.0 }",
+    )?;
+    let kind = match t.get("type") {
+        Some(toml::Value::String(s)) => s.clone(),
+        _ => {
+            return Err(v.err(
+                &path.key("type"),
+                format!(
+                    "missing value: give the function type, one of {}",
+                    TIME_FN_KINDS.join(", ")
+                ),
+            ))
+        }
+    };
+    let fields: &[&str] = match kind.as_str() {
+        "constant" => &["value"],
+        "linear" => &["initial", "rate"],
+        "ramp" => &["initial", "rate", "duration"],
+        "sine" => &["offset", "amplitude", "omega", "phase"],
+        "polynomial" => &["coefficients"],
+        _ => {
+            return Err(v.err(
+                &path.key("type"),
+                format!(
+                    "unknown function type `{kind}`; {}",
+                    suggestion(&kind, TIME_FN_KINDS)
+                ),
+            ))
+        }
+    };
+    for k in t.keys() {
+        if k != "type" && !fields.contains(&k.as_str()) {
+            return Err(v.err(
+                &path.key(k),
+                format!(
+                    "unknown field `{k}` for a `{kind}` function; {}",
+                    suggestion(k, fields.iter().copied())
+                ),
+            ));
+        }
+    }
+    let get = |k: &str, default: Option<f64>| -> Result<f64, SpecError> {
+        match t.get(k) {
+            Some(x) => num(x)
+                .ok_or_else(|| v.err(&path.key(k), "expected a number"))
+                .and_then(|x| v.finite(&path.key(k), x)),
+            None => default.ok_or_else(|| {
+                v.err(
+                    &path.key(k),
+                    format!(
+                        "missing value: a `{kind}` function needs {}",
+                        fields.join(", ")
+                    ),
+                )
+            }),
+        }
+    };
+    Ok(match kind.as_str() {
+        "constant" => TimeFn::Constant {
+            value: get("value", None)?,
+        },
+        "linear" => TimeFn::Linear {
+            initial: get("initial", Some(0.0))?,
+            rate: get("rate", None)?,
+        },
+        "ramp" => TimeFn::Ramp {
+            initial: get("initial", Some(0.0))?,
+            rate: get("rate", None)?,
+            duration: v.positive(&path.key("duration"), get("duration", None)?, "s")?,
+        },
+        "sine" => TimeFn::Sine {
+            offset: get("offset", Some(0.0))?,
+            amplitude: get("amplitude", None)?,
+            omega: get("omega", None)?,
+            phase: get("phase", Some(0.0))?,
+        },
+        _ => {
+            let p = path.key("coefficients");
+            let c = t
+                .get("coefficients")
+                .ok_or_else(|| v.err(&p, "missing value: give coefficients = [c0, c1, ...]"))?;
+            let c: Option<Vec<f64>> = c.as_array().and_then(|a| a.iter().map(num).collect());
+            let c = c
+                .filter(|c| !c.is_empty())
+                .ok_or_else(|| v.err(&p, "expected a non-empty list of numbers [c0, c1, ...]"))?;
+            for &x in &c {
+                v.finite(&p, x)?;
+            }
+            TimeFn::Polynomial { coefficients: c }
+        }
+    })
+}
+
+fn material(v: &V, path: &FieldPath, m: &Option<MaterialFile>) -> Result<Material, SpecError> {
+    let m = v.req(
+        path,
+        m,
+        "a material { youngs_modulus = 2.07e11, poisson_ratio = 0.3 } (Pa, –)",
+    )?;
+    let e = v.positive(
+        &path.key("youngs_modulus"),
+        v.req(
+            &path.key("youngs_modulus"),
+            &m.youngs_modulus,
+            "Young's modulus in Pa",
+        )?,
+        "Pa",
+    )?;
+    let nu = v.req(
+        &path.key("poisson_ratio"),
+        &m.poisson_ratio,
+        "Poisson's ratio",
+    )?;
+    Material::new(e, nu).map_err(|e| v.err(&path.key("poisson_ratio"), e.to_string()))
+}
+
+const ELASTIC_LAWS: [&str; 9] = [
+    "hertz",
+    "power",
+    "linear",
+    "hertz-internal-cylinder",
+    "liu",
+    "bai-zhao",
+    "johnson",
+    "pereira",
+    "preset",
+];
+
+fn normal_law(
+    v: &V,
+    path: &FieldPath,
+    n: &Option<NormalFile>,
+    rb: f64,
+    rj: f64,
+) -> Result<NormalLaw, SpecError> {
+    let n = v.req(
+        path,
+        n,
+        "a normal-force law, e.g. normal = { law = \"hertz\", stiffness = 1e10, damping = \
+         \"lankarani-nikravesh\", restitution = 0.9 }",
+    )?;
+    let law = v.kind(&path.key("law"), &n.law, &ELASTIC_LAWS, "normal-force law")?;
+    let c_e = v.req(
+        &path.key("restitution"),
+        &n.restitution,
+        "the coefficient of restitution c_e in (0, 1]",
+    )?;
+    if !(c_e > 0.0 && c_e <= 1.0) {
+        return Err(v.err(
+            &path.key("restitution"),
+            format!("c_e = {c_e} must be in (0, 1]"),
+        ));
+    }
+    let cont = |e: clr_contact::ContactError, field: &str| v.err(&path.key(field), e.to_string());
+    let clearance = rb - rj;
+    let stiff = |v2: &V| -> Result<f64, SpecError> {
+        let p = path.key("stiffness");
+        v2.positive(&p, v2.req(&p, &n.stiffness, "the stiffness K")?, "N/m^n")
+    };
+    let length = |v2: &V| -> Result<f64, SpecError> {
+        let p = path.key("length");
+        v2.positive(&p, v2.req(&p, &n.length, "the axial length L in m")?, "m")
+    };
+    let e_star = |v2: &V| -> Result<f64, SpecError> {
+        let b = material(v2, &path.key("bearing_material"), &n.bearing_material)?;
+        let j = material(v2, &path.key("journal_material"), &n.journal_material)?;
+        b.try_composite_modulus(&j)
+            .map_err(|e| cont(e, "bearing_material"))
+    };
+    let law_obj = if law == "preset" {
+        let label = v.req(
+            &path.key("preset"),
+            &n.preset,
+            "the preset label (Hertz, LN, Gonthier, Bai, Wang, Modified)",
+        )?;
+        if !clr_contact::normal::FLAP_PRESETS
+            .iter()
+            .any(|p| p.eq_ignore_ascii_case(&label))
+        {
+            return Err(v.err(
+                &path.key("preset"),
+                format!(
+                    "unknown preset `{label}`; {}",
+                    suggestion(&label, clr_contact::normal::FLAP_PRESETS)
+                ),
+            ));
+        }
+        if n.damping.is_some() {
+            return Err(v.err(
+                &path.key("damping"),
+                "a preset fixes its damping factor; remove `damping`",
+            ));
+        }
+        let jb = JournalBearing {
+            bearing: material(v, &path.key("bearing_material"), &n.bearing_material)?,
+            journal: material(v, &path.key("journal_material"), &n.journal_material)?,
+            r_bearing: rb,
+            r_journal: rj,
+            length: length(v)?,
+        };
+        NormalLaw::preset(&label, &jb, c_e).map_err(|e| cont(e, "preset"))?
+    } else {
+        let elastic = match law {
+            "hertz" => ElasticLaw::hertz(stiff(v)?),
+            "linear" => ElasticLaw::linear(stiff(v)?),
+            "power" => {
+                let p = path.key("exponent");
+                let ex = v.positive(&p, v.req(&p, &n.exponent, "the exponent n")?, "")?;
+                ElasticLaw::power(stiff(v)?, ex)
+            }
+            "hertz-internal-cylinder" => {
+                let b = material(v, &path.key("bearing_material"), &n.bearing_material)?;
+                let j = material(v, &path.key("journal_material"), &n.journal_material)?;
+                ElasticLaw::hertz_internal_cylinder(&b, rb, &j, rj)
+            }
+            "liu" => ElasticLaw::liu(e_star(v)?, clearance, length(v)?),
+            "bai-zhao" => ElasticLaw::bai_zhao(e_star(v)?, clearance),
+            "johnson" => ElasticLaw::johnson(e_star(v)?, clearance, length(v)?),
+            _ => ElasticLaw::pereira_internal(e_star(v)?, clearance, length(v)?),
+        }
+        .map_err(|e| cont(e, "law"))?;
+        let dname = v.req(
+            &path.key("damping"),
+            &n.damping,
+            "the damping factor name (e.g. lankarani-nikravesh, flores, gonthier, none)",
+        )?;
+        let damping = DampingFactor::from_name(&dname).map_err(|_| {
+            v.err(
+                &path.key("damping"),
+                format!(
+                    "unknown damping factor `{dname}`; {}",
+                    suggestion(&dname, DampingFactor::ALL.iter().map(|d| d.name()))
+                ),
+            )
+        })?;
+        NormalLaw::new(elastic, damping, c_e).map_err(|e| cont(e, "restitution"))?
+    };
+    match n.min_impact_velocity {
+        Some(m) => law_obj
+            .with_min_impact_velocity(m)
+            .map_err(|e| cont(e, "min_impact_velocity")),
+        None => Ok(law_obj),
+    }
+}
+
+const FRICTION_LAWS: [&str; 6] = [
+    "none",
+    "coulomb",
+    "ambrosio",
+    "ambrosio-smooth",
+    "threlfall",
+    "stribeck",
+];
+
+fn friction_law(
+    v: &V,
+    path: &FieldPath,
+    f: &Option<FrictionFile>,
+) -> Result<FrictionLaw, SpecError> {
+    let none = || FrictionLaw::coulomb(0.0, 1.0);
+    let Some(f) = f else {
+        return none().map_err(|e| v.err(path, e.to_string()));
+    };
+    let law = v.kind(&path.key("law"), &f.law, &FRICTION_LAWS, "friction law")?;
+    let g = |k: &str, x: &Option<f64>| -> Result<f64, SpecError> {
+        v.req(
+            &path.key(k),
+            x,
+            &format!("`{k}` for the {law} friction law"),
+        )
+    };
+    let r = match law {
+        "none" => none(),
+        "coulomb" => FrictionLaw::coulomb(g("mu", &f.mu)?, f.v_reg.unwrap_or(1e-4)),
+        "ambrosio" => FrictionLaw::ambrosio(g("mu", &f.mu)?, g("v0", &f.v0)?, g("v1", &f.v1)?),
+        "ambrosio-smooth" => {
+            FrictionLaw::ambrosio_smooth(g("mu", &f.mu)?, g("v0", &f.v0)?, g("v1", &f.v1)?)
+        }
+        "threlfall" => FrictionLaw::threlfall(g("mu", &f.mu)?, g("v0", &f.v0)?),
+        _ => FrictionLaw::stribeck(
+            g("mu_s", &f.mu_s)?,
+            g("mu_d", &f.mu_d)?,
+            g("v_s", &f.v_s)?,
+            g("v_d", &f.v_d)?,
+        ),
+    };
+    r.map_err(|e| v.err(path, e.to_string()))
+}
+
+impl ModelSpec {
+    /// Validate a parsed model file; `src` is its text (for line numbers).
+    ///
+    /// # Errors
+    /// The first problem found, as a [`SpecError`] with file, line and field.
+    pub fn validate(file: &str, src: &str, m: ModelFile) -> Result<Self, SpecError> {
+        let v = V { file, src };
+        let root = FieldPath::root();
+        let model = m.model.clone().unwrap_or_default();
+        let gravity = v.finite2(
+            &root.key("model").key("gravity"),
+            model.gravity.unwrap_or([0.0, 0.0]),
+        )?;
+        if m.body.is_empty() {
+            return Err(v.err(
+                &root.key("body"),
+                "missing value: a model needs at least one [[body]] (name, mass, inertia)",
+            ));
+        }
+        // names: one namespace, `ground` reserved
+        let mut seen: HashMap<String, FieldPath> = HashMap::new();
+        let mut claim = |path: FieldPath, name: &Option<String>| -> Result<String, SpecError> {
+            let p = path.key("name");
+            let n = v.req(&p, name, "a unique name")?;
+            if n.trim().is_empty() {
+                return Err(v.err(&p, "the name is empty"));
+            }
+            if n == GROUND {
+                return Err(v.err(&p, "`ground` is reserved for the fixed frame; rename it"));
+            }
+            if let Some(first) = seen.get(&n) {
+                return Err(v.err(
+                    &p,
+                    format!("duplicate name `{n}` (first used at `{first}`); rename one"),
+                ));
+            }
+            seen.insert(n.clone(), path);
+            Ok(n)
+        };
+        let mut bodies = Vec::new();
+        for (k, b) in m.body.iter().enumerate() {
+            let p = root.key("body").index(k);
+            let name = claim(p.clone(), &b.name)?;
+            let mass = v.req(&p.key("mass"), &b.mass, "the mass in kg")?;
+            let mass = v.positive(&p.key("mass"), mass, "kg")?;
+            let inertia = v.req(
+                &p.key("inertia"),
+                &b.inertia,
+                "the moment of inertia about the centre of mass in kg·m²",
+            )?;
+            let inertia = v.positive(&p.key("inertia"), inertia, "kg·m²")?;
+            let pos = v.finite2(&p.key("position"), b.position.unwrap_or([0.0; 2]))?;
+            let vel = v.finite2(&p.key("velocity"), b.velocity.unwrap_or([0.0; 2]))?;
+            let angle = v.finite(&p.key("angle"), b.angle.unwrap_or(0.0))?;
+            let omega = v.finite(
+                &p.key("angular_velocity"),
+                b.angular_velocity.unwrap_or(0.0),
+            )?;
+            bodies.push((
+                name,
+                RigidBody::new(mass, inertia)
+                    .at(pos[0], pos[1], angle)
+                    .moving(vel[0], vel[1], omega),
+            ));
+        }
+        let mut names = Names {
+            bodies: bodies.iter().map(|(n, _)| n.clone()).collect(),
+            points: Vec::new(),
+        };
+        let mut points = Vec::new();
+        for (k, pt) in m.point.iter().enumerate() {
+            let p = root.key("point").index(k);
+            let name = claim(p.clone(), &pt.name)?;
+            let body = names.body_opt(&v, &p.key("body"), &pt.body)?;
+            let at = v.finite2(
+                &p.key("at"),
+                v.req(&p.key("at"), &pt.at, "local coordinates [x, y] in m")?,
+            )?;
+            names.points.push(name.clone());
+            points.push((name, body, at));
+        }
+        let mut items = Vec::new();
+        let axis = |p: &FieldPath, a: &Option<[f64; 2]>| -> Result<[f64; 2], SpecError> {
+            let a = v.finite2(p, v.req(p, a, "an axis [x, y] (local to body i)")?)?;
+            if a[0] == 0.0 && a[1] == 0.0 {
+                return Err(v.err(
+                    p,
+                    "the axis [0, 0] has no direction; give a non-zero vector",
+                ));
+            }
+            Ok(a)
+        };
+        for (k, j) in m.joint.iter().enumerate() {
+            let p = root.key("joint").index(k);
+            let name = claim(p.clone(), &j.name)?;
+            let kind = v.kind(
+                &p.key("type"),
+                &j.kind,
+                &["revolute", "fixed", "translational"],
+                "joint",
+            )?;
+            let a = names.anchor(&v, &p.key("a"), &j.a)?;
+            let b = names.anchor(&v, &p.key("b"), &j.b)?;
+            items.push(match kind {
+                "revolute" => ItemSpec::Revolute(name, a, b),
+                "fixed" => ItemSpec::Fixed(name, a, b),
+                _ => ItemSpec::Translational(name, a, b, axis(&p.key("axis"), &j.axis)?),
+            });
+        }
+        for (k, d) in m.driver.iter().enumerate() {
+            let p = root.key("driver").index(k);
+            let name = claim(p.clone(), &d.name)?;
+            let kind = v.kind(
+                &p.key("type"),
+                &d.kind,
+                &["angle", "relative_angle", "displacement"],
+                "driver",
+            )?;
+            let motion = time_fn(&v, &p.key("motion"), &d.motion)?;
+            items.push(match kind {
+                "angle" => ItemSpec::DriveAngle(
+                    name,
+                    GROUND.to_string(),
+                    names.body_opt(&v, &p.key("body"), &d.body)?,
+                    motion,
+                ),
+                "relative_angle" => ItemSpec::DriveAngle(
+                    name,
+                    names.body_opt(&v, &p.key("body_i"), &d.body_i)?,
+                    names.body_opt(&v, &p.key("body_j"), &d.body_j)?,
+                    motion,
+                ),
+                _ => ItemSpec::DriveDisplacement(
+                    name,
+                    names.anchor(&v, &p.key("a"), &d.a)?,
+                    names.anchor(&v, &p.key("b"), &d.b)?,
+                    axis(&p.key("axis"), &d.axis)?,
+                    motion,
+                ),
+            });
+        }
+        for (k, f) in m.force.iter().enumerate() {
+            let p = root.key("force").index(k);
+            let name = claim(p.clone(), &f.name)?;
+            let kind = v.kind(
+                &p.key("type"),
+                &f.kind,
+                &[
+                    "spring_damper",
+                    "rotational_spring_damper",
+                    "force",
+                    "torque",
+                    "torque_between",
+                ],
+                "force",
+            )?;
+            let nn = |key: &str, x: &Option<f64>, unit: &str| -> Result<f64, SpecError> {
+                v.non_negative(&p.key(key), x.unwrap_or(0.0), unit)
+            };
+            items.push(match kind {
+                "spring_damper" => ItemSpec::Spring(
+                    name,
+                    names.anchor(&v, &p.key("a"), &f.a)?,
+                    names.anchor(&v, &p.key("b"), &f.b)?,
+                    [
+                        nn("stiffness", &f.stiffness, "N/m")?,
+                        nn("damping", &f.damping, "N·s/m")?,
+                        nn("free_length", &f.free_length, "m")?,
+                    ],
+                ),
+                "rotational_spring_damper" => ItemSpec::RotSpring(
+                    name,
+                    names.body_opt(&v, &p.key("body_i"), &f.body_i)?,
+                    names.body_opt(&v, &p.key("body_j"), &f.body_j)?,
+                    [
+                        nn("stiffness", &f.stiffness, "N·m/rad")?,
+                        nn("damping", &f.damping, "N·m·s/rad")?,
+                        v.finite(&p.key("free_angle"), f.free_angle.unwrap_or(0.0))?,
+                    ],
+                ),
+                "force" => {
+                    let zero = || TimeFn::Constant { value: 0.0 };
+                    let fx = match &f.fx {
+                        Some(_) => time_fn(&v, &p.key("fx"), &f.fx)?,
+                        None => zero(),
+                    };
+                    let fy = match &f.fy {
+                        Some(_) => time_fn(&v, &p.key("fy"), &f.fy)?,
+                        None => zero(),
+                    };
+                    let at = names.anchor(&v, &p.key("at"), &f.at)?;
+                    if anchor_body(&at, &points) == GROUND {
+                        return Err(v.err(
+                            &p.key("at"),
+                            "a force on the ground does nothing; attach it to a moving body",
+                        ));
+                    }
+                    ItemSpec::Force(name, at, fx, fy)
+                }
+                "torque" => {
+                    let b = names.body_opt(&v, &p.key("body"), &f.body)?;
+                    if b == GROUND {
+                        return Err(v.err(
+                            &p.key("body"),
+                            "a torque on the ground does nothing; name a moving body",
+                        ));
+                    }
+                    ItemSpec::Torque(name, b, time_fn(&v, &p.key("torque"), &f.torque)?)
+                }
+                _ => ItemSpec::PairTorque(
+                    name,
+                    names.body_opt(&v, &p.key("body_i"), &f.body_i)?,
+                    names.body_opt(&v, &p.key("body_j"), &f.body_j)?,
+                    time_fn(&v, &p.key("torque"), &f.torque)?,
+                ),
+            });
+        }
+        let mut clearances = Vec::new();
+        for (k, c) in m.clearance.iter().enumerate() {
+            let p = root.key("clearance").index(k);
+            let name = claim(p.clone(), &c.name)?;
+            let ClearanceFile {
+                kind,
+                bearing,
+                journal,
+                bearing_radius,
+                journal_radius,
+                normal,
+                friction,
+                ..
+            } = c;
+            v.kind(
+                &p.key("type"),
+                &kind.clone().or(Some("revolute".into())),
+                &["revolute"],
+                "clearance joint",
+            )?;
+            let bearing = names.anchor(&v, &p.key("bearing"), bearing)?;
+            let journal = names.anchor(&v, &p.key("journal"), journal)?;
+            let rb = v.req(
+                &p.key("bearing_radius"),
+                bearing_radius,
+                "the bearing radius in m",
+            )?;
+            let rb = v.positive(&p.key("bearing_radius"), rb, "m")?;
+            let rj = v.req(
+                &p.key("journal_radius"),
+                journal_radius,
+                "the journal radius in m",
+            )?;
+            let rj = v.positive(&p.key("journal_radius"), rj, "m")?;
+            if rj >= rb {
+                return Err(v.err(
+                    &p.key("journal_radius"),
+                    format!(
+                        "the radial clearance bearing_radius − journal_radius = {:e} m must be \
+                         positive: make journal_radius smaller than bearing_radius = {rb} m",
+                        rb - rj
+                    ),
+                ));
+            }
+            let normal = normal_law(&v, &p.key("normal"), normal, rb, rj)?;
+            let friction = friction_law(&v, &p.key("friction"), friction)?;
+            clearances.push((name.clone(), rb - rj));
+            items.push(ItemSpec::Clearance(
+                name, bearing, journal, rb, rj, normal, friction,
+            ));
+        }
+        // solver and output
+        let s = m.solver.clone().unwrap_or_default();
+        let sp = root.key("solver");
+        let method = v.kind(
+            &sp.key("method"),
+            &s.method.clone().or(Some("ndf".into())),
+            &["ndf", "dopri5"],
+            "solver",
+        )?;
+        let rtol = v.positive(&sp.key("rtol"), s.rtol.unwrap_or(1e-6), "")?;
+        let atol = v.positive(&sp.key("atol"), s.atol.unwrap_or(1e-8), "")?;
+        let h_max = s.h_max.unwrap_or(f64::INFINITY);
+        if h_max.is_nan() || h_max <= 0.0 {
+            return Err(v.err(&sp.key("h_max"), format!("{h_max} s must be > 0")));
+        }
+        let alpha = v.non_negative(
+            &sp.key("baumgarte_alpha"),
+            s.baumgarte_alpha
+                .unwrap_or(clr_mbd::DEFAULT_BAUMGARTE_ALPHA),
+            "1/s",
+        )?;
+        let beta = v.non_negative(
+            &sp.key("baumgarte_beta"),
+            s.baumgarte_beta.unwrap_or(clr_mbd::DEFAULT_BAUMGARTE_BETA),
+            "1/s",
+        )?;
+        let projection = match s.projection {
+            Some(x) => Some(v.positive(&sp.key("projection"), x, "m or rad")?),
+            None => None,
+        };
+        let o = m.output.clone().unwrap_or_default();
+        let op = root.key("output");
+        let t0 = v.finite(&op.key("t_start"), o.t_start.unwrap_or(0.0))?;
+        let t_end = v.req(&op.key("t_end"), &o.t_end, "the end time t_end in s")?;
+        let t_end = v.finite(&op.key("t_end"), t_end)?;
+        if t_end <= t0 {
+            return Err(v.err(
+                &op.key("t_end"),
+                format!("t_end = {t_end} s must be after t_start = {t0} s"),
+            ));
+        }
+        let intervals = o.intervals.unwrap_or(500);
+        if intervals == 0 || intervals > 10_000_000 {
+            return Err(v.err(
+                &op.key("intervals"),
+                "give between 1 and 10 000 000 output intervals",
+            ));
+        }
+        let mut options = SimOptions::span(t0, t_end, intervals as usize)
+            .solver(if method == "ndf" {
+                SolverKind::Ndf
+            } else {
+                SolverKind::Dopri5
+            })
+            .tolerances(rtol, atol);
+        options.h_max = h_max;
+        options.max_steps = s.max_steps.unwrap_or(1_000_000) as usize;
+        options.every_step = o.every_step.unwrap_or(false);
+        options.projection = projection;
+        options.contact_events = s.contact_events.unwrap_or(true);
+        let resolved = serde_json::json!({
+            "model": {"name": model.name, "description": model.description, "gravity": gravity},
+            "body": m.body, "point": m.point, "joint": m.joint, "driver": m.driver,
+            "force": m.force, "clearance": m.clearance,
+            "solver": {"method": method, "rtol": rtol, "atol": atol,
+                "h_max": if h_max.is_finite() { Some(h_max) } else { None },
+                "max_steps": options.max_steps, "baumgarte_alpha": alpha, "baumgarte_beta": beta,
+                "projection": projection, "contact_events": options.contact_events},
+            "output": {"t_start": t0, "t_end": t_end, "intervals": intervals,
+                "every_step": options.every_step},
+        });
+        Ok(Self {
+            file: file.to_string(),
+            src: src.to_string(),
+            name: model.name.unwrap_or_else(|| {
+                std::path::Path::new(file)
+                    .file_stem()
+                    .map_or("model".into(), |s| s.to_string_lossy().into_owned())
+            }),
+            description: model.description.unwrap_or_default(),
+            gravity,
+            bodies,
+            points,
+            items,
+            options,
+            baumgarte: (alpha, beta),
+            clearances,
+            resolved,
+        })
+    }
+
+    /// Set the end time (s).
+    ///
+    /// # Errors
+    /// [`SpecError`] when `t_end` is not after the start time.
+    pub fn set_t_end(&mut self, t_end: f64) -> Result<(), SpecError> {
+        if !(t_end.is_finite() && t_end > self.options.t0) {
+            return Err(SpecError::plain(
+                "--t-end",
+                "",
+                format!(
+                    "{t_end} s must be finite and after t_start = {} s",
+                    self.options.t0
+                ),
+            ));
+        }
+        let n = self.options.times.len().saturating_sub(1).max(1);
+        let every = self.options.every_step;
+        let old = std::mem::take(&mut self.options);
+        self.options = SimOptions {
+            times: SimOptions::span(old.t0, t_end, n).times,
+            t_end,
+            every_step: every,
+            ..old
+        };
+        self.resolved["output"]["t_end"] = serde_json::json!(t_end);
+        Ok(())
+    }
+
+    /// Set the relative tolerance.
+    ///
+    /// # Errors
+    /// [`SpecError`] when `rtol` is not positive.
+    pub fn set_rtol(&mut self, rtol: f64) -> Result<(), SpecError> {
+        if !(rtol.is_finite() && rtol > 0.0) {
+            return Err(SpecError::plain(
+                "--rtol",
+                "",
+                format!("{rtol} must be > 0"),
+            ));
+        }
+        self.options.rtol = rtol;
+        self.resolved["solver"]["rtol"] = serde_json::json!(rtol);
+        Ok(())
+    }
+
+    /// Build the clr-mbd model.
+    ///
+    /// # Errors
+    /// [`SpecError`] from clr-mbd's validation (redundant constraints, assembly, …), placed at
+    /// the item it names when possible.
+    pub fn build(&self) -> Result<Built, SpecError> {
+        let mut b = ModelBuilder::new();
+        b.gravity(self.gravity[0], self.gravity[1]);
+        for (n, body) in &self.bodies {
+            b.body(n, *body);
+        }
+        for (n, body, at) in &self.points {
+            b.point(n, body, *at);
+        }
+        let motion = |f: &TimeFn| {
+            let f = f.clone();
+            Motion::new(move |t| f.eval(t))
+        };
+        for it in &self.items {
+            match it {
+                ItemSpec::Revolute(n, a, c) => {
+                    b.revolute(n, a.clone(), c.clone());
+                }
+                ItemSpec::Fixed(n, a, c) => {
+                    b.fixed(n, a.clone(), c.clone());
+                }
+                ItemSpec::Translational(n, a, c, ax) => {
+                    b.translational(n, a.clone(), c.clone(), *ax);
+                }
+                ItemSpec::DriveAngle(n, i, j, f) => {
+                    b.drive_relative_angle(n, i, j, motion(f));
+                }
+                ItemSpec::DriveDisplacement(n, a, c, ax, f) => {
+                    b.drive_displacement(n, a.clone(), c.clone(), *ax, motion(f));
+                }
+                ItemSpec::Spring(n, a, c, [k, d, l0]) => {
+                    b.spring_damper(n, a.clone(), c.clone(), *k, *d, *l0);
+                }
+                ItemSpec::RotSpring(n, i, j, [k, d, a0]) => {
+                    b.rotational_spring_damper(n, i, j, *k, *d, *a0);
+                }
+                ItemSpec::Force(n, at, fx, fy) => {
+                    let (fx, fy) = (fx.clone(), fy.clone());
+                    b.applied_force(n, at.clone(), move |t, _| {
+                        Vector2::new(fx.eval(t)[0], fy.eval(t)[0])
+                    });
+                }
+                ItemSpec::Torque(n, body, f) => {
+                    let f = f.clone();
+                    b.applied_torque(n, body, move |t, _| f.eval(t)[0]);
+                }
+                ItemSpec::PairTorque(n, i, j, f) => {
+                    let f = f.clone();
+                    b.torque_between(n, i, j, move |t, _, _| f.eval(t)[0]);
+                }
+                ItemSpec::Clearance(n, bearing, journal, rb, rj, normal, friction) => {
+                    b.revolute_clearance(
+                        n,
+                        bearing.clone(),
+                        journal.clone(),
+                        RevoluteClearanceSpec {
+                            bearing_radius: *rb,
+                            journal_radius: *rj,
+                            normal: *normal,
+                            friction: *friction,
+                        },
+                    );
+                }
+            }
+        }
+        let mut model = b.build().map_err(|e| self.model_error(&e))?;
+        model
+            .set_baumgarte(self.baumgarte.0, self.baumgarte.1)
+            .map_err(|e| self.model_error(&e))?;
+        Ok(Built {
+            model,
+            options: self.options.clone(),
+        })
+    }
+
+    /// A clr-mbd error as a [`SpecError`], placed at the item it names when there is one.
+    pub fn model_error(&self, e: &clr_mbd::MbdError) -> SpecError {
+        use clr_mbd::MbdError as E;
+        let item = match e {
+            E::UnknownBody { item, .. }
+            | E::UnknownPoint { item, .. }
+            | E::SameBody { item, .. }
+            | E::InvalidParameter { item, .. }
+            | E::Contact { item, .. } => Some(item.clone()),
+            E::InvalidInertia { body, .. } => Some(body.clone()),
+            E::DuplicateName { name, .. } => Some(name.clone()),
+            _ => None,
+        };
+        let path = item
+            .and_then(|n| self.path_of(&n))
+            .unwrap_or_else(FieldPath::root);
+        SpecError::at(&self.file, &self.src, &path, e.to_string())
+    }
+
+    fn path_of(&self, name: &str) -> Option<FieldPath> {
+        let root: toml::Table = toml::from_str(&self.src).ok()?;
+        for sec in ["body", "point", "joint", "driver", "force", "clearance"] {
+            if let Some(toml::Value::Array(a)) = root.get(sec) {
+                if let Some(k) = a
+                    .iter()
+                    .position(|i| i.get("name").and_then(|n| n.as_str()) == Some(name))
+                {
+                    return Some(FieldPath::root().key(sec).index(k));
+                }
+            }
+        }
+        None
+    }
+
+    /// Names of the rigid bodies, in order.
+    pub fn body_names(&self) -> Vec<String> {
+        self.bodies.iter().map(|(n, _)| n.clone()).collect()
+    }
+}
+
+fn anchor_body<'a>(a: &'a Anchor, points: &'a [(String, String, [f64; 2])]) -> &'a str {
+    match a {
+        Anchor::Local(b, _) => b,
+        Anchor::Point(p) => points
+            .iter()
+            .find(|(n, _, _)| n == p)
+            .map_or("", |(_, b, _)| b.as_str()),
+    }
+}

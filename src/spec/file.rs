@@ -1,0 +1,555 @@
+//! The serde structure of a model file (every value optional here; [`super::ModelSpec`] checks
+//! presence, ranges and references so that each error can name its field and line).
+
+use serde::{Deserialize, Serialize};
+
+use super::locate::{closest, line_col, FieldPath};
+use super::overrides::{apply_json_override, Assignment};
+use super::{Loaded, SpecError};
+
+/// A model file as written (see `docs/model-file.md`).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelFile {
+    /// `[model]`: name, description, gravity, or `builtin`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub model: Option<ModelSection>,
+    /// `[parameters]` of a built-in model.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub parameters: Option<toml::Table>,
+    /// `[[body]]` rigid bodies.
+    #[serde(default)]
+    pub body: Vec<BodyFile>,
+    /// `[[point]]` named body-fixed points.
+    #[serde(default)]
+    pub point: Vec<PointFile>,
+    /// `[[joint]]` ideal joints.
+    #[serde(default)]
+    pub joint: Vec<JointFile>,
+    /// `[[driver]]` prescribed motions.
+    #[serde(default)]
+    pub driver: Vec<DriverFile>,
+    /// `[[force]]` force elements.
+    #[serde(default)]
+    pub force: Vec<ForceFile>,
+    /// `[[clearance]]` clearance joints (contact elements).
+    #[serde(default)]
+    pub clearance: Vec<ClearanceFile>,
+    /// `[solver]` integrator settings.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub solver: Option<SolverFile>,
+    /// `[output]` duration and output times.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub output: Option<OutputFile>,
+}
+
+/// `[model]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSection {
+    /// Model name (used in reports).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// One-line description.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Gravitational acceleration (g_x, g_y), m/s².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gravity: Option<[f64; 2]>,
+    /// Name of a built-in model (then only `[parameters]` may follow).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub builtin: Option<String>,
+}
+
+/// `[[body]]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Mass, kg.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<f64>,
+    /// Moment of inertia about the centre of mass, kg·m².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<f64>,
+    /// Initial centre-of-mass position, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 2]>,
+    /// Initial angle, rad.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angle: Option<f64>,
+    /// Initial centre-of-mass velocity, m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<[f64; 2]>,
+    /// Initial angular velocity, rad/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub angular_velocity: Option<f64>,
+}
+
+/// `[[point]]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// Body (or `ground`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// Local coordinates in the body frame (origin at the centre of mass), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 2]>,
+}
+
+/// An anchor as written: a point name, or `{ body = "...", at = [x, y] }`.
+pub type AnchorFile = toml::Value;
+
+/// `[[joint]]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `revolute`, `fixed` or `translational`.
+    #[serde(rename = "type")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    /// First anchor (on body i).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<AnchorFile>,
+    /// Second anchor (on body j).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b: Option<AnchorFile>,
+    /// Sliding axis in body i's frame (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axis: Option<[f64; 2]>,
+}
+
+/// `[[driver]]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DriverFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `angle`, `relative_angle` or `displacement`.
+    #[serde(rename = "type")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    /// Driven body (`angle`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// First body (`relative_angle`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_i: Option<String>,
+    /// Second body (`relative_angle`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_j: Option<String>,
+    /// First anchor (`displacement`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<AnchorFile>,
+    /// Second anchor (`displacement`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b: Option<AnchorFile>,
+    /// Axis on body i (`displacement`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub axis: Option<[f64; 2]>,
+    /// The prescribed motion.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub motion: Option<toml::Table>,
+}
+
+/// `[[force]]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `spring_damper`, `rotational_spring_damper`, `force`, `torque`, `torque_between`.
+    #[serde(rename = "type")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    /// First anchor (spring_damper).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub a: Option<AnchorFile>,
+    /// Second anchor (spring_damper).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub b: Option<AnchorFile>,
+    /// Anchor of an applied force.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub at: Option<AnchorFile>,
+    /// Body of an applied torque.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// First body (rotational spring, torque_between).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_i: Option<String>,
+    /// Second body (rotational spring, torque_between).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub body_j: Option<String>,
+    /// Stiffness, N/m or N·m/rad.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Damping, N·s/m or N·m·s/rad.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping: Option<f64>,
+    /// Free length, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub free_length: Option<f64>,
+    /// Free angle, rad.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub free_angle: Option<f64>,
+    /// x component of an applied force as a time function, N.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fx: Option<toml::Table>,
+    /// y component of an applied force as a time function, N.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fy: Option<toml::Table>,
+    /// Torque as a time function, N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub torque: Option<toml::Table>,
+}
+
+/// `[[clearance]]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ClearanceFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// `revolute` (the only kind so far).
+    #[serde(rename = "type")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
+    /// Bearing centre anchor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bearing: Option<AnchorFile>,
+    /// Journal centre anchor.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub journal: Option<AnchorFile>,
+    /// Bearing (hole) radius, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bearing_radius: Option<f64>,
+    /// Journal (pin) radius, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub journal_radius: Option<f64>,
+    /// Normal-force law.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normal: Option<NormalFile>,
+    /// Friction law (absent: frictionless).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionFile>,
+}
+
+/// An isotropic material.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialFile {
+    /// Young's modulus, Pa.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio, –.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub poisson_ratio: Option<f64>,
+}
+
+/// `normal = { ... }` of a clearance.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NormalFile {
+    /// Elastic law (`hertz`, `power`, `linear`, `hertz-internal-cylinder`, `liu`, `bai-zhao`,
+    /// `johnson`, `pereira`) or `preset`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub law: Option<String>,
+    /// Damping factor name (clr-contact `DampingFactor::from_name`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damping: Option<String>,
+    /// Input coefficient of restitution c_e ∈ (0, 1].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub restitution: Option<f64>,
+    /// Stiffness K (N/m^n) for `hertz`, `power`, `linear`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stiffness: Option<f64>,
+    /// Exponent n for `power`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exponent: Option<f64>,
+    /// Axial length L, m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
+    /// Bearing material.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bearing_material: Option<MaterialFile>,
+    /// Journal material.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub journal_material: Option<MaterialFile>,
+    /// Flap-paper label for `law = "preset"` (`Hertz`, `LN`, `Gonthier`, `Bai`, `Wang`,
+    /// `Modified`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub preset: Option<String>,
+    /// Floor of the impact velocity δ̇⁻, m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub min_impact_velocity: Option<f64>,
+}
+
+/// `friction = { ... }` of a clearance.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FrictionFile {
+    /// `none`, `coulomb`, `ambrosio`, `ambrosio-smooth`, `threlfall`, `stribeck`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub law: Option<String>,
+    /// Friction coefficient μ.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mu: Option<f64>,
+    /// Regularization velocity (coulomb), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_reg: Option<f64>,
+    /// Lower velocity v0 (ambrosio, threlfall), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v0: Option<f64>,
+    /// Upper velocity v1 (ambrosio), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v1: Option<f64>,
+    /// Static coefficient (stribeck).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mu_s: Option<f64>,
+    /// Dynamic coefficient (stribeck).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mu_d: Option<f64>,
+    /// Stiction velocity (stribeck), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_s: Option<f64>,
+    /// Dynamic velocity (stribeck), m/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub v_d: Option<f64>,
+}
+
+/// `[solver]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverFile {
+    /// `ndf` (default) or `dopri5`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub method: Option<String>,
+    /// Relative tolerance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rtol: Option<f64>,
+    /// Absolute tolerance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub atol: Option<f64>,
+    /// Largest step, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub h_max: Option<f64>,
+    /// Step budget.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_steps: Option<u64>,
+    /// Baumgarte α, 1/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baumgarte_alpha: Option<f64>,
+    /// Baumgarte β, 1/s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub baumgarte_beta: Option<f64>,
+    /// Projection threshold on ‖Φ‖∞ (m or rad); absent: no projection.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub projection: Option<f64>,
+    /// Locate contact onsets as events (default true).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_events: Option<bool>,
+}
+
+/// `[output]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputFile {
+    /// Start time, s (default 0).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_start: Option<f64>,
+    /// End time, s.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub t_end: Option<f64>,
+    /// Number of equal output intervals (default 500).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub intervals: Option<u64>,
+    /// Also record after every accepted step (default false).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub every_step: Option<bool>,
+}
+
+/// Field names of each section, for suggestions on unknown fields.
+pub(crate) fn known_fields(message: &str) -> Vec<String> {
+    // serde's message: "unknown field `x`, expected one of `a`, `b`" or "expected `a` or `b`"
+    let Some(rest) = message.split("expected").nth(1) else {
+        return Vec::new();
+    };
+    rest.split('`')
+        .enumerate()
+        .filter(|(i, _)| i % 2 == 1)
+        .map(|(_, s)| s.to_string())
+        .collect()
+}
+
+/// Parse the text into a [`ModelFile`], mapping TOML syntax and schema errors to [`SpecError`].
+pub(crate) fn parse(file: &str, src: &str) -> Result<ModelFile, SpecError> {
+    toml::from_str::<ModelFile>(src).map_err(|e| de_error(file, src, &e))
+}
+
+/// A toml deserialization error as a [`SpecError`] with its line and a suggestion.
+pub(crate) fn de_error(file: &str, src: &str, e: &toml::de::Error) -> SpecError {
+    let message = e.message().trim().to_string();
+    let (line, column) = match e.span() {
+        Some(s) => {
+            let (l, c) = line_col(src, s.start);
+            (Some(l), Some(c))
+        }
+        None => (None, None),
+    };
+    let mut field = String::new();
+    let mut message = message;
+    if let Some(name) = message
+        .strip_prefix("unknown field `")
+        .and_then(|r| r.split('`').next())
+        .map(str::to_string)
+    {
+        field = name.clone();
+        let known = known_fields(&message);
+        message = match closest(&name, known.iter().map(String::as_str)) {
+            Some(c) => format!("unknown field `{name}`; did you mean `{c}`?"),
+            None => format!(
+                "unknown field `{name}`; valid fields here: {}",
+                known.join(", ")
+            ),
+        };
+    }
+    if let (Some(s), true) = (e.span(), field.is_empty()) {
+        // the key in front of the offending value, when there is one on that line
+        let start = src[..s.start.min(src.len())]
+            .rfind('\n')
+            .map_or(0, |p| p + 1);
+        let line_text = &src[start..s.start.min(src.len())];
+        if let Some((k, _)) = line_text.split_once('=') {
+            field = k.trim().to_string();
+        }
+    }
+    SpecError {
+        file: file.to_string(),
+        line,
+        column,
+        field,
+        message,
+    }
+}
+
+/// The `[model] builtin = ...` form: merge `[parameters]` over the defaults, then the overrides.
+pub(crate) fn builtin(
+    file: &str,
+    src: &str,
+    parsed: &ModelFile,
+    name: &str,
+    overrides: &[Assignment],
+) -> Result<Loaded, SpecError> {
+    let model_path = FieldPath::root().key("model").key("builtin");
+    let names: Vec<&str> = clr_models::catalog::entries()
+        .iter()
+        .map(|e| e.name)
+        .collect();
+    let mut params = clr_models::catalog::default_parameters(name).map_err(|_| {
+        SpecError::at(
+            file,
+            src,
+            &model_path,
+            format!(
+                "unknown built-in model `{name}`; {}",
+                super::locate::suggestion(name, names.iter().copied())
+            ),
+        )
+    })?;
+    let extra = [
+        ("body", !parsed.body.is_empty()),
+        ("point", !parsed.point.is_empty()),
+        ("joint", !parsed.joint.is_empty()),
+        ("driver", !parsed.driver.is_empty()),
+        ("force", !parsed.force.is_empty()),
+        ("clearance", !parsed.clearance.is_empty()),
+        ("solver", parsed.solver.is_some()),
+        ("output", parsed.output.is_some()),
+    ];
+    if let Some((sec, _)) = extra.iter().find(|(_, present)| *present) {
+        return Err(SpecError::at(
+            file,
+            src,
+            &FieldPath::root().key(sec),
+            format!(
+                "a built-in model file (`[model] builtin = \"{name}\"`) takes only `[model]` and \
+                 `[parameters]`; remove `{sec}` or write a generic model without `builtin`"
+            ),
+        ));
+    }
+    if let Some(m) = &parsed.model {
+        if m.gravity.is_some() {
+            return Err(SpecError::at(
+                file,
+                src,
+                &FieldPath::root().key("model").key("gravity"),
+                "a built-in model takes gravity from its `[parameters]`; remove `gravity` here",
+            ));
+        }
+    }
+    if let Some(p) = &parsed.parameters {
+        let base = FieldPath::root().key("parameters");
+        merge_table(file, src, &base, &mut params, p)?;
+    }
+    for a in overrides {
+        apply_json_override(&mut params, a)?;
+    }
+    Ok(Loaded::Builtin {
+        name: name.to_string(),
+        parameters: params,
+    })
+}
+
+/// Merge a TOML table into JSON defaults: every key must exist with the same kind of value.
+fn merge_table(
+    file: &str,
+    src: &str,
+    path: &FieldPath,
+    target: &mut serde_json::Value,
+    table: &toml::Table,
+) -> Result<(), SpecError> {
+    let serde_json::Value::Object(obj) = target else {
+        return Err(SpecError::at(
+            file,
+            src,
+            path,
+            "this parameter is a single value, not a table",
+        ));
+    };
+    for (k, v) in table {
+        let p = path.key(k);
+        let Some(slot) = obj.get_mut(k) else {
+            let known: Vec<&str> = obj.keys().map(String::as_str).collect();
+            return Err(SpecError::at(
+                file,
+                src,
+                &p,
+                format!(
+                    "unknown parameter `{k}`; {}",
+                    super::locate::suggestion(k, known.iter().copied())
+                ),
+            ));
+        };
+        if let toml::Value::Table(t) = v {
+            merge_table(file, src, &p, slot, t)?;
+        } else {
+            let new =
+                super::overrides::toml_to_json(v).map_err(|m| SpecError::at(file, src, &p, m))?;
+            super::overrides::check_same_kind(slot, &new)
+                .map_err(|m| SpecError::at(file, src, &p, m))?;
+            *slot = new;
+        }
+    }
+    Ok(())
+}
