@@ -80,7 +80,7 @@ impl V<'_> {
         } else {
             Err(self.err(
                 path,
-                format!("{v} {unit} must be positive and finite (give a value > 0)"),
+                format!("must be positive and finite (give a value > 0), got {v} {unit}"),
             ))
         }
     }
@@ -88,7 +88,7 @@ impl V<'_> {
         if v.is_finite() && v >= 0.0 {
             Ok(v)
         } else {
-            Err(self.err(path, format!("{v} {unit} must be finite and ≥ 0")))
+            Err(self.err(path, format!("must be finite and ≥ 0, got {v} {unit}")))
         }
     }
     fn finite(&self, path: &FieldPath, v: f64) -> Result<f64, SpecError> {
@@ -1031,6 +1031,13 @@ impl ModelSpec {
             | E::Contact { item, .. } => Some(item.clone()),
             E::InvalidInertia { body, .. } => Some(body.clone()),
             E::DuplicateName { name, .. } => Some(name.clone()),
+            // labels are `item (equation)`: place the error at the first item named
+            E::RedundantConstraints {
+                involved: label, ..
+            }
+            | E::Assembly { worst: label, .. } => {
+                label.split(" (").next().map(|s| s.trim().to_string())
+            }
             _ => None,
         };
         let path = item

@@ -1,0 +1,531 @@
+//! End-to-end tests of the `clr` binary: built-in models, export/reload, a generic model file
+//! checked against a closed form, sweeps with shards and merge, plots, malformed files and
+//! simulation failures (exit codes 0, 1, 2).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn clr(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_clr"))
+        .args(args)
+        .output()
+        .expect("the clr binary runs")
+}
+
+fn data(name: &str) -> String {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+        .display()
+        .to_string()
+}
+
+/// A fresh scratch folder under the target dir.
+fn scratch(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("cli")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Header names (units stripped) and rows of a results.csv.
+fn read_csv(path: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let names = lines
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|h| h.split(" [").next().unwrap().to_string())
+        .collect();
+    let rows = lines
+        .map(|l| l.split(',').map(|v| v.parse::<f64>().unwrap()).collect())
+        .collect();
+    (names, rows)
+}
+
+fn column(names: &[String], rows: &[Vec<f64>], name: &str) -> Vec<f64> {
+    let k = names.iter().position(|n| n == name).unwrap();
+    rows.iter().map(|r| r[k]).collect()
+}
+
+fn summary(dir: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+}
+
+#[test]
+fn list_names_every_builtin() {
+    let o = clr(&["list"]);
+    assert!(o.status.success());
+    let text = String::from_utf8_lossy(&o.stdout);
+    for e in clr_models::catalog::entries() {
+        assert!(text.contains(e.name), "`clr list` misses {}", e.name);
+    }
+}
+
+/// Every built-in model runs for a short time, ends at the requested time, and records the
+/// full default parameters.
+#[test]
+fn every_builtin_runs_briefly() {
+    let entries = clr_models::catalog::entries();
+    assert!(!entries.is_empty(), "the catalog lists no model");
+    for e in entries {
+        let out = scratch(&format!("builtin-{}", e.name));
+        let t_end = 2e-3;
+        let o = clr(&[
+            "run",
+            e.name,
+            "--t-end",
+            "2e-3",
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+            "--no-figures",
+        ]);
+        assert!(o.status.success(), "{}: {}", e.name, stderr(&o));
+        let (names, rows) = read_csv(&out.join("results.csv"));
+        assert_eq!(names[0], "t");
+        assert!(rows.len() >= 2, "{}: {} rows", e.name, rows.len());
+        let t = column(&names, &rows, "t");
+        assert!(
+            (t[t.len() - 1] - t_end).abs() < 1e-12,
+            "{}: last t {}",
+            e.name,
+            t[t.len() - 1]
+        );
+        let s = summary(&out);
+        assert_eq!(s["status"], "ok");
+        assert_eq!(
+            s["parameters"],
+            clr_models::catalog::default_parameters(e.name).unwrap(),
+            "{}: summary.json must hold the full resolved parameters",
+            e.name
+        );
+    }
+}
+
+/// `clr export` then `clr run file` reproduces `clr run <model>` bit for bit (with overrides).
+#[test]
+fn exported_file_reproduces_the_builtin_bit_for_bit() {
+    let e = clr_models::catalog::entries()[0];
+    let params = clr_models::catalog::default_parameters(e.name).unwrap();
+    // override the first numeric parameter by 1.25 × its default
+    let (key, value) = params
+        .as_object()
+        .unwrap()
+        .iter()
+        .find_map(|(k, v)| {
+            v.as_f64()
+                .filter(|x| *x > 0.0)
+                .map(|x| (k.clone(), x * 1.25))
+        })
+        .unwrap();
+    let set = format!("{key}={value:e}");
+    let dir = scratch("export");
+    let file = dir.join("model.toml");
+    let o = clr(&[
+        "export",
+        e.name,
+        "--set",
+        &set,
+        "--out",
+        file.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let a = dir.join("a");
+    let b = dir.join("b");
+    let common = ["--t-end", "3e-3", "--quiet", "--no-figures", "--out"];
+    let o = clr(&[
+        &["run", e.name, "--set", &set][..],
+        &common[..],
+        &[a.to_str().unwrap()],
+    ]
+    .concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = clr(&[
+        &["run", file.to_str().unwrap()][..],
+        &common[..],
+        &[b.to_str().unwrap()],
+    ]
+    .concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let ra = std::fs::read(a.join("results.csv")).unwrap();
+    let rb = std::fs::read(b.join("results.csv")).unwrap();
+    assert!(ra.len() > 100);
+    assert!(
+        ra == rb,
+        "results.csv differ between the built-in and its exported file"
+    );
+    assert_eq!(summary(&a)["parameters"], summary(&b)["parameters"]);
+    assert_eq!(summary(&a)["parameters"][&key].as_f64(), Some(value));
+}
+
+/// Complete elliptic integral of the first kind K(k) by the arithmetic–geometric mean
+/// (Abramowitz & Stegun 17.6): K = π / (2 AGM(1, √(1 − k²))).
+fn elliptic_k(k: f64) -> f64 {
+    let (mut a, mut b) = (1.0f64, (1.0 - k * k).sqrt());
+    for _ in 0..40 {
+        let (an, bn) = (0.5 * (a + b), (a * b).sqrt());
+        a = an;
+        b = bn;
+    }
+    std::f64::consts::PI / (2.0 * a)
+}
+
+/// The pendulum file against the closed form of a compound pendulum's period,
+/// T = 4 K(sin(θ0/2)) √(I_O/(m g d)) (e.g. Thornton & Marion, Classical Dynamics, §4.4), and
+/// conservation of its energy.
+#[test]
+fn pendulum_file_matches_the_closed_form_period() {
+    let out = scratch("pendulum");
+    let o = clr(&[
+        "run",
+        &data("pendulum.toml"),
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (names, rows) = read_csv(&out.join("results.csv"));
+    let t = column(&names, &rows, "t");
+    let th = column(&names, &rows, "rod.theta");
+    let phi: Vec<f64> = th.iter().map(|x| x + std::f64::consts::FRAC_PI_2).collect();
+    // crossings of φ = 0 in both directions, linearly interpolated (φ″ = 0 there)
+    let mut up = Vec::new();
+    let mut down = Vec::new();
+    for k in 1..phi.len() {
+        if phi[k - 1] * phi[k] < 0.0 {
+            let tc = t[k - 1] + (t[k] - t[k - 1]) * phi[k - 1] / (phi[k - 1] - phi[k]);
+            if phi[k] > 0.0 {
+                up.push(tc)
+            } else {
+                down.push(tc)
+            }
+        }
+    }
+    let (m, l, g, theta0): (f64, f64, f64, f64) = (1.0, 1.0, 9.81, 0.5);
+    let i_o = m * l * l / 3.0;
+    let period = 4.0 * elliptic_k((theta0 / 2.0).sin()) * (i_o / (m * g * l / 2.0)).sqrt();
+    assert!(
+        up.len() >= 2 && down.len() >= 2,
+        "crossings {up:?} {down:?}"
+    );
+    for tp in [up[1] - up[0], down[1] - down[0]] {
+        assert!(
+            ((tp - period) / period).abs() < 1e-6,
+            "period {tp} s vs closed form {period} s"
+        );
+    }
+    assert!((down[0] - period / 4.0).abs() < 1e-6 * period);
+    let e = column(&names, &rows, "energy.total");
+    let drift = e.iter().map(|x| (x - e[0]).abs()).fold(0.0, f64::max);
+    assert!(drift < 1e-7 * e[0].abs(), "energy drift {drift} J");
+    // figures of the main time histories
+    for f in ["angles.svg", "angles.png", "energy.svg"] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+}
+
+/// A generic model with a clearance joint, a driver, a spring and friction: runs, draws the
+/// contact figures, and its recorded eccentricity and penetration obey δ = |e| − c with the
+/// radial clearance c = 0.0100 − 0.0099 m of the file.
+#[test]
+fn clearance_model_file_runs_with_orbit_figures() {
+    let out = scratch("journal");
+    let o = clr(&[
+        "run",
+        &data("journal_bearing.toml"),
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in [
+        "contact_forces.svg",
+        "contact_forces.png",
+        "orbit_pin.svg",
+        "orbit_pin.png",
+    ] {
+        assert!(out.join(f).is_file(), "missing {f}");
+    }
+    let (names, rows) = read_csv(&out.join("results.csv"));
+    let ex = column(&names, &rows, "pin.ex");
+    let ey = column(&names, &rows, "pin.ey");
+    let pen = column(&names, &rows, "pin.penetration");
+    let fnorm = column(&names, &rows, "pin.normal_force");
+    let c = 0.0100 - 0.0099;
+    for k in 0..ex.len() {
+        assert!((ex[k].hypot(ey[k]) - c - pen[k]).abs() < 1e-12);
+        if pen[k] <= 0.0 {
+            assert_eq!(fnorm[k], 0.0, "force without contact at row {k}");
+        }
+    }
+    assert!(
+        pen.iter().any(|&p| p > 0.0),
+        "the journal never touched the bearing"
+    );
+    let s = summary(&out);
+    assert!(s["solver"]["contact_onsets"].as_u64().unwrap() > 0);
+}
+
+/// A sweep split into two shards and merged equals the same sweep run at once, point for point
+/// (bit-identical results, whatever the thread count).
+#[test]
+fn sharded_sweep_merges_into_the_full_sweep() {
+    let dir = scratch("sweep");
+    let p = data("pendulum.toml");
+    let base = [
+        "sweep",
+        p.as_str(),
+        "--t-end",
+        "0.3",
+        "--vary",
+        "body.rod.mass=1,2",
+        "--vary",
+        "solver.rtol=1e-8,1e-9",
+        "--no-figures",
+        "-q",
+    ];
+    let full = dir.join("full");
+    let o = clr(&[&base[..], &["--jobs", "3", "--out", full.to_str().unwrap()]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut shards = Vec::new();
+    for i in 0..2 {
+        let d = dir.join(format!("shard{i}"));
+        let s = format!("{i}/2");
+        let o = clr(&[
+            &base[..],
+            &["--jobs", "1", "--shard", &s, "--out", d.to_str().unwrap()],
+        ]
+        .concat());
+        assert!(o.status.success(), "{}", stderr(&o));
+        shards.push(d);
+    }
+    let merged = dir.join("merged");
+    let o = clr(&[
+        "merge",
+        shards[0].to_str().unwrap(),
+        shards[1].to_str().unwrap(),
+        "--out",
+        merged.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // sweep.csv equal except the wall-time column
+    let strip = |p: &Path| -> Vec<String> {
+        std::fs::read_to_string(p.join("sweep.csv"))
+            .unwrap()
+            .lines()
+            .map(|l| {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c.remove(5);
+                c.join(",")
+            })
+            .collect()
+    };
+    let a = strip(&full);
+    assert_eq!(a.len(), 5, "header + 4 points");
+    assert!(a[0].starts_with("point,folder,body.rod.mass,solver.rtol,status"));
+    assert_eq!(a, strip(&merged));
+    for k in 0..4 {
+        let f = format!("point-{k:05}/results.csv");
+        let shard = &shards[k % 2];
+        assert!(
+            std::fs::read(full.join(&f)).unwrap() == std::fs::read(shard.join(&f)).unwrap(),
+            "{f} differs between the full sweep and its shard"
+        );
+    }
+    // the overrides reached the model: a heavier rod has twice the potential energy
+    let s0 = summary(&full.join("point-00000"));
+    let s2 = summary(&full.join("point-00002"));
+    assert_eq!(s0["parameters"]["body"][0]["mass"], 1.0);
+    assert_eq!(s2["parameters"]["body"][0]["mass"], 2.0);
+    // merging one shard only is incomplete: exit 1, the missing points named
+    let o = clr(&[
+        "merge",
+        shards[0].to_str().unwrap(),
+        "--out",
+        dir.join("half").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("[1, 3]"), "{}", stderr(&o));
+}
+
+#[test]
+fn plot_draws_named_columns_and_rejects_unknown_ones() {
+    let out = scratch("plot");
+    let o = clr(&[
+        "run",
+        &data("pendulum.toml"),
+        "--t-end",
+        "0.5",
+        "--no-figures",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = out.join("results.csv");
+    let svg = out.join("theta.svg");
+    let o = clr(&[
+        "plot",
+        csv.to_str().unwrap(),
+        "--x",
+        "time",
+        "--y",
+        "rod.theta,rod.omega",
+        "--out",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    let o = clr(&["plot", csv.to_str().unwrap(), "--y", "rod.thta"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("did you mean `rod.theta`"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// `--set` on a model file: the end time changes, and a wrong name gets a suggestion.
+#[test]
+fn overrides_on_a_model_file() {
+    let out = scratch("set");
+    let o = clr(&[
+        "run",
+        &data("pendulum.toml"),
+        "--set",
+        "output.t_end=0.25",
+        "--set",
+        "output.intervals=10",
+        "--no-figures",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (names, rows) = read_csv(&out.join("results.csv"));
+    assert_eq!(rows.len(), 11);
+    assert_eq!(column(&names, &rows, "t")[10], 0.25);
+    let o = clr(&[
+        "run",
+        &data("pendulum.toml"),
+        "--set",
+        "body.rdo.mass=2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("did you mean `rod`"), "{}", stderr(&o));
+    let o = clr(&["run", "slider_crnk"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        stderr(&o).contains("did you mean `slider_crank`"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+/// A solver failure exits with 1, states the error and leaves the partial results.
+#[test]
+fn simulation_failure_exits_1_with_partial_results() {
+    let out = scratch("fail");
+    let o = clr(&[
+        "run",
+        &data("pendulum.toml"),
+        "--set",
+        "solver.max_steps=20",
+        "--no-figures",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("step budget"), "{}", stderr(&o));
+    let (names, rows) = read_csv(&out.join("results.csv"));
+    assert!(!rows.is_empty());
+    let t = column(&names, &rows, "t");
+    assert!(t[t.len() - 1] < 3.5);
+    assert_eq!(summary(&out)["status"], "failed");
+}
+
+/// Malformed files: exit code 2 and a message with file, line, field and the fix.
+#[test]
+fn malformed_files_exit_2_with_a_located_message() {
+    let cases: &[(&str, &[&str])] = &[
+        (
+            "unknown_field.toml",
+            &["unknown_field.toml:10:", "did you mean `mass`"],
+        ),
+        (
+            "unknown_body.toml",
+            &[":25:", "joint[0].b.body", "did you mean `rod`"],
+        ),
+        (
+            "unknown_point.toml",
+            &[":24:", "joint[0].a", "did you mean `pivot`"],
+        ),
+        (
+            "unknown_joint_type.toml",
+            &[":23:", "joint[0].type", "did you mean `revolute`"],
+        ),
+        (
+            "unknown_damping.toml",
+            &[
+                ":51:",
+                "clearance[0].normal.damping",
+                "did you mean `lankarani-nikravesh`",
+            ],
+        ),
+        ("unknown_friction.toml", &[":52:", "did you mean `coulomb`"]),
+        (
+            "zero_mass.toml",
+            &[":10:", "body[0].mass", "must be positive"],
+        ),
+        (
+            "missing_mass.toml",
+            &[":8:", "body[0].mass", "missing value"],
+        ),
+        ("missing_t_end.toml", &["output.t_end", "missing value"]),
+        ("wrong_type.toml", &[":10:", "mass", "expected f64"]),
+        (
+            "negative_clearance.toml",
+            &[":50:", "clearance[0].journal_radius", "must be positive"],
+        ),
+        ("syntax.toml", &["syntax.toml:10:"]),
+        ("not_toml.toml", &["not_toml.toml:1:"]),
+        (
+            "redundant.toml",
+            &[":36:", "joint[1]", "redundant constraints"],
+        ),
+        (
+            "unknown_builtin.toml",
+            &[":2:", "did you mean `slider_crank`"],
+        ),
+        (
+            "unknown_parameter.toml",
+            &[":5:", "did you mean `crank_speed_rpm`"],
+        ),
+        ("parameter_type.toml", &[":5:", "expected a number"]),
+    ];
+    for (file, needles) in cases {
+        let o = clr(&[
+            "run",
+            &data(&format!("bad/{file}")),
+            "--out",
+            scratch("bad").to_str().unwrap(),
+        ]);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(2), "{file}: {err}");
+        assert!(!err.contains("panicked"), "{file}: {err}");
+        for n in *needles {
+            assert!(err.contains(n), "{file}: expected `{n}` in: {err}");
+        }
+    }
+}
