@@ -77,6 +77,14 @@ pub enum MbdError {
         /// The clr-contact error.
         source: ContactError,
     },
+    /// A flexible beam could not be set up from its clr-beam model.
+    #[error("{item}: {message}")]
+    Beam {
+        /// The beam item.
+        item: String,
+        /// The clr-beam error.
+        message: String,
+    },
     /// The constraint Jacobian is rank deficient: redundant (or conflicting) constraints.
     #[error(
         "redundant constraints: the constraint Jacobian has rank {rank} < {rows} rows; these \

@@ -22,8 +22,18 @@ const MAX_NEWTON: usize = 50;
 impl Model {
     /// W^{1/2} for coordinate c (inverse square root of its mass or inertia).
     fn w_sqrt(&self, c: usize) -> f64 {
-        let b = &self.bodies[c / 3];
-        1.0 / if c % 3 == 2 { b.inertia } else { b.mass }.sqrt()
+        if let Some(b) = self.bodies.get(c / 3) {
+            return 1.0 / if c % 3 == 2 { b.inertia } else { b.mass }.sqrt();
+        }
+        // beam DOF: the diagonal of its mass matrix (constraints never involve them yet)
+        for fb in &self.beams {
+            let (o, nf) = (fb.offset, fb.n_free());
+            if (o..o + nf).contains(&c) {
+                let a = c - o;
+                return 1.0 / fb.m[a * nf + a].abs().max(f64::MIN_POSITIVE).sqrt();
+            }
+        }
+        1.0
     }
 
     /// Check that Φ_q(q, t) has full row rank; otherwise report the dependent equations.

@@ -31,12 +31,14 @@
 
 mod clearance;
 pub mod error;
+mod flexible;
 mod init;
 pub mod model;
 pub mod sim;
 pub mod system;
 
 pub use error::MbdError;
+pub use flexible::NodalLoadFn;
 pub use model::{
     Anchor, ModelBuilder, RevoluteClearanceSpec, RigidBody, TranslationalClearanceSpec, GROUND,
 };

@@ -12,6 +12,7 @@ use nalgebra::Vector2;
 
 use crate::clearance::{Clearance, ClearanceKind};
 use crate::error::MbdError;
+use crate::flexible::{FlexBeam, NodalLoadFn};
 use crate::system::{Con, ForceEl, Model, Motion};
 
 /// Name of the ground body (fixed at the origin, angle 0). It is always defined.
@@ -209,6 +210,16 @@ enum Item {
         slider: Anchor,
         spec: TranslationalClearanceSpec,
     },
+    Beam {
+        name: String,
+        model: Box<clr_beam::BeamModel>,
+    },
+    BeamLoad {
+        name: String,
+        beam: String,
+        node: usize,
+        f: NodalLoadFn,
+    },
 }
 
 impl Item {
@@ -226,7 +237,9 @@ impl Item {
             | Item::Torque { name, .. }
             | Item::PairTorque { name, .. }
             | Item::RevClearance { name, .. }
-            | Item::TransClearance { name, .. } => name,
+            | Item::TransClearance { name, .. }
+            | Item::Beam { name, .. }
+            | Item::BeamLoad { name, .. } => name,
         }
     }
     fn kind(&self) -> &'static str {
@@ -244,6 +257,8 @@ impl Item {
             Item::PairTorque { .. } => "torque between bodies",
             Item::RevClearance { .. } => "revolute clearance joint",
             Item::TransClearance { .. } => "translational clearance joint",
+            Item::Beam { .. } => "flexible beam",
+            Item::BeamLoad { .. } => "beam nodal load",
         }
     }
 }
@@ -512,6 +527,35 @@ impl ModelBuilder {
         self
     }
 
+    /// A ground-fixed flexible beam: a clr-beam model (nodes, elements, supports, Rayleigh
+    /// damping, mass kind) whose free nodal DOF become coordinates of the model (see the
+    /// `flexible` module docs). Joints to beam nodes are not available yet.
+    pub fn flexible_beam(&mut self, name: &str, model: clr_beam::BeamModel) -> &mut Self {
+        self.items.push(Item::Beam {
+            name: name.into(),
+            model: Box::new(model),
+        });
+        self
+    }
+
+    /// A nodal load on beam `beam` at node `node`: `f(t) -> [F_x, F_y, M]` (N, N, N·m, global
+    /// axes); components on constrained DOF are taken by the supports.
+    pub fn beam_nodal_load(
+        &mut self,
+        name: &str,
+        beam: &str,
+        node: usize,
+        f: impl Fn(f64) -> [f64; 3] + 'static,
+    ) -> &mut Self {
+        self.items.push(Item::BeamLoad {
+            name: name.into(),
+            beam: beam.into(),
+            node,
+            f: Box::new(f),
+        });
+        self
+    }
+
     /// Validate every item and build the model.
     ///
     /// # Errors
@@ -648,10 +692,42 @@ impl ModelBuilder {
         let mut forces: Vec<ForceEl> = Vec::new();
         let mut clearances: Vec<Clearance> = Vec::new();
         let mut motions: Vec<Motion> = Vec::new();
+        let mut beams: Vec<FlexBeam> = Vec::new();
+        let mut offset = 3 * self.bodies.len();
+        let mut items = Vec::with_capacity(self.items.len());
         for item in self.items {
+            if let Item::Beam { name, model } = item {
+                let mut fb = FlexBeam::new(&name, &model)?;
+                fb.offset = offset;
+                offset += fb.n_free();
+                beams.push(fb);
+            } else {
+                items.push(item);
+            }
+        }
+        for item in items {
             let name = item.name().to_string();
             match item {
-                Item::Point { .. } => {}
+                Item::Point { .. } | Item::Beam { .. } => {}
+                Item::BeamLoad { beam, node, f, .. } => {
+                    let Some(fb) = beams.iter_mut().find(|b| b.name == beam) else {
+                        return Err(MbdError::UnknownBody {
+                            item: name,
+                            body: beam,
+                            known: "(beams) ".to_string() + &known,
+                        });
+                    };
+                    if 3 * node + 2 >= fb.n_dof_full {
+                        return Err(MbdError::InvalidParameter {
+                            item: name,
+                            what: "node index",
+                            value: node as f64,
+                            requirement: "must be a node of the beam model",
+                        });
+                    }
+                    let idx = [0, 1, 2].map(|c| fb.free.iter().position(|&d| d == 3 * node + c));
+                    fb.loads.push((idx, f));
+                }
                 Item::Revolute { a, b, .. } => {
                     let (i, si) = anchor(&name, &a)?;
                     let (j, sj) = anchor(&name, &b)?;
@@ -849,6 +925,7 @@ impl ModelBuilder {
         }
         Model::assemble(
             self.bodies,
+            beams,
             point_list,
             cons,
             motions,

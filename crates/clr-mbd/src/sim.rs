@@ -114,6 +114,7 @@ impl SimOptions {
 /// Recorded output: one row per output point, named columns; arrays via [`Results::column`].
 ///
 /// Columns, in order: `t`; per body `B.x B.y B.theta B.vx B.vy B.omega B.ax B.ay B.alpha`; per
+/// flexible beam its free nodal displacements `beam.n<node>.<u|v|theta>` (m, rad); per
 /// joint or driver `J.Fx J.Fy J.M` (reaction on its second body, or on its first when the second
 /// is the ground, about that body's centre of mass); per clearance joint `C.penetration
 /// C.rate C.normal_force C.friction_force C.contact C.ex C.ey` (eccentricity in the bearing
@@ -213,6 +214,9 @@ impl Model {
                 c.push(format!("{b}.{s}"));
             }
         }
+        for b in &self.beams {
+            c.extend(b.dof_names());
+        }
         for j in self.joint_names() {
             for s in ["Fx", "Fy", "M"] {
                 c.push(format!("{j}.{s}"));
@@ -255,6 +259,9 @@ impl Model {
             out.extend_from_slice(&q[3 * k..3 * k + 3]);
             out.extend_from_slice(&qd[3 * k..3 * k + 3]);
             out.extend_from_slice(&self.accelerations()[3 * k..3 * k + 3]);
+        }
+        for b in &self.beams {
+            out.extend_from_slice(&q[b.offset..b.offset + b.n_free()]);
         }
         for s in self.joint_starts() {
             out.extend_from_slice(&self.reaction(s));

@@ -18,6 +18,7 @@ use clr_contact::{BodyState, ContactMemory};
 
 use crate::clearance::Clearance;
 pub use crate::clearance::ContactReport;
+use crate::flexible::FlexBeam;
 use clr_ode::linalg::DenseLu;
 use clr_ode::{Direction, OdeSystem};
 use nalgebra::Vector2;
@@ -253,6 +254,7 @@ impl Energies {
 pub struct Model {
     pub(crate) body_names: Vec<String>,
     pub(crate) bodies: Vec<RigidBody>,
+    pub(crate) beams: Vec<FlexBeam>,
     pub(crate) points: Vec<(String, usize, Vector2<f64>)>,
     pub(crate) cons: Vec<Con>,
     pub(crate) motions: Vec<Motion>,
@@ -316,8 +318,10 @@ pub(crate) fn body_state(k: usize, q: &[f64], qd: &[f64]) -> BodyState {
 }
 
 impl Model {
+    #[allow(clippy::too_many_arguments)]
     pub(crate) fn assemble(
         bodies: Vec<(String, RigidBody)>,
+        beams: Vec<FlexBeam>,
         points: Vec<(String, usize, Vector2<f64>)>,
         mut cons: Vec<Con>,
         motions: Vec<Motion>,
@@ -330,13 +334,13 @@ impl Model {
             c.row = m;
             m += c.rows();
         }
-        let n = 3 * bodies.len();
+        let n = 3 * bodies.len() + beams.iter().map(FlexBeam::n_free).sum::<usize>();
         if n == 0 {
             return Err(MbdError::InvalidParameter {
                 item: "model".into(),
                 what: "number of bodies",
                 value: 0.0,
-                requirement: "define at least one rigid body with ModelBuilder::body",
+                requirement: "define at least one rigid body or flexible beam",
             });
         }
         let mut mem = 0;
@@ -363,6 +367,7 @@ impl Model {
         Ok(Model {
             body_names,
             bodies,
+            beams,
             points,
             cons,
             motions,
@@ -613,6 +618,9 @@ impl Model {
             self.contacts[k] = cl.apply(&bi, &bj, &mut self.memory, |b, g| add_gen(qf, b, g));
             p_diss += self.contacts[k].dissipated_power;
         }
+        for b in &self.beams {
+            p_diss += b.forces(t, q, qd, &mut self.qf);
+        }
         self.p_diss = p_diss;
     }
 
@@ -629,6 +637,14 @@ impl Model {
             a[3 * k * (nm + 1)] = b.mass;
             a[(3 * k + 1) * (nm + 1)] = b.mass;
             a[(3 * k + 2) * (nm + 1)] = b.inertia;
+        }
+        for fb in &self.beams {
+            let (o, nf) = (fb.offset, fb.n_free());
+            for r in 0..nf {
+                for c in 0..nf {
+                    a[(o + r) + (o + c) * nm] = fb.m[r * nf + c];
+                }
+            }
         }
         for r in 0..m {
             for c in 0..n {
@@ -671,6 +687,11 @@ impl Model {
             let v2 = qd[3 * k].powi(2) + qd[3 * k + 1].powi(2);
             e.kinetic += 0.5 * (b.mass * v2 + b.inertia * qd[3 * k + 2].powi(2));
             e.potential -= b.mass * (self.gravity.x * q[3 * k] + self.gravity.y * q[3 * k + 1]);
+        }
+        for b in &self.beams {
+            let (ek, ee) = b.energies(q, qd);
+            e.kinetic += ek;
+            e.elastic += ee;
         }
         for f in &self.forces {
             match f {
