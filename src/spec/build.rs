@@ -846,22 +846,31 @@ impl ModelSpec {
             ));
         }
         let intervals = o.intervals.unwrap_or(500);
-        if intervals == 0 || intervals > 10_000_000 {
+        let every_step = o.every_step.unwrap_or(false);
+        if (intervals == 0 && !every_step) || intervals > 10_000_000 {
             return Err(v.err(
                 &op.key("intervals"),
-                "give between 1 and 10 000 000 output intervals",
+                "give between 1 and 10 000 000 output intervals (0 only with every_step = true)",
             ));
         }
-        let mut options = SimOptions::span(t0, t_end, intervals as usize)
-            .solver(if method == "ndf" {
-                SolverKind::Ndf
-            } else {
-                SolverKind::Dopri5
-            })
-            .tolerances(rtol, atol);
+        let mut options = if intervals == 0 {
+            SimOptions {
+                t0,
+                t_end,
+                ..SimOptions::default()
+            }
+        } else {
+            SimOptions::span(t0, t_end, intervals as usize)
+        }
+        .solver(if method == "ndf" {
+            SolverKind::Ndf
+        } else {
+            SolverKind::Dopri5
+        })
+        .tolerances(rtol, atol);
         options.h_max = h_max;
         options.max_steps = s.max_steps.unwrap_or(1_000_000) as usize;
-        options.every_step = o.every_step.unwrap_or(false);
+        options.every_step = every_step;
         options.projection = projection;
         options.contact_events = s.contact_events.unwrap_or(true);
         let resolved = serde_json::json!({
@@ -913,8 +922,13 @@ impl ModelSpec {
         let n = self.options.times.len().saturating_sub(1).max(1);
         let every = self.options.every_step;
         let old = std::mem::take(&mut self.options);
+        let times = if old.times.is_empty() {
+            Vec::new()
+        } else {
+            SimOptions::span(old.t0, t_end, n).times
+        };
         self.options = SimOptions {
-            times: SimOptions::span(old.t0, t_end, n).times,
+            times,
             t_end,
             every_step: every,
             ..old
