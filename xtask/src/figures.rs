@@ -11,6 +11,7 @@ const MAKERS: &[(&str, Maker)] = &[
     ("ode", crate::verify::ode::figures),
     ("contact", crate::verify::contact::figures),
     ("beam", crate::verify::beam::figures),
+    ("models", crate::verify::models::figures),
 ];
 
 pub fn run(_args: &[String]) -> ExitCode {

@@ -1,5 +1,8 @@
 //! The built-in models, by name.
 
+use crate::common::parse;
+use crate::manipulator::{self, ManipulatorParams};
+use crate::slider_crank::{self, SliderCrankParams};
 use crate::{ModelsError, RunOutput, RunSettings};
 
 /// One built-in model.
@@ -13,7 +16,23 @@ pub struct Entry {
 
 /// Every built-in model.
 pub fn entries() -> Vec<Entry> {
-    Vec::new()
+    vec![
+        Entry {
+            name: "slider_crank",
+            description: "clearance slider-crank benchmark (Flores style): 0.5 mm clearance in \
+                          the rod-slider joint, L-N law c_e = 0.9, crank 5000 rpm, 0.1 s",
+        },
+        Entry {
+            name: "wan_slider_crank",
+            description: "slider-crank validation rig of Wan et al. (2022), reconstructed: \
+                          Modified law c_r = 0.46, Ambrosio friction 0.01, 0.1 mm, 600 rpm",
+        },
+        Entry {
+            name: "manipulator",
+            description: "dual two-link manipulator on a free-floating spacecraft (Kuang, Bai, \
+                          Wei 2026), case 3: 0.5 mm clearance in both elbows, 2 s",
+        },
+    ]
 }
 
 fn unknown(name: &str) -> ModelsError {
@@ -29,15 +48,67 @@ fn unknown(name: &str) -> ModelsError {
 
 /// The default parameters of a built-in model as JSON (every field resolved).
 pub fn default_parameters(name: &str) -> Result<serde_json::Value, ModelsError> {
-    Err(unknown(name))
+    let v = match name {
+        "slider_crank" => serde_json::to_value(SliderCrankParams::flores()),
+        "wan_slider_crank" => serde_json::to_value(SliderCrankParams::wan()),
+        "manipulator" => serde_json::to_value(ManipulatorParams::default()),
+        _ => return Err(unknown(name)),
+    };
+    v.map_err(|e| crate::common::invalid(name, e.to_string()))
 }
 
 /// Simulate a built-in model with the given parameters (as returned by
 /// [`default_parameters`], possibly modified).
+///
+/// `parameters` is overlaid on [`default_parameters`]: fields it omits keep the model's
+/// defaults (a nested object such as `friction` is merged field by field unless it names a new
+/// `law`, then it replaces the default whole). Unknown fields are rejected.
+///
+/// # Errors
+/// [`ModelsError::UnknownModel`], [`ModelsError::InvalidParameters`], [`ModelsError::Build`],
+/// [`ModelsError::Simulation`].
 pub fn run(
     name: &str,
-    _parameters: &serde_json::Value,
-    _settings: &RunSettings,
+    parameters: &serde_json::Value,
+    settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    Err(unknown(name))
+    match name {
+        "slider_crank" | "wan_slider_crank" => {
+            let p: SliderCrankParams = parse(name, &with_defaults(name, parameters)?)?;
+            slider_crank::run(name, &p, settings)
+        }
+        "manipulator" => {
+            let p: ManipulatorParams = parse(name, &with_defaults(name, parameters)?)?;
+            manipulator::run(name, &p, settings)
+        }
+        _ => Err(unknown(name)),
+    }
+}
+
+/// The model's default parameters overlaid with the given (possibly partial) object, so a
+/// front end may pass only the fields it changes.
+fn with_defaults(
+    name: &str,
+    parameters: &serde_json::Value,
+) -> Result<serde_json::Value, ModelsError> {
+    let mut base = default_parameters(name)?;
+    merge(&mut base, parameters);
+    Ok(base)
+}
+
+fn merge(base: &mut serde_json::Value, over: &serde_json::Value) {
+    match (base, over) {
+        (serde_json::Value::Object(b), serde_json::Value::Object(o)) => {
+            for (k, v) in o {
+                match b.get_mut(k) {
+                    // tagged enums (e.g. friction laws) are replaced whole when the tag changes
+                    Some(bv) if bv.is_object() && v.get("law").is_none() => merge(bv, v),
+                    _ => {
+                        b.insert(k.clone(), v.clone());
+                    }
+                }
+            }
+        }
+        (b, o) => *b = o.clone(),
+    }
 }

@@ -8,8 +8,11 @@
 //! override any field), and [`catalog::run`] simulates one and returns a [`RunOutput`].
 
 pub mod catalog;
+pub mod common;
 pub mod error;
+pub mod manipulator;
 pub mod output;
+pub mod slider_crank;
 
 pub use error::ModelsError;
 pub use output::{Metric, RunOutput, RunSettings};

@@ -4,7 +4,7 @@ pub mod beam;
 pub mod contact;
 mod contact_geometry;
 mod mbd;
-mod models;
+pub mod models;
 pub mod ode;
 
 use std::process::ExitCode;

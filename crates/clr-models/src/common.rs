@@ -1,0 +1,435 @@
+//! Pieces shared by the models: solver settings, contact-law parameters, units of the result
+//! columns, derived columns, time-series metrics and study output (CSV, figures).
+
+use std::path::Path;
+
+use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
+use clr_mbd::{MbdError, Results, SimOptions, SolverKind};
+use serde::{Deserialize, Serialize};
+
+use crate::{ModelsError, RunOutput, RunSettings};
+
+/// Integrator choice of a model (serialized in lower case: `"dopri5"`, `"ndf"`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Solver {
+    /// Dormand–Prince 5(4), explicit. The default of the clearance models: clr-ode's NDF
+    /// stops with Newton failures on clearance impacts at tight tolerances (docs/mbd.md).
+    Dopri5,
+    /// Variable-order NDF (implicit).
+    Ndf,
+}
+
+impl From<Solver> for SolverKind {
+    fn from(s: Solver) -> Self {
+        match s {
+            Solver::Dopri5 => SolverKind::Dopri5,
+            Solver::Ndf => SolverKind::Ndf,
+        }
+    }
+}
+
+/// Friction law of a clearance joint, tagged by `law` in JSON
+/// (`{"law": "ambrosio", "mu": 0.01, "v0": 1e-4, "v1": 1e-3}`).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "law", rename_all = "lowercase", deny_unknown_fields)]
+pub enum FrictionParams {
+    /// No friction.
+    None,
+    /// Coulomb, regularized below `v_reg` (m/s).
+    Coulomb {
+        /// Friction coefficient μ (–).
+        mu: f64,
+        /// Regularization velocity (m/s).
+        v_reg: f64,
+    },
+    /// Ambrósio's modified Coulomb law: no friction below `v0`, full μ above `v1` (m/s).
+    Ambrosio {
+        /// Friction coefficient μ (–).
+        mu: f64,
+        /// Velocity below which friction is off (m/s).
+        v0: f64,
+        /// Velocity above which friction is μF_N (m/s).
+        v1: f64,
+    },
+    /// Bai/Stribeck law with static and dynamic coefficients.
+    Stribeck {
+        /// Static coefficient μ_s (–).
+        mu_s: f64,
+        /// Dynamic coefficient μ_d (–).
+        mu_d: f64,
+        /// Critical velocity of static friction v_s (m/s).
+        v_s: f64,
+        /// Critical velocity of dynamic friction v_d (m/s).
+        v_d: f64,
+    },
+}
+
+impl FrictionParams {
+    /// The clr-contact law.
+    ///
+    /// # Errors
+    /// The clr-contact message for invalid coefficients or velocities.
+    pub fn law(&self) -> Result<FrictionLaw, String> {
+        let r = match *self {
+            FrictionParams::None => FrictionLaw::coulomb(0.0, 1.0),
+            FrictionParams::Coulomb { mu, v_reg } => FrictionLaw::coulomb(mu, v_reg),
+            FrictionParams::Ambrosio { mu, v0, v1 } => FrictionLaw::ambrosio(mu, v0, v1),
+            FrictionParams::Stribeck {
+                mu_s,
+                mu_d,
+                v_s,
+                v_d,
+            } => FrictionLaw::stribeck(mu_s, mu_d, v_s, v_d),
+        };
+        r.map_err(|e| format!("friction: {e}"))
+    }
+}
+
+/// Normal law of a journal–bearing pair: one of the flap paper's presets
+/// (`Hertz`, `LN`, `Gonthier`, `Bai`, `Wang`, `Modified`, see `NormalLaw::preset`) built from the
+/// geometry and materials.
+///
+/// # Errors
+/// The clr-contact message (unknown name, invalid geometry or restitution).
+pub fn preset_law(
+    name: &str,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    r_bearing: f64,
+    r_journal: f64,
+    length: f64,
+    restitution: f64,
+) -> Result<NormalLaw, String> {
+    let mat = Material::new(youngs_modulus, poisson_ratio).map_err(|e| e.to_string())?;
+    let jb = JournalBearing {
+        bearing: mat,
+        journal: mat,
+        r_bearing,
+        r_journal,
+        length,
+    };
+    NormalLaw::preset(name, &jb, restitution).map_err(|e| format!("normal law: {e}"))
+}
+
+/// Lankarani–Nikravesh law with a given Hertz constant K (N/m^1.5):
+/// F = Kδ^{3/2}(1 + 3(1 − c_e²)/4 · δ̇/δ̇⁻) (Lankarani & Nikravesh, J. Mech. Des. 112 (1990)).
+///
+/// # Errors
+/// The clr-contact message for K ≤ 0 or c_e outside (0, 1].
+pub fn ln_law(k: f64, restitution: f64) -> Result<NormalLaw, String> {
+    let el = ElasticLaw::hertz(k).map_err(|e| format!("normal law: {e}"))?;
+    NormalLaw::new(el, DampingFactor::LankaraniNikravesh, restitution)
+        .map_err(|e| format!("normal law: {e}"))
+}
+
+/// Check that `v` is finite and > 0; the error says what to change.
+pub(crate) fn positive(field: &str, v: f64) -> Result<(), String> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(format!("`{field}` = {v} must be a positive finite number"))
+    }
+}
+
+/// Check that `v` is finite and ≥ 0.
+pub(crate) fn non_negative(field: &str, v: f64) -> Result<(), String> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(format!("`{field}` = {v} must be a finite number ≥ 0"))
+    }
+}
+
+/// Deserialize model parameters, mapping serde errors to [`ModelsError::InvalidParameters`].
+pub(crate) fn parse<T: serde::de::DeserializeOwned>(
+    model: &str,
+    value: &serde_json::Value,
+) -> Result<T, ModelsError> {
+    serde_json::from_value(value.clone()).map_err(|e| invalid(model, e.to_string()))
+}
+
+/// An [`ModelsError::InvalidParameters`].
+pub(crate) fn invalid(model: &str, message: impl Into<String>) -> ModelsError {
+    ModelsError::InvalidParameters {
+        model: model.to_string(),
+        message: message.into(),
+    }
+}
+
+/// Map a clr-mbd error of a build to [`ModelsError::Build`].
+pub(crate) fn build_error(model: &str, e: MbdError) -> ModelsError {
+    ModelsError::Build {
+        model: model.to_string(),
+        source: Box::new(e),
+    }
+}
+
+/// Map a clr-mbd error of a simulation to [`ModelsError::Simulation`]. clr-mbd does not return
+/// the rows recorded before a failure, so `partial` is `None`.
+pub(crate) fn sim_error(model: &str, e: MbdError) -> ModelsError {
+    ModelsError::Simulation {
+        model: model.to_string(),
+        message: e.to_string(),
+        partial: None,
+    }
+}
+
+/// Simulation options from a model's defaults and the run settings: every accepted step is
+/// recorded (peaks of impact forces are missed by coarse output grids).
+pub(crate) fn options(
+    t_end: f64,
+    rtol: f64,
+    solver: Solver,
+    settings: &RunSettings,
+    every_step: bool,
+    n_out: usize,
+) -> SimOptions {
+    let t_end = settings.t_end.unwrap_or(t_end);
+    let rtol = settings.rtol.unwrap_or(rtol);
+    let mut o = if every_step {
+        SimOptions {
+            t_end,
+            every_step: true,
+            ..Default::default()
+        }
+    } else {
+        SimOptions::span(0.0, t_end, n_out)
+    };
+    o.solver = solver.into();
+    o.rtol = rtol;
+    o.atol = rtol * 1e-3;
+    o
+}
+
+/// Check run settings that apply to every model.
+pub(crate) fn check_settings(model: &str, settings: &RunSettings) -> Result<(), ModelsError> {
+    if let Some(t) = settings.t_end {
+        positive("t_end (s)", t).map_err(|m| invalid(model, m))?;
+    }
+    if let Some(r) = settings.rtol {
+        if !(r.is_finite() && r > 0.0 && r < 1.0) {
+            return Err(invalid(
+                model,
+                format!("rtol = {r} must be in (0, 1), e.g. 1e-8"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Unit of a result column, from clr-mbd's column naming (see `clr_mbd::Results`) and the
+/// derived columns of clr-models (`*.px`, `*.py` momentum, `*.L` angular momentum).
+pub fn unit_of(column: &str) -> &'static str {
+    if column == "t" {
+        return "s";
+    }
+    if let Some(rest) = column.strip_prefix("energy.") {
+        let _ = rest;
+        return "J";
+    }
+    match column {
+        "violation.position" => return "m or rad",
+        "violation.velocity" => return "m/s or rad/s",
+        _ => {}
+    }
+    let suffix = column.rsplit('.').next().unwrap_or(column);
+    match suffix {
+        "x" | "y" | "ex" | "ey" | "penetration" | "error" => "m",
+        "theta" | "angle" => "rad",
+        "vx" | "vy" | "rate" => "m/s",
+        "omega" => "rad/s",
+        "ax" | "ay" => "m/s^2",
+        "alpha" => "rad/s^2",
+        "Fx" | "Fy" | "normal_force" | "friction_force" | "F" => "N",
+        "M" => "N*m",
+        "contact" => "-",
+        "px" | "py" => "kg*m/s",
+        "L" => "kg*m^2/s",
+        _ => "-",
+    }
+}
+
+/// Units of every column of `results`.
+pub fn units(results: &Results) -> Vec<String> {
+    results
+        .columns
+        .iter()
+        .map(|c| unit_of(c).to_string())
+        .collect()
+}
+
+/// A column that must exist (the models only ask for columns they created).
+pub(crate) fn col(results: &Results, name: &str) -> Vec<f64> {
+    results.column(name).unwrap_or_default()
+}
+
+/// Append derived columns (same number of rows) to results.
+pub(crate) fn append_columns(results: &mut Results, new: Vec<(String, Vec<f64>)>) {
+    if new.is_empty() {
+        return;
+    }
+    let n = results.len();
+    let w = results.columns.len();
+    let mut data = Vec::with_capacity(n * (w + new.len()));
+    for r in 0..n {
+        data.extend_from_slice(&results.data[r * w..(r + 1) * w]);
+        for (_, v) in &new {
+            data.push(v[r]);
+        }
+    }
+    results.columns.extend(new.into_iter().map(|(c, _)| c));
+    results.data = data;
+}
+
+/// Largest |v| over rows with t ≥ t_from.
+pub fn peak_abs(t: &[f64], v: &[f64], t_from: f64) -> f64 {
+    t.iter()
+        .zip(v)
+        .filter(|(&ti, _)| ti >= t_from)
+        .map(|(_, x)| x.abs())
+        .fold(0.0, f64::max)
+}
+
+/// Largest v (signed) over rows with t ≥ t_from; 0 when every value is negative.
+pub fn peak_max(t: &[f64], v: &[f64], t_from: f64) -> f64 {
+    t.iter()
+        .zip(v)
+        .filter(|(&ti, _)| ti >= t_from)
+        .map(|(_, &x)| x)
+        .fold(0.0, f64::max)
+}
+
+/// Time-weighted mean of v over [t_from, t_end] (trapezoidal rule, uneven rows allowed).
+pub fn time_mean(t: &[f64], v: &[f64], t_from: f64) -> f64 {
+    let (mut s, mut span) = (0.0, 0.0);
+    for k in 1..t.len() {
+        if t[k - 1] < t_from {
+            continue;
+        }
+        let dt = t[k] - t[k - 1];
+        s += 0.5 * (v[k] + v[k - 1]) * dt;
+        span += dt;
+    }
+    if span > 0.0 {
+        s / span
+    } else {
+        0.0
+    }
+}
+
+/// Time-weighted RMS of v over [t_from, t_end] (trapezoidal rule on v²).
+pub fn time_rms(t: &[f64], v: &[f64], t_from: f64) -> f64 {
+    let sq: Vec<f64> = v.iter().map(|x| x * x).collect();
+    time_mean(t, &sq, t_from).sqrt()
+}
+
+/// Linear interpolation of (t, v) at `at` (t increasing; clamped at the ends).
+pub fn interp(t: &[f64], v: &[f64], at: f64) -> f64 {
+    if t.is_empty() {
+        return f64::NAN;
+    }
+    if at <= t[0] {
+        return v[0];
+    }
+    if at >= t[t.len() - 1] {
+        return v[v.len() - 1];
+    }
+    let k = t.partition_point(|&x| x <= at);
+    let (t0, t1) = (t[k - 1], t[k]);
+    if t1 == t0 {
+        return v[k];
+    }
+    v[k - 1] + (v[k] - v[k - 1]) * (at - t0) / (t1 - t0)
+}
+
+/// Write results as CSV into `dir/name.csv` (creating `dir`).
+///
+/// # Errors
+/// The I/O message.
+pub fn write_results_csv(results: &Results, dir: &Path, name: &str) -> Result<(), String> {
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    results
+        .write_csv(&dir.join(format!("{name}.csv")))
+        .map_err(|e| e.to_string())
+}
+
+/// Write a tidy table (header + rows) as CSV.
+///
+/// # Errors
+/// The I/O message.
+pub fn write_table_csv(path: &Path, header: &[&str], rows: &[Vec<String>]) -> Result<(), String> {
+    use std::io::Write;
+    if let Some(d) = path.parent() {
+        std::fs::create_dir_all(d).map_err(|e| format!("{}: {e}", d.display()))?;
+    }
+    let mut f = std::io::BufWriter::new(
+        std::fs::File::create(path).map_err(|e| format!("{}: {e}", path.display()))?,
+    );
+    let w = |f: &mut std::io::BufWriter<std::fs::File>, s: String| {
+        writeln!(f, "{s}").map_err(|e| format!("{}: {e}", path.display()))
+    };
+    w(&mut f, header.join(","))?;
+    for r in rows {
+        w(&mut f, r.join(","))?;
+    }
+    f.flush().map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Pairs (x, y) thinned to at most `max` points (every k-th row, keeping the last), for figures.
+pub fn thin(x: &[f64], y: &[f64], max: usize) -> Vec<(f64, f64)> {
+    let n = x.len().min(y.len());
+    let step = n.div_ceil(max.max(1)).max(1);
+    let mut v: Vec<(f64, f64)> = (0..n).step_by(step).map(|k| (x[k], y[k])).collect();
+    if n > 0 && (n - 1) % step != 0 {
+        v.push((x[n - 1], y[n - 1]));
+    }
+    v
+}
+
+/// The RunOutput of a finished simulation.
+pub(crate) fn output(
+    model: &str,
+    results: Results,
+    metrics: Vec<crate::Metric>,
+    parameters: serde_json::Value,
+) -> RunOutput {
+    RunOutput {
+        model: model.to_string(),
+        units: units(&results),
+        results,
+        metrics,
+        parameters,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn time_statistics_of_a_sine() {
+        // mean of sin² over whole periods is 1/2 (closed form); RMS of sin is 1/√2
+        let t: Vec<f64> = (0..=4000).map(|k| k as f64 * 1e-3).collect();
+        let v: Vec<f64> = t
+            .iter()
+            .map(|&x| (2.0 * std::f64::consts::PI * x).sin())
+            .collect();
+        assert!((time_rms(&t, &v, 0.0) - 0.5f64.sqrt()).abs() < 1e-6);
+        assert!(time_mean(&t, &v, 0.0).abs() < 1e-9);
+        assert!((peak_abs(&t, &v, 0.0) - 1.0).abs() < 1e-5);
+        // linear interpolation is exact on a straight line
+        let lin: Vec<f64> = t.iter().map(|&x| 3.0 * x - 1.0).collect();
+        assert!((interp(&t, &lin, 1.23456) - (3.0 * 1.23456 - 1.0)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn units_follow_the_column_names() {
+        assert_eq!(unit_of("t"), "s");
+        assert_eq!(unit_of("slider.ax"), "m/s^2");
+        assert_eq!(unit_of("B.normal_force"), "N");
+        assert_eq!(unit_of("O.M"), "N*m");
+        assert_eq!(unit_of("energy.total"), "J");
+        assert_eq!(unit_of("crank.theta"), "rad");
+    }
+}
