@@ -542,6 +542,20 @@ fn merge_table(
             ));
         };
         if let toml::Value::Table(t) = v {
+            // a table tagged by `law` or `type` that switches variant replaces the default
+            // whole (e.g. friction `none` → `coulomb` with its own fields)
+            let switches = ["law", "type"].iter().any(|tag| {
+                t.get(*tag).and_then(|x| x.as_str()).is_some_and(|new| {
+                    slot.get(*tag)
+                        .and_then(|x| x.as_str())
+                        .is_some_and(|old| old != new)
+                })
+            });
+            if switches {
+                *slot = super::overrides::toml_to_json(v)
+                    .map_err(|m| SpecError::at(file, src, &p, m))?;
+                continue;
+            }
             merge_table(file, src, &p, slot, t)?;
         } else {
             let new =
