@@ -240,9 +240,67 @@ fn manipulator_cases(filter: &Filter, out: &mut Vec<Case>) {
     println!("models.manipulator study: {wall:.1} s wall (6 cases in parallel)");
 }
 
+fn flap_eigen_cases(filter: &Filter, out: &mut Vec<Case>) {
+    use clr_models::flap::{FlexiblePart, PAPER_FREQUENCIES};
+    for (part, (_, paper)) in FlexiblePart::paper_parts().iter().zip(PAPER_FREQUENCIES) {
+        let id = format!("models.flap.eigen.{}", part.name);
+        if !filter.wants(&id) {
+            continue;
+        }
+        match part.calibrate() {
+            Ok(c) => {
+                let f = &c.frequencies_hz;
+                let modes = (1..5)
+                    .map(|k| format!("mode {}: {:.1} Hz (paper {})", k + 1, f[k], paper[k]))
+                    .collect::<Vec<_>>()
+                    .join(", ");
+                out.push(
+                    Case::new(
+                        &format!("{id}.mode1"),
+                        "first computed eigenfrequency after section calibration",
+                        "Hz",
+                        "Wan et al., Machines 10 (2022) 1098, eigenfrequency table (first mode); \
+                         planar Euler–Bernoulli beam, pinned + axial roller, steel, width 15 mm, \
+                         depth calibrated; tolerance 1e-8",
+                    )
+                    .relative(f[0], paper[0], 1e-8)
+                    .note(format!(
+                        "length {} m, calibrated depth {:.4} mm; {modes}; a planar beam has no \
+                         out-of-plane or torsion modes, so modes 2–5 are not expected to match",
+                        part.length,
+                        c.depth * 1e3
+                    )),
+                );
+                let cf = part.closed_form_f1(c.depth);
+                out.push(
+                    Case::new(
+                        &format!("{id}.closed_form"),
+                        "first frequency, clr-beam (20 elements) vs Euler–Bernoulli closed form",
+                        "Hz",
+                        "closed form f1 = (π/2L²)√(EI/ρA) of a pinned–pinned beam; tolerance 1e-4 \
+                         (discretization with 20 cubic elements)",
+                    )
+                    .relative(f[0], cf, 1e-4)
+                    .note(format!("clr-beam {:.3} Hz, closed form {cf:.3} Hz", f[0])),
+                );
+            }
+            Err(e) => out.push(
+                Case::new(
+                    &format!("{id}.mode1"),
+                    "first eigenfrequency",
+                    "Hz",
+                    "Wan et al. 2022",
+                )
+                .failed(paper[0], e),
+            ),
+        }
+    }
+}
+
 pub fn cases(filter: &Filter) -> Vec<Case> {
     let mut out = Vec::new();
     slider_crank_cases(filter, &mut out);
+    flap_eigen_cases(filter, &mut out);
     manipulator_cases(filter, &mut out);
     out
 }
