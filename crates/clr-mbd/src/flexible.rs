@@ -21,6 +21,8 @@ pub(crate) struct FlexBeam {
     pub(crate) free: Vec<usize>,
     /// Number of DOF of the full beam model (3 per node).
     pub(crate) n_dof_full: usize,
+    /// Undeformed node positions, m.
+    pub(crate) nodes: Vec<[f64; 2]>,
     /// Free-DOF matrices, row-major nf × nf.
     pub(crate) m: Vec<f64>,
     pub(crate) k: Vec<f64>,
@@ -47,6 +49,7 @@ impl FlexBeam {
             offset: 0,
             free: map.free.clone(),
             n_dof_full: model.n_dof(),
+            nodes: model.nodes().to_vec(),
             m: vec![0.0; nf * nf],
             k: vec![0.0; nf * nf],
             c: vec![0.0; nf * nf],

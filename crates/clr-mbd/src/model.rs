@@ -13,7 +13,7 @@ use nalgebra::Vector2;
 use crate::clearance::{Clearance, ClearanceKind};
 use crate::error::MbdError;
 use crate::flexible::{FlexBeam, NodalLoadFn};
-use crate::system::{Con, ForceEl, Model, Motion};
+use crate::system::{Con, ForceEl, Frame, Model, Motion};
 
 /// Name of the ground body (fixed at the origin, angle 0). It is always defined.
 pub const GROUND: &str = "ground";
@@ -76,6 +76,16 @@ pub enum Anchor {
     Point(String),
     /// A body name and local coordinates (m).
     Local(String, [f64; 2]),
+    /// A node of a flexible beam (beam name, node index): the attachment moves with the node's
+    /// displacement and rotation (small-rotation node frame); the same as a
+    /// [`ModelBuilder::beam_node_point`].
+    BeamNode(String, usize),
+}
+
+impl From<(&str, usize)> for Anchor {
+    fn from((beam, node): (&str, usize)) -> Self {
+        Anchor::BeamNode(beam.to_string(), node)
+    }
 }
 
 impl From<&str> for Anchor {
@@ -214,6 +224,11 @@ enum Item {
         name: String,
         model: Box<clr_beam::BeamModel>,
     },
+    BeamPoint {
+        name: String,
+        beam: String,
+        node: usize,
+    },
     BeamLoad {
         name: String,
         beam: String,
@@ -239,6 +254,7 @@ impl Item {
             | Item::RevClearance { name, .. }
             | Item::TransClearance { name, .. }
             | Item::Beam { name, .. }
+            | Item::BeamPoint { name, .. }
             | Item::BeamLoad { name, .. } => name,
         }
     }
@@ -258,6 +274,7 @@ impl Item {
             Item::RevClearance { .. } => "revolute clearance joint",
             Item::TransClearance { .. } => "translational clearance joint",
             Item::Beam { .. } => "flexible beam",
+            Item::BeamPoint { .. } => "beam node point",
             Item::BeamLoad { .. } => "beam nodal load",
         }
     }
@@ -538,6 +555,18 @@ impl ModelBuilder {
         self
     }
 
+    /// A named point at node `node` of flexible beam `beam`: joints, springs, forces and contact
+    /// elements anchored at it (`Anchor::Point(name)`, or just `"name"`) move with the node's
+    /// displacement and rotation (small-rotation node frame).
+    pub fn beam_node_point(&mut self, name: &str, beam: &str, node: usize) -> &mut Self {
+        self.items.push(Item::BeamPoint {
+            name: name.into(),
+            beam: beam.into(),
+            node,
+        });
+        self
+    }
+
     /// A nodal load on beam `beam` at node `node`: `f(t) -> [F_x, F_y, M]` (N, N, N·m, global
     /// axes); components on constrained DOF are taken by the supports.
     pub fn beam_nodal_load(
@@ -662,13 +691,19 @@ impl ModelBuilder {
                     check_finite_vec(item, "local anchor coordinates (m)", *l)?;
                     Ok((body(item, b)?, Vector2::new(l[0], l[1])))
                 }
+                // resolved by the beam-aware wrapper below; reaching here means no such beam
+                Anchor::BeamNode(b, _) => Err(MbdError::UnknownBody {
+                    item: item.to_string(),
+                    body: b.clone(),
+                    known: known.clone(),
+                }),
             }
         };
         let body_name = |id: usize| -> String {
-            if id == GROUND_ID {
-                GROUND.to_string()
-            } else {
-                self.bodies[id].0.clone()
+            match self.bodies.get(id) {
+                Some(b) => b.0.clone(),
+                None if id == GROUND_ID => GROUND.to_string(),
+                None => "a beam node".to_string(),
             }
         };
         let distinct = |item: &str, i: usize, j: usize| -> Result<(), MbdError> {
@@ -681,13 +716,7 @@ impl ModelBuilder {
                 Ok(())
             }
         };
-        let angle0 = |id: usize| -> f64 {
-            if id == GROUND_ID {
-                0.0
-            } else {
-                self.bodies[id].1.angle
-            }
-        };
+        let angle0 = |id: usize| -> f64 { self.bodies.get(id).map_or(0.0, |b| b.1.angle) };
         let mut cons: Vec<Con> = Vec::new();
         let mut forces: Vec<ForceEl> = Vec::new();
         let mut clearances: Vec<Clearance> = Vec::new();
@@ -705,10 +734,82 @@ impl ModelBuilder {
                 items.push(item);
             }
         }
+        // attachment frames: rigid bodies, then the beam nodes named by beam_node_point
+        let mut frames: Vec<Frame> = (0..self.bodies.len()).map(Frame::rigid).collect();
+        let mut node_points: HashMap<String, usize> = HashMap::new();
+        let mut node_frames: HashMap<(String, usize), usize> = HashMap::new();
+        let mut wanted: Vec<(String, String, usize, Option<String>)> = Vec::new();
+        for item in &items {
+            if let Item::BeamPoint { name, beam, node } = item {
+                wanted.push((name.clone(), beam.clone(), *node, Some(name.clone())));
+            }
+            for a in item_anchors(item) {
+                if let Anchor::BeamNode(beam, node) = a {
+                    wanted.push((item.name().to_string(), beam.clone(), *node, None));
+                }
+            }
+        }
+        for (name, beam, node, point) in &wanted {
+            {
+                let key = (beam.clone(), *node);
+                if let Some(&k) = node_frames.get(&key) {
+                    if let Some(p) = point {
+                        node_points.insert(p.clone(), k);
+                    }
+                    continue;
+                }
+                let Some(fb) = beams.iter().find(|b| &b.name == beam) else {
+                    return Err(MbdError::UnknownBody {
+                        item: name.clone(),
+                        body: beam.clone(),
+                        known: "(beams) ".to_string() + &known,
+                    });
+                };
+                if *node >= fb.nodes.len() {
+                    return Err(MbdError::InvalidParameter {
+                        item: name.clone(),
+                        what: "beam node index",
+                        value: *node as f64,
+                        requirement: "must be a node of the beam model",
+                    });
+                }
+                let cols = [0, 1, 2].map(|c| {
+                    fb.free
+                        .iter()
+                        .position(|&d| d == 3 * node + c)
+                        .map(|k| fb.offset + k)
+                });
+                let p = fb.nodes[*node];
+                frames.push(Frame {
+                    cols,
+                    base: Vector2::new(p[0], p[1]),
+                });
+                node_frames.insert(key, frames.len() - 1);
+                if let Some(p) = point {
+                    node_points.insert(p.clone(), frames.len() - 1);
+                }
+            }
+        }
+        let anchor = |item: &str, a: &Anchor| -> Result<(usize, Vector2<f64>), MbdError> {
+            match a {
+                Anchor::Point(p) if node_points.contains_key(p) => {
+                    Ok((node_points[p], Vector2::zeros()))
+                }
+                Anchor::BeamNode(b, k) => node_frames
+                    .get(&(b.clone(), *k))
+                    .map(|&f| (f, Vector2::zeros()))
+                    .ok_or_else(|| MbdError::UnknownBody {
+                        item: item.to_string(),
+                        body: b.clone(),
+                        known: known.clone(),
+                    }),
+                _ => anchor(item, a),
+            }
+        };
         for item in items {
             let name = item.name().to_string();
             match item {
-                Item::Point { .. } | Item::Beam { .. } => {}
+                Item::Point { .. } | Item::Beam { .. } | Item::BeamPoint { .. } => {}
                 Item::BeamLoad { beam, node, f, .. } => {
                     let Some(fb) = beams.iter_mut().find(|b| b.name == beam) else {
                         return Err(MbdError::UnknownBody {
@@ -926,6 +1027,7 @@ impl ModelBuilder {
         Model::assemble(
             self.bodies,
             beams,
+            frames,
             point_list,
             cons,
             motions,
@@ -933,6 +1035,23 @@ impl ModelBuilder {
             clearances,
             Vector2::new(self.gravity[0], self.gravity[1]),
         )
+    }
+}
+
+/// The anchors an item refers to.
+fn item_anchors(item: &Item) -> Vec<&Anchor> {
+    match item {
+        Item::Revolute { a, b, .. }
+        | Item::Fixed { a, b, .. }
+        | Item::Translational { a, b, .. }
+        | Item::DriveDisplacement { a, b, .. }
+        | Item::Spring { a, b, .. } => vec![a, b],
+        Item::Force { at, .. } => vec![at],
+        Item::RevClearance {
+            bearing, journal, ..
+        } => vec![bearing, journal],
+        Item::TransClearance { guide, slider, .. } => vec![guide, slider],
+        _ => Vec::new(),
     }
 }
 

@@ -12,7 +12,7 @@ use std::path::Path;
 use clr_ode::{Control, Dopri5, Ndf, Observer, Options, Output, Stats, StopReason};
 
 use crate::error::MbdError;
-use crate::system::{body_state, Model};
+use crate::system::Model;
 
 /// Which clr-ode integrator to use.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -293,9 +293,10 @@ impl Model {
 
     /// World position (m) of a body-fixed point `local` on body k at coordinates q.
     pub fn point_position(&self, k: usize, local: [f64; 2], q: &[f64]) -> [f64; 2] {
-        let zeros = [0.0; 3];
-        let qq = &q[3 * k..3 * k + 3];
-        let b = body_state(0, qq, &zeros);
+        let b = clr_contact::BodyState::fixed(
+            nalgebra::Vector2::new(q[3 * k], q[3 * k + 1]),
+            q[3 * k + 2],
+        );
         let p = b.point(nalgebra::Vector2::new(local[0], local[1]));
         [p.x, p.y]
     }

@@ -255,6 +255,8 @@ pub struct Model {
     pub(crate) body_names: Vec<String>,
     pub(crate) bodies: Vec<RigidBody>,
     pub(crate) beams: Vec<FlexBeam>,
+    /// Attachment frames: rigid bodies first (index = body index), then beam nodes.
+    pub(crate) frames: Vec<Frame>,
     pub(crate) points: Vec<(String, usize, Vector2<f64>)>,
     pub(crate) cons: Vec<Con>,
     pub(crate) motions: Vec<Motion>,
@@ -301,20 +303,39 @@ fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 
-/// Position, angle, velocity and angular velocity of body k (the ground is fixed at 0).
-#[inline]
-pub(crate) fn body_state(k: usize, q: &[f64], qd: &[f64]) -> BodyState {
-    if k == GROUND_ID {
-        BodyState::default()
-    } else {
-        let b = 3 * k;
-        BodyState::new(
-            Vector2::new(q[b], q[b + 1]),
-            q[b + 2],
-            Vector2::new(qd[b], qd[b + 1]),
-            qd[b + 2],
-        )
+/// A frame that joints and forces attach to: a rigid body (columns 3k..3k+3 of q) or a beam
+/// node (its free DOF columns; a constrained DOF stays 0), with the reference position `base`
+/// added to the displacement.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Frame {
+    pub(crate) cols: [Option<usize>; 3],
+    pub(crate) base: Vector2<f64>,
+}
+
+impl Frame {
+    pub(crate) fn rigid(k: usize) -> Self {
+        Frame {
+            cols: [Some(3 * k), Some(3 * k + 1), Some(3 * k + 2)],
+            base: Vector2::zeros(),
+        }
     }
+}
+
+/// Position, angle, velocity and angular velocity of frame k (the ground is fixed at 0). For a
+/// beam node the angle is the node rotation (small-rotation frame).
+#[inline]
+pub(crate) fn body_state(frames: &[Frame], k: usize, q: &[f64], qd: &[f64]) -> BodyState {
+    if k == GROUND_ID {
+        return BodyState::default();
+    }
+    let f = &frames[k];
+    let v = |x: &[f64], d: usize| f.cols[d].map_or(0.0, |c| x[c]);
+    BodyState::new(
+        f.base + Vector2::new(v(q, 0), v(q, 1)),
+        v(q, 2),
+        Vector2::new(v(qd, 0), v(qd, 1)),
+        v(qd, 2),
+    )
 }
 
 impl Model {
@@ -322,6 +343,7 @@ impl Model {
     pub(crate) fn assemble(
         bodies: Vec<(String, RigidBody)>,
         beams: Vec<FlexBeam>,
+        frames: Vec<Frame>,
         points: Vec<(String, usize, Vector2<f64>)>,
         mut cons: Vec<Con>,
         motions: Vec<Motion>,
@@ -368,6 +390,7 @@ impl Model {
             body_names,
             bodies,
             beams,
+            frames,
             points,
             cons,
             motions,
@@ -470,8 +493,8 @@ impl Model {
             let r = c.row;
             match c.kind {
                 ConKind::Coincide { i, si, j, sj } => {
-                    let bi = body_state(i, q, qd);
-                    let bj = body_state(j, q, qd);
+                    let bi = body_state(&self.frames, i, q, qd);
+                    let bj = body_state(&self.frames, j, q, qd);
                     let ai = rot(bi.angle, si);
                     let aj = rot(bj.angle, sj);
                     let phi = bi.position + ai - bj.position - aj;
@@ -485,10 +508,17 @@ impl Model {
                         self.gamma[r + d] = g[d];
                     }
                     let (pi, pj) = (perp(ai), perp(aj));
-                    put(&mut self.phiq, n, r, i, [1.0, 0.0, pi.x]);
-                    put(&mut self.phiq, n, r + 1, i, [0.0, 1.0, pi.y]);
-                    put(&mut self.phiq, n, r, j, [-1.0, 0.0, -pj.x]);
-                    put(&mut self.phiq, n, r + 1, j, [0.0, -1.0, -pj.y]);
+                    put(&self.frames, &mut self.phiq, n, r, i, [1.0, 0.0, pi.x]);
+                    put(&self.frames, &mut self.phiq, n, r + 1, i, [0.0, 1.0, pi.y]);
+                    put(&self.frames, &mut self.phiq, n, r, j, [-1.0, 0.0, -pj.x]);
+                    put(
+                        &self.frames,
+                        &mut self.phiq,
+                        n,
+                        r + 1,
+                        j,
+                        [0.0, -1.0, -pj.y],
+                    );
                 }
                 ConKind::Angle {
                     i,
@@ -496,8 +526,8 @@ impl Model {
                     offset,
                     motion,
                 } => {
-                    let bi = body_state(i, q, qd);
-                    let bj = body_state(j, q, qd);
+                    let bi = body_state(&self.frames, i, q, qd);
+                    let bj = body_state(&self.frames, j, q, qd);
                     let f = match motion {
                         Some(k) => self.motions[k].eval(t),
                         None => [offset, 0.0, 0.0],
@@ -505,8 +535,8 @@ impl Model {
                     self.phi[r] = bj.angle - bi.angle - f[0];
                     self.phid[r] = bj.angular_velocity - bi.angular_velocity - f[1];
                     self.gamma[r] = f[2];
-                    put(&mut self.phiq, n, r, i, [0.0, 0.0, -1.0]);
-                    put(&mut self.phiq, n, r, j, [0.0, 0.0, 1.0]);
+                    put(&self.frames, &mut self.phiq, n, r, i, [0.0, 0.0, -1.0]);
+                    put(&self.frames, &mut self.phiq, n, r, j, [0.0, 0.0, 1.0]);
                 }
                 ConKind::Project {
                     i,
@@ -516,8 +546,8 @@ impl Model {
                     w,
                     motion,
                 } => {
-                    let bi = body_state(i, q, qd);
-                    let bj = body_state(j, q, qd);
+                    let bi = body_state(&self.frames, i, q, qd);
+                    let bj = body_state(&self.frames, j, q, qd);
                     let f = match motion {
                         Some(k) => self.motions[k].eval(t),
                         None => [0.0; 3],
@@ -536,8 +566,15 @@ impl Model {
                         - omi * omi * nv.dot(&ai)
                         + f[2];
                     let ti = perp(nv).dot(&d) - nv.dot(&perp(ai));
-                    put(&mut self.phiq, n, r, i, [-nv.x, -nv.y, ti]);
-                    put(&mut self.phiq, n, r, j, [nv.x, nv.y, nv.dot(&perp(aj))]);
+                    put(&self.frames, &mut self.phiq, n, r, i, [-nv.x, -nv.y, ti]);
+                    put(
+                        &self.frames,
+                        &mut self.phiq,
+                        n,
+                        r,
+                        j,
+                        [nv.x, nv.y, nv.dot(&perp(aj))],
+                    );
                 }
             }
         }
@@ -565,8 +602,8 @@ impl Model {
                     l0,
                     ..
                 } => {
-                    let bi = body_state(*i, q, qd);
-                    let bj = body_state(*j, q, qd);
+                    let bi = body_state(&self.frames, *i, q, qd);
+                    let bj = body_state(&self.frames, *j, q, qd);
                     let (ai, aj) = (bi.rotate(*si), bj.rotate(*sj));
                     let d = bj.position + aj - bi.position - ai;
                     let l = d.norm();
@@ -580,42 +617,44 @@ impl Model {
                     let ldot = u.dot(&vrel);
                     let tension = k * (l - l0) + c * ldot;
                     p_diss += c * ldot * ldot;
-                    add_force(qf, *i, ai, tension * u);
-                    add_force(qf, *j, aj, -tension * u);
+                    add_force(&self.frames, qf, *i, ai, tension * u);
+                    add_force(&self.frames, qf, *j, aj, -tension * u);
                 }
                 ForceEl::RotSpring {
                     i, j, k, c, angle0, ..
                 } => {
-                    let bi = body_state(*i, q, qd);
-                    let bj = body_state(*j, q, qd);
+                    let bi = body_state(&self.frames, *i, q, qd);
+                    let bj = body_state(&self.frames, *j, q, qd);
                     let wrel = bj.angular_velocity - bi.angular_velocity;
                     let tau = -k * (bj.angle - bi.angle - angle0) - c * wrel;
                     p_diss += c * wrel * wrel;
-                    add_torque(qf, *j, tau);
-                    add_torque(qf, *i, -tau);
+                    add_torque(&self.frames, qf, *j, tau);
+                    add_torque(&self.frames, qf, *i, -tau);
                 }
                 ForceEl::Force { i, si, f, .. } => {
-                    let bi = body_state(*i, q, qd);
+                    let bi = body_state(&self.frames, *i, q, qd);
                     let force = f(t, &bi);
-                    add_force(qf, *i, bi.rotate(*si), force);
+                    add_force(&self.frames, qf, *i, bi.rotate(*si), force);
                 }
                 ForceEl::Torque { i, f, .. } => {
-                    let bi = body_state(*i, q, qd);
-                    add_torque(qf, *i, f(t, &bi));
+                    let bi = body_state(&self.frames, *i, q, qd);
+                    add_torque(&self.frames, qf, *i, f(t, &bi));
                 }
                 ForceEl::PairTorque { i, j, f, .. } => {
-                    let bi = body_state(*i, q, qd);
-                    let bj = body_state(*j, q, qd);
+                    let bi = body_state(&self.frames, *i, q, qd);
+                    let bj = body_state(&self.frames, *j, q, qd);
                     let tau = f(t, &bi, &bj);
-                    add_torque(qf, *j, tau);
-                    add_torque(qf, *i, -tau);
+                    add_torque(&self.frames, qf, *j, tau);
+                    add_torque(&self.frames, qf, *i, -tau);
                 }
             }
         }
         for (k, cl) in self.clearances.iter().enumerate() {
-            let bi = body_state(cl.i, q, qd);
-            let bj = body_state(cl.j, q, qd);
-            self.contacts[k] = cl.apply(&bi, &bj, &mut self.memory, |b, g| add_gen(qf, b, g));
+            let bi = body_state(&self.frames, cl.i, q, qd);
+            let bj = body_state(&self.frames, cl.j, q, qd);
+            self.contacts[k] = cl.apply(&bi, &bj, &mut self.memory, |b, g| {
+                add_gen(&self.frames, qf, b, g)
+            });
             p_diss += self.contacts[k].dissipated_power;
         }
         for b in &self.beams {
@@ -704,24 +743,24 @@ impl Model {
                     l0,
                     ..
                 } => {
-                    let bi = body_state(*i, q, qd);
-                    let bj = body_state(*j, q, qd);
+                    let bi = body_state(&self.frames, *i, q, qd);
+                    let bj = body_state(&self.frames, *j, q, qd);
                     let l = (bj.point(*sj) - bi.point(*si)).norm();
                     e.elastic += 0.5 * k * (l - l0).powi(2);
                 }
                 ForceEl::RotSpring {
                     i, j, k, angle0, ..
                 } => {
-                    let bi = body_state(*i, q, qd);
-                    let bj = body_state(*j, q, qd);
+                    let bi = body_state(&self.frames, *i, q, qd);
+                    let bj = body_state(&self.frames, *j, q, qd);
                     e.elastic += 0.5 * k * (bj.angle - bi.angle - angle0).powi(2);
                 }
                 _ => {}
             }
         }
         for cl in &self.clearances {
-            let bi = body_state(cl.i, q, qd);
-            let bj = body_state(cl.j, q, qd);
+            let bi = body_state(&self.frames, cl.i, q, qd);
+            let bj = body_state(&self.frames, cl.j, q, qd);
             e.elastic += cl.elastic_energy(&bi, &bj);
         }
         e
@@ -757,8 +796,10 @@ impl Model {
             .take_while(|c| &c.name == name)
         {
             for (r, l) in lam.iter().enumerate().skip(c.row).take(c.rows()) {
-                for (d, o) in out.iter_mut().enumerate() {
-                    *o -= self.phiq[r * n + 3 * b + d] * l;
+                for (col, o) in self.frames[b].cols.iter().zip(out.iter_mut()) {
+                    if let Some(col) = col {
+                        *o -= self.phiq[r * n + col] * l;
+                    }
                 }
             }
         }
@@ -815,8 +856,8 @@ impl Model {
         let n = self.n;
         let (q, qd) = y.split_at(n);
         for cl in &self.clearances {
-            let bi = body_state(cl.i, q, qd);
-            let bj = body_state(cl.j, q, qd);
+            let bi = body_state(&self.frames, cl.i, q, qd);
+            let bj = body_state(&self.frames, cl.j, q, qd);
             for p in 0..cl.points() {
                 let (d, r) = cl.gap(&bi, &bj, p);
                 self.memory.commit(cl.mem + p, d, r);
@@ -826,31 +867,34 @@ impl Model {
 }
 
 #[inline]
-fn put(phiq: &mut [f64], n: usize, r: usize, k: usize, v: [f64; 3]) {
+fn put(frames: &[Frame], phiq: &mut [f64], n: usize, r: usize, k: usize, v: [f64; 3]) {
     if k != GROUND_ID {
-        let o = r * n + 3 * k;
-        phiq[o] += v[0];
-        phiq[o + 1] += v[1];
-        phiq[o + 2] += v[2];
+        for (c, vd) in frames[k].cols.iter().zip(v) {
+            if let Some(c) = c {
+                phiq[r * n + c] += vd;
+            }
+        }
     }
 }
 
 #[inline]
-fn add_force(qf: &mut [f64], k: usize, arm: Vector2<f64>, f: Vector2<f64>) {
-    add_gen(qf, k, [f.x, f.y, cross(arm, f)]);
+fn add_force(frames: &[Frame], qf: &mut [f64], k: usize, arm: Vector2<f64>, f: Vector2<f64>) {
+    add_gen(frames, qf, k, [f.x, f.y, cross(arm, f)]);
 }
 
 #[inline]
-fn add_torque(qf: &mut [f64], k: usize, tau: f64) {
-    add_gen(qf, k, [0.0, 0.0, tau]);
+fn add_torque(frames: &[Frame], qf: &mut [f64], k: usize, tau: f64) {
+    add_gen(frames, qf, k, [0.0, 0.0, tau]);
 }
 
 #[inline]
-fn add_gen(qf: &mut [f64], k: usize, g: [f64; 3]) {
+fn add_gen(frames: &[Frame], qf: &mut [f64], k: usize, g: [f64; 3]) {
     if k != GROUND_ID {
-        qf[3 * k] += g[0];
-        qf[3 * k + 1] += g[1];
-        qf[3 * k + 2] += g[2];
+        for (c, gd) in frames[k].cols.iter().zip(g) {
+            if let Some(c) = c {
+                qf[*c] += gd;
+            }
+        }
     }
 }
 
@@ -884,8 +928,8 @@ impl OdeSystem for Model {
         let n = self.n;
         let (q, qd) = y.split_at(n);
         for cl in &self.clearances {
-            let bi = body_state(cl.i, q, qd);
-            let bj = body_state(cl.j, q, qd);
+            let bi = body_state(&self.frames, cl.i, q, qd);
+            let bj = body_state(&self.frames, cl.j, q, qd);
             for p in 0..cl.points() {
                 g[cl.mem + p] = cl.gap(&bi, &bj, p).0;
             }
