@@ -256,7 +256,7 @@ fn flap_eigen_cases(filter: &Filter, out: &mut Vec<Case>) {
                     .join(", ");
                 out.push(
                     Case::new(
-                        &format!("{id}.mode1"),
+                        format!("{id}.mode1"),
                         "first computed eigenfrequency after section calibration",
                         "Hz",
                         "Wan et al., Machines 10 (2022) 1098, eigenfrequency table (first mode); \
@@ -274,7 +274,7 @@ fn flap_eigen_cases(filter: &Filter, out: &mut Vec<Case>) {
                 let cf = part.closed_form_f1(c.depth);
                 out.push(
                     Case::new(
-                        &format!("{id}.closed_form"),
+                        format!("{id}.closed_form"),
                         "first frequency, clr-beam (20 elements) vs Euler–Bernoulli closed form",
                         "Hz",
                         "closed form f1 = (π/2L²)√(EI/ρA) of a pinned–pinned beam; tolerance 1e-4 \
@@ -286,7 +286,7 @@ fn flap_eigen_cases(filter: &Filter, out: &mut Vec<Case>) {
             }
             Err(e) => out.push(
                 Case::new(
-                    &format!("{id}.mode1"),
+                    format!("{id}.mode1"),
                     "first eigenfrequency",
                     "Hz",
                     "Wan et al. 2022",
