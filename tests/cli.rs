@@ -513,6 +513,22 @@ fn malformed_files_exit_2_with_a_located_message() {
             &[":5:", "did you mean `crank_speed_rpm`"],
         ),
         ("parameter_type.toml", &[":5:", "expected a number"]),
+        (
+            "beam_bad_node.toml",
+            &[":13:", "beam[0].supports[0].node", "nodes 0 to 10"],
+        ),
+        (
+            "unknown_beam.toml",
+            &[":21:", "force[0].beam", "did you mean `cant`"],
+        ),
+        (
+            "slider_too_tall.toml",
+            &[":21:", "clearance[0].slider_height", "must be positive"],
+        ),
+        (
+            "translational_liu.toml",
+            &[":22:", "clearance[0].normal.law", "needs a journal"],
+        ),
     ];
     for (file, needles) in cases {
         let o = clr(&[
@@ -564,4 +580,65 @@ fn generic_slider_crank_file_equals_the_builtin() {
             assert!(p.to_bits() == q.to_bits(), "{name} row {k}: {p} vs {q}");
         }
     }
+}
+
+/// A damped cantilever of `[[beam]]` elements under a tip step load settles on the
+/// Euler–Bernoulli static deflection P L³/(3 E I) (Timoshenko & Gere, Mechanics of Materials,
+/// cantilever with an end load; the cubic Hermite element is exact for nodal loads).
+#[test]
+fn beam_file_settles_on_the_static_tip_deflection() {
+    let out = scratch("cantilever");
+    let o = clr(&[
+        "run",
+        &data("cantilever.toml"),
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (names, rows) = read_csv(&out.join("results.csv"));
+    let v = column(&names, &rows, "cant.n10.v");
+    let (p, l, e, w, h) = (10.0f64, 0.5f64, 2.07e11f64, 0.02f64, 0.01f64);
+    let i = w * h.powi(3) / 12.0;
+    let static_tip = -p * l.powi(3) / (3.0 * e * i);
+    let last = v[v.len() - 1];
+    assert!(
+        ((last - static_tip) / static_tip).abs() < 1e-5,
+        "{last} vs {static_tip}"
+    );
+    assert!(out.join("beam_deflection.svg").is_file());
+}
+
+/// A block dropped in a translational clearance comes to rest carrying its weight: the sum of
+/// the corner normal forces equals m g (static equilibrium), and the block sits one clearance
+/// (W − h)/2 = 1 mm below the guide axis, less the Hertz penetration (m g/2 per corner,
+/// δ = (F/K)^(2/3)).
+#[test]
+fn translational_clearance_file_rests_on_its_weight() {
+    let out = scratch("slider-guide");
+    let o = clr(&[
+        "run",
+        &data("slider_in_guide.toml"),
+        "--out",
+        out.to_str().unwrap(),
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (names, rows) = read_csv(&out.join("results.csv"));
+    let f = column(&names, &rows, "guide.normal_force");
+    let y = column(&names, &rows, "block.y");
+    let mg = 2.0 * 9.81;
+    assert!(
+        (f[f.len() - 1] - mg).abs() < 1e-6 * mg,
+        "{} vs {mg}",
+        f[f.len() - 1]
+    );
+    let delta = (mg / 2.0 / 1e9f64).powf(2.0 / 3.0);
+    let y_rest = -(0.020 - 0.018) / 2.0 - delta;
+    assert!(
+        (y[y.len() - 1] - y_rest).abs() < 1e-9,
+        "{} vs {y_rest}",
+        y[y.len() - 1]
+    );
+    assert!(!out.join("orbit_guide.svg").exists());
 }

@@ -129,7 +129,8 @@ pub(crate) fn execute(
                         s.resolved.clone(),
                         wall,
                         None,
-                    ))
+                    )
+                    .without_orbits(s))
                 }
                 Err(clr_mbd::MbdError::Solver(e)) => {
                     let msg = e.to_string();
@@ -142,7 +143,8 @@ pub(crate) fn execute(
                         s.resolved.clone(),
                         wall,
                         Some(msg),
-                    ))
+                    )
+                    .without_orbits(s))
                 }
                 Err(e) => Err(s.model_error(&e).into()),
             }
@@ -208,12 +210,14 @@ fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
                 "largest penetration (negative: never in contact) at the output times",
             ));
         }
-        m.push(Metric::new(
-            &format!("{c}.radial_clearance"),
-            *radial,
-            "m",
-            "bearing radius minus journal radius",
-        ));
+        if let Some(radial) = radial {
+            m.push(Metric::new(
+                &format!("{c}.radial_clearance"),
+                *radial,
+                "m",
+                "bearing radius minus journal radius",
+            ));
+        }
         if let Some(f) = r.column(&format!("{c}.Fx")) {
             m.push(Metric::new(
                 &format!("{c}.peak_reaction"),
@@ -330,4 +334,17 @@ pub(crate) fn export_text(name: &str, parameters: &serde_json::Value) -> Result<
          # `clr run <this file>` reproduces `clr run {name}` (with the same --set) bit for bit.\n\
          # Edit any value under [parameters]; units as in docs/model-file.md.\n\n{body}"
     ))
+}
+
+impl Record {
+    /// Mark the translational clearances of a model file (no orbit figure for them).
+    fn without_orbits(mut self, s: &ModelSpec) -> Self {
+        self.no_orbit = s
+            .clearances
+            .iter()
+            .filter(|(_, radial)| radial.is_none())
+            .map(|(n, _)| n.clone())
+            .collect();
+        self
+    }
 }

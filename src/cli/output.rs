@@ -26,6 +26,8 @@ pub(crate) struct Record {
     pub wall_s: f64,
     /// The solver's error when the run failed (results are then partial).
     pub error: Option<String>,
+    /// Clearance joints that get no orbit figure (translational ones).
+    pub no_orbit: Vec<String>,
 }
 
 /// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`).
@@ -43,7 +45,7 @@ pub(crate) fn unit_of(column: &str) -> &'static str {
         return "J";
     }
     match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "penetration" | "ex" | "ey" => "m",
+        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" => "m",
         "theta" => "rad",
         "vx" | "vy" | "rate" => "m/s",
         "omega" => "rad/s",
@@ -80,6 +82,7 @@ impl Record {
             parameters: o.parameters,
             wall_s,
             error,
+            no_orbit: Vec::new(),
         }
     }
 
@@ -106,6 +109,7 @@ impl Record {
             parameters,
             wall_s,
             error,
+            no_orbit: Vec::new(),
         }
     }
 
@@ -132,6 +136,7 @@ impl Record {
             parameters,
             wall_s,
             error: Some(error),
+            no_orbit: Vec::new(),
         }
     }
 }
@@ -310,7 +315,7 @@ fn run_figures(dir: &Path, rec: &Record) -> Vec<String> {
     let bodies: Vec<&str> = r
         .columns
         .iter()
-        .filter_map(|c| c.strip_suffix(".theta"))
+        .filter_map(|c| c.strip_suffix(".alpha"))
         .collect();
     if !bodies.is_empty() {
         let mut f = Figure::new(format!("{}: body angles", rec.model))
@@ -359,7 +364,35 @@ fn run_figures(dir: &Path, rec: &Record) -> Vec<String> {
         }
         save(f, "contact_forces");
     }
+    // beams: deflection of the last node of each
+    let mut tips: Vec<(&str, &str)> = Vec::new();
+    for c in &r.columns {
+        if let Some(stem) = c.strip_suffix(".v") {
+            if let Some((beam, node)) = stem.rsplit_once(".n") {
+                if node.parse::<usize>().is_ok() {
+                    match tips.iter_mut().find(|(b, _)| *b == beam) {
+                        Some(t) => t.1 = c,
+                        None => tips.push((beam, c)),
+                    }
+                }
+            }
+        }
+    }
+    if !tips.is_empty() {
+        let mut f = Figure::new(format!("{}: beam deflection", rec.model))
+            .x_label("time (s)")
+            .y_label("transverse displacement v (m)");
+        for (_, col) in &tips {
+            if let Some(v) = r.column(col) {
+                f = f.line(*col, pairs(&t, &v));
+            }
+        }
+        save(f, "beam_deflection");
+    }
     for c in &clearances {
+        if rec.no_orbit.iter().any(|n| n == c) {
+            continue;
+        }
         let (Some(ex), Some(ey), Some(pen)) = (
             r.column(&format!("{c}.ex")),
             r.column(&format!("{c}.ey")),
@@ -367,8 +400,17 @@ fn run_figures(dir: &Path, rec: &Record) -> Vec<String> {
         ) else {
             continue;
         };
-        // radial clearance from δ = |e| − c at the first row (exact for any row)
+        // radial clearance from δ = |e| − c (the same on every row of a revolute clearance;
+        // translational clearances record other quantities and get no orbit)
         let radial = (ex[0].hypot(ey[0]) - pen[0]).abs();
+        let revolute = ex
+            .iter()
+            .zip(&ey)
+            .zip(&pen)
+            .all(|((x, y), p)| (x.hypot(*y) - p - radial).abs() <= 1e-9 * radial.max(1e-12));
+        if !revolute || radial == 0.0 {
+            continue;
+        }
         let circle: Vec<(f64, f64)> = (0..=200)
             .map(|k| {
                 let a = std::f64::consts::TAU * k as f64 / 200.0;

@@ -4,10 +4,12 @@ use std::collections::HashMap;
 
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
 use clr_mbd::{Anchor, Model, ModelBuilder, Motion, RevoluteClearanceSpec, RigidBody, SimOptions};
-use clr_mbd::{SolverKind, GROUND};
+use clr_mbd::{SolverKind, TranslationalClearanceSpec, GROUND};
 use nalgebra::Vector2;
 
-use super::file::{ClearanceFile, FrictionFile, MaterialFile, ModelFile, NormalFile};
+use super::file::{
+    BeamFile, ClearanceFile, FrictionFile, MaterialFile, ModelFile, NormalFile, SectionFile,
+};
 use super::locate::{suggestion, FieldPath};
 use super::timefn::{TimeFn, TIME_FN_KINDS};
 use super::SpecError;
@@ -25,6 +27,11 @@ enum ItemSpec {
     Torque(String, String, TimeFn),
     PairTorque(String, String, String, TimeFn),
     Clearance(String, Anchor, Anchor, f64, f64, NormalLaw, FrictionLaw),
+    /// guide, slider, [guide_width, guide_angle, slider_length, slider_height, slider_angle]
+    TransClearance(String, Anchor, Anchor, [f64; 5], NormalLaw, FrictionLaw),
+    Beam(String, Box<clr_beam::BeamModel>),
+    BeamPoint(String, String, usize),
+    NodalLoad(String, String, usize, [TimeFn; 3]),
 }
 
 /// A validated generic model: everything needed to build a `clr_mbd::Model` and its run
@@ -47,8 +54,9 @@ pub struct ModelSpec {
     pub options: SimOptions,
     /// Baumgarte (α, β), 1/s.
     pub baumgarte: (f64, f64),
-    /// Radial clearance c = R_bearing − R_journal of each clearance joint by name, m.
-    pub clearances: Vec<(String, f64)>,
+    /// Each clearance joint by name with its radial clearance c = R_bearing − R_journal (m;
+    /// `None` for translational clearances).
+    pub clearances: Vec<(String, Option<f64>)>,
     /// The file as validated, with every default filled in (for `summary.json`).
     pub resolved: serde_json::Value,
 }
@@ -135,6 +143,8 @@ impl V<'_> {
 struct Names {
     bodies: Vec<String>,
     points: Vec<String>,
+    /// Beam names and node counts.
+    beams: Vec<(String, usize)>,
 }
 
 impl Names {
@@ -379,8 +389,7 @@ fn normal_law(
     v: &V,
     path: &FieldPath,
     n: &Option<NormalFile>,
-    rb: f64,
-    rj: f64,
+    radii: Option<(f64, f64)>,
 ) -> Result<NormalLaw, SpecError> {
     let n = v.req(
         path,
@@ -389,6 +398,19 @@ fn normal_law(
          \"lankarani-nikravesh\", restitution = 0.9 }",
     )?;
     let law = v.kind(&path.key("law"), &n.law, &ELASTIC_LAWS, "normal-force law")?;
+    let Some((rb, rj)) = radii.or_else(|| {
+        ["hertz", "power", "linear"]
+            .contains(&law)
+            .then_some((f64::NAN, f64::NAN))
+    }) else {
+        return Err(v.err(
+            &path.key("law"),
+            format!(
+                "the `{law}` law needs a journal and a bearing; a translational clearance takes \
+                 `hertz`, `power` or `linear` with a stiffness"
+            ),
+        ));
+    };
     let c_e = v.req(
         &path.key("restitution"),
         &n.restitution,
@@ -549,10 +571,11 @@ impl ModelSpec {
             &root.key("model").key("gravity"),
             model.gravity.unwrap_or([0.0, 0.0]),
         )?;
-        if m.body.is_empty() {
+        if m.body.is_empty() && m.beam.is_empty() {
             return Err(v.err(
                 &root.key("body"),
-                "missing value: a model needs at least one [[body]] (name, mass, inertia)",
+                "missing value: a model needs at least one [[body]] (name, mass, inertia) or \
+                 [[beam]]",
             ));
         }
         // names: one namespace, `ground` reserved
@@ -604,11 +627,33 @@ impl ModelSpec {
         let mut names = Names {
             bodies: bodies.iter().map(|(n, _)| n.clone()).collect(),
             points: Vec::new(),
+            beams: Vec::new(),
         };
+        let mut items = Vec::new();
+        for (k, bm) in m.beam.iter().enumerate() {
+            let p = root.key("beam").index(k);
+            let name = claim(p.clone(), &bm.name)?;
+            let (model, nodes) = beam_model(&v, &p, bm)?;
+            names.beams.push((name.clone(), nodes));
+            items.push(ItemSpec::Beam(name, Box::new(model)));
+        }
         let mut points = Vec::new();
         for (k, pt) in m.point.iter().enumerate() {
             let p = root.key("point").index(k);
             let name = claim(p.clone(), &pt.name)?;
+            if pt.beam.is_some() || pt.node.is_some() {
+                if pt.body.is_some() || pt.at.is_some() {
+                    return Err(v.err(
+                        &p.key("beam"),
+                        "a point is on a body (`body`, `at`) or on a beam node (`beam`, `node`), \
+                         not both",
+                    ));
+                }
+                let (beam, node) = names.beam_node(&v, &p, &pt.beam, pt.node)?;
+                names.points.push(name.clone());
+                items.push(ItemSpec::BeamPoint(name, beam, node));
+                continue;
+            }
             let body = names.body_opt(&v, &p.key("body"), &pt.body)?;
             let at = v.finite2(
                 &p.key("at"),
@@ -617,7 +662,6 @@ impl ModelSpec {
             names.points.push(name.clone());
             points.push((name, body, at));
         }
-        let mut items = Vec::new();
         let axis = |p: &FieldPath, a: &Option<[f64; 2]>| -> Result<[f64; 2], SpecError> {
             let a = v.finite2(p, v.req(p, a, "an axis [x, y] (local to body i)")?)?;
             if a[0] == 0.0 && a[1] == 0.0 {
@@ -689,9 +733,16 @@ impl ModelSpec {
                     "force",
                     "torque",
                     "torque_between",
+                    "nodal_load",
                 ],
                 "force",
             )?;
+            let tf = |key: &str, t: &Option<toml::Table>| -> Result<TimeFn, SpecError> {
+                match t {
+                    Some(_) => time_fn(&v, &p.key(key), t),
+                    None => Ok(TimeFn::Constant { value: 0.0 }),
+                }
+            };
             let nn = |key: &str, x: &Option<f64>, unit: &str| -> Result<f64, SpecError> {
                 v.non_negative(&p.key(key), x.unwrap_or(0.0), unit)
             };
@@ -716,16 +767,18 @@ impl ModelSpec {
                         v.finite(&p.key("free_angle"), f.free_angle.unwrap_or(0.0))?,
                     ],
                 ),
+                "nodal_load" => {
+                    let (beam, node) = names.beam_node(&v, &p, &f.beam, f.node)?;
+                    ItemSpec::NodalLoad(
+                        name,
+                        beam,
+                        node,
+                        [tf("fx", &f.fx)?, tf("fy", &f.fy)?, tf("moment", &f.moment)?],
+                    )
+                }
                 "force" => {
-                    let zero = || TimeFn::Constant { value: 0.0 };
-                    let fx = match &f.fx {
-                        Some(_) => time_fn(&v, &p.key("fx"), &f.fx)?,
-                        None => zero(),
-                    };
-                    let fy = match &f.fy {
-                        Some(_) => time_fn(&v, &p.key("fy"), &f.fy)?,
-                        None => zero(),
-                    };
+                    let fx = tf("fx", &f.fx)?;
+                    let fy = tf("fy", &f.fy)?;
                     let at = names.anchor(&v, &p.key("at"), &f.at)?;
                     if anchor_body(&at, &points) == GROUND {
                         return Err(v.err(
@@ -767,12 +820,22 @@ impl ModelSpec {
                 friction,
                 ..
             } = c;
-            v.kind(
+            let kind = v.kind(
                 &p.key("type"),
                 &kind.clone().or(Some("revolute".into())),
-                &["revolute"],
+                &["revolute", "translational"],
                 "clearance joint",
             )?;
+            if kind == "translational" {
+                let (guide, slider, dims) = translational_geometry(&v, &p, &names, c)?;
+                let normal = normal_law(&v, &p.key("normal"), normal, None)?;
+                let friction = friction_law(&v, &p.key("friction"), friction)?;
+                clearances.push((name.clone(), None));
+                items.push(ItemSpec::TransClearance(
+                    name, guide, slider, dims, normal, friction,
+                ));
+                continue;
+            }
             let bearing = names.anchor(&v, &p.key("bearing"), bearing)?;
             let journal = names.anchor(&v, &p.key("journal"), journal)?;
             let rb = v.req(
@@ -797,9 +860,9 @@ impl ModelSpec {
                     ),
                 ));
             }
-            let normal = normal_law(&v, &p.key("normal"), normal, rb, rj)?;
+            let normal = normal_law(&v, &p.key("normal"), normal, Some((rb, rj)))?;
             let friction = friction_law(&v, &p.key("friction"), friction)?;
-            clearances.push((name.clone(), rb - rj));
+            clearances.push((name.clone(), Some(rb - rj)));
             items.push(ItemSpec::Clearance(
                 name, bearing, journal, rb, rj, normal, friction,
             ));
@@ -876,7 +939,7 @@ impl ModelSpec {
         let resolved = serde_json::json!({
             "model": {"name": model.name, "description": model.description, "gravity": gravity},
             "body": m.body, "point": m.point, "joint": m.joint, "driver": m.driver,
-            "force": m.force, "clearance": m.clearance,
+            "force": m.force, "clearance": m.clearance, "beam": m.beam,
             "solver": {"method": method, "rtol": rtol, "atol": atol,
                 "h_max": if h_max.is_finite() { Some(h_max) } else { None },
                 "max_steps": options.max_steps, "baumgarte_alpha": alpha, "baumgarte_beta": beta,
@@ -968,6 +1031,17 @@ impl ModelSpec {
         for (n, body, at) in &self.points {
             b.point(n, body, *at);
         }
+        for it in &self.items {
+            match it {
+                ItemSpec::Beam(n, model) => {
+                    b.flexible_beam(n, (**model).clone());
+                }
+                ItemSpec::BeamPoint(n, beam, node) => {
+                    b.beam_node_point(n, beam, *node);
+                }
+                _ => {}
+            }
+        }
         let motion = |f: &TimeFn| {
             let f = f.clone();
             Motion::new(move |t| f.eval(t))
@@ -1008,6 +1082,29 @@ impl ModelSpec {
                 ItemSpec::PairTorque(n, i, j, f) => {
                     let f = f.clone();
                     b.torque_between(n, i, j, move |t, _, _| f.eval(t)[0]);
+                }
+                ItemSpec::Beam(..) | ItemSpec::BeamPoint(..) => {}
+                ItemSpec::NodalLoad(n, beam, node, [fx, fy, mz]) => {
+                    let (fx, fy, mz) = (fx.clone(), fy.clone(), mz.clone());
+                    b.beam_nodal_load(n, beam, *node, move |t| {
+                        [fx.eval(t)[0], fy.eval(t)[0], mz.eval(t)[0]]
+                    });
+                }
+                ItemSpec::TransClearance(n, guide, slider, d, normal, friction) => {
+                    b.translational_clearance(
+                        n,
+                        guide.clone(),
+                        slider.clone(),
+                        TranslationalClearanceSpec {
+                            guide_width: d[0],
+                            guide_angle: d[1],
+                            slider_length: d[2],
+                            slider_height: d[3],
+                            slider_angle: d[4],
+                            normal: *normal,
+                            friction: *friction,
+                        },
+                    );
                 }
                 ItemSpec::Clearance(n, bearing, journal, rb, rj, normal, friction) => {
                     b.revolute_clearance(
@@ -1062,7 +1159,15 @@ impl ModelSpec {
 
     fn path_of(&self, name: &str) -> Option<FieldPath> {
         let root: toml::Table = toml::from_str(&self.src).ok()?;
-        for sec in ["body", "point", "joint", "driver", "force", "clearance"] {
+        for sec in [
+            "body",
+            "beam",
+            "point",
+            "joint",
+            "driver",
+            "force",
+            "clearance",
+        ] {
             if let Some(toml::Value::Array(a)) = root.get(sec) {
                 if let Some(k) = a
                     .iter()
@@ -1092,4 +1197,217 @@ fn anchor_body<'a>(a: &'a Anchor, points: &'a [(String, String, [f64; 2])]) -> &
         #[allow(unreachable_patterns)]
         _ => "",
     }
+}
+
+impl Names {
+    /// A beam name and a node index on it.
+    fn beam_node(
+        &self,
+        v: &V,
+        p: &FieldPath,
+        beam: &Option<String>,
+        node: Option<u64>,
+    ) -> Result<(String, usize), SpecError> {
+        let b = v.req(&p.key("beam"), beam, "the beam name")?;
+        let Some((_, nodes)) = self.beams.iter().find(|(n, _)| *n == b) else {
+            return Err(v.err(
+                &p.key("beam"),
+                format!(
+                    "unknown beam `{b}`; {}",
+                    suggestion(&b, self.beams.iter().map(|(n, _)| n.as_str()))
+                ),
+            ));
+        };
+        let node = v.req(
+            &p.key("node"),
+            &node,
+            "the node index (0 at the beam's start)",
+        )?;
+        if node as usize >= *nodes {
+            return Err(v.err(
+                &p.key("node"),
+                format!(
+                    "beam `{b}` has nodes 0 to {}; node {node} does not exist",
+                    nodes - 1
+                ),
+            ));
+        }
+        Ok((b, node as usize))
+    }
+}
+
+/// The clr-beam model of a `[[beam]]` and its node count.
+fn beam_model(
+    v: &V,
+    p: &FieldPath,
+    bm: &BeamFile,
+) -> Result<(clr_beam::BeamModel, usize), SpecError> {
+    use clr_beam::{BeamModel, MassKind, Section, Support};
+    let start = v.finite2(
+        &p.key("start"),
+        v.req(&p.key("start"), &bm.start, "the first end [x, y] in m")?,
+    )?;
+    let end = v.finite2(
+        &p.key("end"),
+        v.req(&p.key("end"), &bm.end, "the last end [x, y] in m")?,
+    )?;
+    if start == end {
+        return Err(v.err(&p.key("end"), "the beam has zero length: give end ≠ start"));
+    }
+    let n = v.req(&p.key("elements"), &bm.elements, "the number of elements")?;
+    if n == 0 || n > 10_000 {
+        return Err(v.err(&p.key("elements"), "give between 1 and 10 000 elements"));
+    }
+    let mp = p.key("material");
+    let mf = v.req(
+        &mp,
+        &bm.material,
+        "a material { youngs_modulus = 2.07e11, density = 7850, poisson_ratio = 0.3 }",
+    )?;
+    let e = v.req(
+        &mp.key("youngs_modulus"),
+        &mf.youngs_modulus,
+        "Young's modulus in Pa",
+    )?;
+    let e = v.positive(&mp.key("youngs_modulus"), e, "Pa")?;
+    let rho = v.req(&mp.key("density"), &mf.density, "the density in kg/m³")?;
+    let rho = v.positive(&mp.key("density"), rho, "kg/m³")?;
+    let mat = clr_beam::Material::new(e, rho, mf.poisson_ratio.unwrap_or(0.3))
+        .map_err(|e| v.err(&mp.key("poisson_ratio"), e.to_string()))?;
+    let sp = p.key("section");
+    let sf: SectionFile = v.req(
+        &sp,
+        &bm.section,
+        "a section, e.g. { shape = \"rectangular\", width = 0.02, depth = 0.005 }",
+    )?;
+    let shape = v.kind(
+        &sp.key("shape"),
+        &sf.shape,
+        &["rectangular", "circular", "tube", "general"],
+        "section shape",
+    )?;
+    let dim = |k: &str, x: &Option<f64>| -> Result<f64, SpecError> {
+        let q = sp.key(k);
+        v.positive(
+            &q,
+            v.req(&q, x, &format!("`{k}` in m for a {shape} section"))?,
+            "m",
+        )
+    };
+    let section = match shape {
+        "rectangular" => Section::rectangular(dim("width", &sf.width)?, dim("depth", &sf.depth)?),
+        "circular" => Section::circular(dim("diameter", &sf.diameter)?),
+        "tube" => Section::tube(
+            dim("outer_diameter", &sf.outer_diameter)?,
+            dim("wall", &sf.wall)?,
+        ),
+        _ => {
+            let a = sp.key("area");
+            let i = sp.key("second_moment");
+            Section::new(
+                v.positive(&a, v.req(&a, &sf.area, "the area in m²")?, "m²")?,
+                v.positive(
+                    &i,
+                    v.req(&i, &sf.second_moment, "the second moment in m⁴")?,
+                    "m⁴",
+                )?,
+                dim("depth", &sf.depth)?,
+            )
+        }
+    }
+    .map_err(|e| v.err(&sp, e.to_string()))?;
+    let mut model = BeamModel::straight(start, end, n as usize, mat, section)
+        .map_err(|e| v.err(p, e.to_string()))?;
+    let nodes = n as usize + 1;
+    for (k, s) in bm.supports.iter().enumerate() {
+        let q = p.key("supports").index(k);
+        let node = v.req(&q.key("node"), &s.node, "the node index")?;
+        if node as usize >= nodes {
+            return Err(v.err(
+                &q.key("node"),
+                format!(
+                    "the beam has nodes 0 to {}; node {node} does not exist",
+                    nodes - 1
+                ),
+            ));
+        }
+        let kind = v.kind(
+            &q.key("type"),
+            &s.kind,
+            &["clamped", "pinned", "roller_x", "roller_y"],
+            "support",
+        )?;
+        let support = match kind {
+            "clamped" => Support::Clamped,
+            "pinned" => Support::Pinned,
+            "roller_x" => Support::RollerX,
+            _ => Support::RollerY,
+        };
+        model
+            .support(node as usize, support)
+            .map_err(|e| v.err(&q, e.to_string()))?;
+    }
+    if let Some([a, b]) = bm.rayleigh {
+        let q = p.key("rayleigh");
+        v.non_negative(&q, a, "1/s")?;
+        v.non_negative(&q, b, "s")?;
+        model.set_rayleigh(a, b);
+    }
+    let mass = v.kind(
+        &p.key("mass"),
+        &bm.mass.clone().or(Some("consistent".into())),
+        &["consistent", "lumped"],
+        "mass matrix",
+    )?;
+    model.set_mass_kind(if mass == "lumped" {
+        MassKind::Lumped
+    } else {
+        MassKind::Consistent
+    });
+    Ok((model, nodes))
+}
+
+/// Anchors and dimensions of a translational clearance:
+/// [guide_width, guide_angle, slider_length, slider_height, slider_angle].
+fn translational_geometry(
+    v: &V,
+    p: &FieldPath,
+    names: &Names,
+    c: &ClearanceFile,
+) -> Result<(Anchor, Anchor, [f64; 5]), SpecError> {
+    for (k, present) in [
+        ("bearing", c.bearing.is_some()),
+        ("journal", c.journal.is_some()),
+        ("bearing_radius", c.bearing_radius.is_some()),
+        ("journal_radius", c.journal_radius.is_some()),
+    ] {
+        if present {
+            return Err(v.err(
+                &p.key(k),
+                format!("`{k}` belongs to revolute clearances; a translational one has guide, slider, guide_width, slider_length, slider_height"),
+            ));
+        }
+    }
+    let guide = names.anchor(v, &p.key("guide"), &c.guide)?;
+    let slider = names.anchor(v, &p.key("slider"), &c.slider)?;
+    let pos = |k: &str, x: &Option<f64>| -> Result<f64, SpecError> {
+        let q = p.key(k);
+        v.positive(&q, v.req(&q, x, &format!("`{k}` in m"))?, "m")
+    };
+    let w = pos("guide_width", &c.guide_width)?;
+    let l = pos("slider_length", &c.slider_length)?;
+    let h = pos("slider_height", &c.slider_height)?;
+    if h >= w {
+        return Err(v.err(
+            &p.key("slider_height"),
+            format!(
+                "the clearance guide_width − slider_height = {:e} m must be positive: make \
+                 slider_height smaller than guide_width = {w} m",
+                w - h
+            ),
+        ));
+    }
+    let ga = v.finite(&p.key("guide_angle"), c.guide_angle.unwrap_or(0.0))?;
+    let sa = v.finite(&p.key("slider_angle"), c.slider_angle.unwrap_or(0.0))?;
+    Ok((guide, slider, [w, ga, l, h, sa]))
 }

@@ -35,6 +35,9 @@ pub struct ModelFile {
     /// `[[clearance]]` clearance joints (contact elements).
     #[serde(default)]
     pub clearance: Vec<ClearanceFile>,
+    /// `[[beam]]` ground-fixed flexible beams.
+    #[serde(default)]
+    pub beam: Vec<BeamFile>,
     /// `[solver]` integrator settings.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub solver: Option<SolverFile>,
@@ -101,6 +104,12 @@ pub struct PointFile {
     /// Local coordinates in the body frame (origin at the centre of mass), m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub at: Option<[f64; 2]>,
+    /// Beam whose node this point is (instead of `body` and `at`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beam: Option<String>,
+    /// Node index on `beam`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub node: Option<u64>,
 }
 
 /// An anchor as written: a point name, or `{ body = "...", at = [x, y] }`.
@@ -212,6 +221,15 @@ pub struct ForceFile {
     /// Torque as a time function, N·m.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub torque: Option<toml::Table>,
+    /// Beam of a nodal load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub beam: Option<String>,
+    /// Node of a nodal load.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub node: Option<u64>,
+    /// Moment of a nodal load as a time function, N·m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub moment: Option<toml::Table>,
 }
 
 /// `[[clearance]]`.
@@ -243,6 +261,118 @@ pub struct ClearanceFile {
     /// Friction law (absent: frictionless).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub friction: Option<FrictionFile>,
+    /// Guide frame anchor (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub guide: Option<AnchorFile>,
+    /// Slider centre anchor (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slider: Option<AnchorFile>,
+    /// Inner width of the guide, m (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub guide_width: Option<f64>,
+    /// Angle of the guide axis in the guide body's frame, rad (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub guide_angle: Option<f64>,
+    /// Slider length along its axis, m (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slider_length: Option<f64>,
+    /// Slider height across the guide, m (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slider_height: Option<f64>,
+    /// Angle of the slider axis in the slider body's frame, rad (translational).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub slider_angle: Option<f64>,
+}
+
+/// `[[beam]]`: a ground-fixed flexible beam of Euler–Bernoulli frame elements (clr-beam).
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BeamFile {
+    /// Unique name.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// First end (node 0), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub start: Option<[f64; 2]>,
+    /// Last end (node `elements`), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub end: Option<[f64; 2]>,
+    /// Number of equal elements.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub elements: Option<u64>,
+    /// Material.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub material: Option<BeamMaterialFile>,
+    /// Cross-section.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub section: Option<SectionFile>,
+    /// Supports by node.
+    #[serde(default)]
+    pub supports: Vec<SupportFile>,
+    /// Rayleigh damping [α (1/s), β (s)].
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rayleigh: Option<[f64; 2]>,
+    /// `consistent` (default) or `lumped` mass.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass: Option<String>,
+}
+
+/// Material of a beam.
+#[derive(Debug, Clone, Copy, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BeamMaterialFile {
+    /// Young's modulus, Pa.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub youngs_modulus: Option<f64>,
+    /// Density, kg/m³.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub density: Option<f64>,
+    /// Poisson's ratio (default 0.3).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub poisson_ratio: Option<f64>,
+}
+
+/// Cross-section of a beam: `shape` and its dimensions.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionFile {
+    /// `rectangular`, `circular`, `tube` or `general`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub shape: Option<String>,
+    /// Width (rectangular), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub width: Option<f64>,
+    /// Depth in the bending plane (rectangular, general), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub depth: Option<f64>,
+    /// Diameter (circular), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub diameter: Option<f64>,
+    /// Outer diameter (tube), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub outer_diameter: Option<f64>,
+    /// Wall thickness (tube), m.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub wall: Option<f64>,
+    /// Area (general), m².
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub area: Option<f64>,
+    /// Second moment of area (general), m⁴.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub second_moment: Option<f64>,
+}
+
+/// A support of a beam node.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SupportFile {
+    /// Node index (0 at `start`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub node: Option<u64>,
+    /// `clamped`, `pinned`, `roller_x`, `roller_y`.
+    #[serde(rename = "type")]
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
 }
 
 /// An isotropic material.
@@ -474,6 +604,7 @@ pub(crate) fn builtin(
         ("driver", !parsed.driver.is_empty()),
         ("force", !parsed.force.is_empty()),
         ("clearance", !parsed.clearance.is_empty()),
+        ("beam", !parsed.beam.is_empty()),
         ("solver", parsed.solver.is_some()),
         ("output", parsed.output.is_some()),
     ];
