@@ -33,7 +33,7 @@ pub use memory::ContactMemory;
 pub use multipoint::{
     ContactClass, GuideSurface, MultipointDetector, SineGuide, SliderShape, StraightGuide,
 };
-pub use revolute::{RevoluteClearance, RevoluteContact};
+pub use revolute::{ForceApplication, RevoluteClearance, RevoluteContact};
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
 
 pub use damping::DampingFactor;

@@ -16,6 +16,16 @@
 //!   **f**_i = −**f**_j applied at r_i^Q; moments about each body's reference point
 //!   m_k = (r_k^Q − r_k) × **f**_k.
 //!
+//! Applying each force at its own contact point (the formulation above, [`ForceApplication::ContactPoints`])
+//! makes the action–reaction pair non-collinear: the friction pair is offset by δ along **n** and
+//! adds a net moment δ·F_T to the system, so a free-floating mechanism with friction in a
+//! clearance joint does not conserve angular momentum (a drift of order ∫δ F_T dt).
+//! [`ForceApplication::CommonPoint`] applies both forces at the midpoint of the two contact points
+//! instead: the moments differ from the Flores form by O(δ/R) and angular momentum is conserved
+//! exactly. [`RevoluteContact::generalized_forces`] keeps the published form (the worked example of
+//! contact-laws.md §7.7); multibody codes should prefer
+//! [`RevoluteContact::generalized_forces_with`]`(.., ForceApplication::CommonPoint)`.
+//!
 //! When the centres coincide (e → 0) the normal is undefined; the joint is then not in contact
 //! (δ = −c < 0) and the x axis of the world frame is reported as the normal, so nothing is NaN.
 
@@ -58,6 +68,18 @@ pub struct RevoluteContact {
     pub tangential_velocity: f64,
     bearing_reference: Vector2<f64>,
     journal_reference: Vector2<f64>,
+}
+
+/// Where the contact force pair of a revolute clearance joint is applied.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ForceApplication {
+    /// Force on the journal at r_j^Q, on the bearing at r_i^Q (Flores et al. 2004; contact-laws.md
+    /// §3.1). The pair is offset by δ**n**, so friction adds a net moment δ·F_T.
+    #[default]
+    ContactPoints,
+    /// Both forces at the midpoint (r_i^Q + r_j^Q)/2: collinear action and reaction, so the joint
+    /// conserves the angular momentum of the system exactly.
+    CommonPoint,
 }
 
 /// Generalized forces of a revolute clearance joint on its two bodies.
@@ -224,12 +246,37 @@ impl RevoluteContact {
         if !self.in_contact() {
             return JointForces::default();
         }
+        self.generalized_forces_with(
+            normal_force,
+            tangential_force,
+            ForceApplication::ContactPoints,
+        )
+    }
+
+    /// As [`generalized_forces`](Self::generalized_forces), with the force pair applied as
+    /// `application` says ([`ForceApplication::CommonPoint`] conserves angular momentum).
+    pub fn generalized_forces_with(
+        &self,
+        normal_force: f64,
+        tangential_force: f64,
+        application: ForceApplication,
+    ) -> JointForces {
+        if !self.in_contact() {
+            return JointForces::default();
+        }
         let fj = -normal_force * self.normal + tangential_force * self.tangent;
+        let (at_bearing, at_journal) = match application {
+            ForceApplication::ContactPoints => (self.bearing_point, self.journal_point),
+            ForceApplication::CommonPoint => {
+                let mid = 0.5 * (self.bearing_point + self.journal_point);
+                (mid, mid)
+            }
+        };
         JointForces {
             normal_force,
             tangential_force,
-            bearing: GeneralizedForce::at(self.bearing_reference, self.bearing_point, -fj),
-            journal: GeneralizedForce::at(self.journal_reference, self.journal_point, fj),
+            bearing: GeneralizedForce::at(self.bearing_reference, at_bearing, -fj),
+            journal: GeneralizedForce::at(self.journal_reference, at_journal, fj),
         }
     }
 
@@ -246,8 +293,28 @@ impl RevoluteContact {
         if !self.in_contact() {
             return JointForces::default();
         }
+        self.forces_from_laws_with(
+            normal,
+            friction,
+            impact_velocity,
+            ForceApplication::ContactPoints,
+        )
+    }
+
+    /// As [`forces_from_laws`](Self::forces_from_laws), with the force pair applied as
+    /// `application` says.
+    pub fn forces_from_laws_with(
+        &self,
+        normal: &NormalLaw,
+        friction: &FrictionLaw,
+        impact_velocity: f64,
+        application: ForceApplication,
+    ) -> JointForces {
+        if !self.in_contact() {
+            return JointForces::default();
+        }
         let f_n = normal.force(self.penetration, self.normal_velocity, impact_velocity);
         let f_t = friction.force(self.tangential_velocity, f_n);
-        self.generalized_forces(f_n, f_t)
+        self.generalized_forces_with(f_n, f_t, application)
     }
 }
