@@ -62,6 +62,8 @@ pub struct CaseSpec {
 impl Case {
     /// Start a case: `id` (dotted, e.g. `ode.hires`), the quantity measured, its unit and the
     /// source of the reference.
+    // A builder entry point: the case is finished by a comparison (`relative`, `at_least`, …).
+    #[allow(clippy::new_ret_no_self)]
     pub fn new(
         id: impl Into<String>,
         quantity: impl Into<String>,

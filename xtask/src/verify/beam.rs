@@ -511,7 +511,7 @@ pub fn figures(dir: &Path) -> Result<(), String> {
     let mut fig = Figure::new("Cantilever bending modes: FE (20 elements) vs closed form")
         .x_label("x / L")
         .y_label("φ(x) / φ(L)");
-    for k in 0..4 {
+    for (k, &beta) in BETA_CANTILEVER.iter().enumerate().take(4) {
         let q: Vec<f64> = (0..b.n_dof()).map(|d| m.shapes[(d, k)]).collect();
         let tip = path
             .point(L, &q, &zero)
@@ -527,7 +527,6 @@ pub fn figures(dir: &Path) -> Result<(), String> {
                 (s / L, v)
             })
             .collect();
-        let beta = BETA_CANTILEVER[k];
         let sigma = (beta.cosh() + beta.cos()) / (beta.sinh() + beta.sin());
         let phi = |x: f64| {
             let z = beta * x;

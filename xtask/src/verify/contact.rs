@@ -144,9 +144,12 @@ const FLAP_TABLE: [(&str, &str, f64); 6] = [
     ("Modified", "modified", 0.488),
 ];
 
+/// One row of contact-laws.md §4: id suffix, law, and reference [e_eff, δ_max, F_max, t_c].
+type JournalRow = (&'static str, NormalLaw, [f64; 4]);
+
 /// The eight pairings of contact-laws.md §4: id suffix, elastic part, damping, and the
 /// reference e_eff, δ_max (m), F_max (N), t_c (s) (RK45, rtol 1e-11).
-fn journal_rows() -> Result<Vec<(&'static str, NormalLaw, [f64; 4])>, String> {
+fn journal_rows() -> Result<Vec<JournalRow>, String> {
     let jb = JournalBearing::flap_paper_test();
     let e_star = jb.bearing.composite_modulus(&jb.journal);
     let c = jb.clearance();
