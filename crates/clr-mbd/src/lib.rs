@@ -29,6 +29,8 @@
 //! assert!((e[10] - e[0]).abs() < 1e-6);
 //! ```
 
+#![warn(missing_docs)]
+
 mod clearance;
 pub mod error;
 mod flexible;
