@@ -1,0 +1,109 @@
+//! Model files never panic: every line of the example files deleted in turn, and every number
+//! replaced by hostile values (negative, zero, huge, NaN, infinity, a string, an array, a
+//! table), gives either a valid model or a located error (file and line), never a panic.
+
+use std::path::Path;
+
+use clr::spec::{load_str, Loaded};
+
+const FILES: [&str; 5] = [
+    "pendulum.toml",
+    "journal_bearing.toml",
+    "slider_crank.toml",
+    "cantilever.toml",
+    "slider_in_guide.toml",
+];
+
+const HOSTILE: [&str; 9] = [
+    "-1.0", "0", "0.0", "1e308", "nan", "-inf", "\"x\"", "[1.0]", "{}",
+];
+
+/// Load (and build, when valid) one text; returns a description of what went wrong, if any.
+fn check(name: &str, text: &str) -> Result<(), String> {
+    let r = std::panic::catch_unwind(|| match load_str(name, text, &[]) {
+        Ok(Loaded::Generic(spec)) => match spec.build() {
+            Ok(_) => Ok(()),
+            Err(e) if !e.message.is_empty() => Ok(()),
+            Err(e) => Err(format!("empty build error {e:?}")),
+        },
+        Ok(Loaded::Builtin { .. }) => Ok(()),
+        Err(e) if e.line.is_some() && !e.message.is_empty() => Ok(()),
+        Err(e) => Err(format!("error without a line: {e}")),
+    });
+    match r {
+        Ok(x) => x,
+        Err(_) => Err("panicked".to_string()),
+    }
+}
+
+/// Byte ranges of the numbers of a line (outside comments and strings).
+fn numbers(line: &str) -> Vec<(usize, usize)> {
+    let code = line.split('#').next().unwrap_or("");
+    let b = code.as_bytes();
+    let mut out = Vec::new();
+    let mut k = 0;
+    let mut in_str = false;
+    while k < b.len() {
+        let c = b[k];
+        if c == b'"' {
+            in_str = !in_str;
+        }
+        let starts = !in_str
+            && (c.is_ascii_digit() || (c == b'-' && b.get(k + 1).is_some_and(u8::is_ascii_digit)))
+            && (k == 0 || !(b[k - 1].is_ascii_alphanumeric() || b[k - 1] == b'_'));
+        if starts {
+            let s = k;
+            k += 1;
+            while k < b.len() && (b[k].is_ascii_alphanumeric() || b"+-._".contains(&b[k])) {
+                k += 1;
+            }
+            out.push((s, k));
+        } else {
+            k += 1;
+        }
+    }
+    out
+}
+
+#[test]
+fn mutated_model_files_never_panic() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let mut failures = Vec::new();
+    let mut cases = 0;
+    for f in FILES {
+        let text = std::fs::read_to_string(dir.join(f)).unwrap();
+        // the file itself is valid
+        assert!(
+            matches!(load_str(f, &text, &[]), Ok(Loaded::Generic(_))),
+            "{f} is not valid"
+        );
+        let lines: Vec<&str> = text.lines().collect();
+        for (i, line) in lines.iter().enumerate() {
+            let mut deleted = lines.clone();
+            deleted.remove(i);
+            cases += 1;
+            if let Err(e) = check(f, &deleted.join("\n")) {
+                failures.push(format!("{f}: line {} deleted: {e}", i + 1));
+            }
+            for (s, t) in numbers(line) {
+                for h in HOSTILE {
+                    let mut m = lines.clone();
+                    let new = format!("{}{h}{}", &line[..s], &line[t..]);
+                    m[i] = &new;
+                    cases += 1;
+                    if let Err(e) = check(f, &m.join("\n")) {
+                        failures.push(format!("{f}:{}: `{new}`: {e}", i + 1));
+                    }
+                }
+            }
+        }
+    }
+    assert!(cases > 1000, "only {cases} mutations");
+    eprintln!("{cases} mutated files checked");
+    assert!(
+        failures.is_empty(),
+        "{} of {cases} mutations failed:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
