@@ -311,8 +311,8 @@ impl Model {
         self.simulate_from(opts, &y0)
     }
 
-    /// As [`Model::simulate`] from a given state y0 = (q, q̇) (not modified; project it first if
-    /// it may violate the constraints).
+    /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d) of length 2n + 1 (not modified;
+    /// project it first with [`Model::project`] if it may violate the constraints).
     ///
     /// # Errors
     /// As [`Model::simulate`].
