@@ -1,9 +1,75 @@
 //! Contact elements: revolute clearance joint (journal in bearing) and translational clearance
 //! joint (rectangular slider in a straight guide), both force elements built on clr-contact.
 
+use clr_beam::{Face, Path};
 use clr_contact::translational::TranslationalClearance;
-use clr_contact::{BodyState, ContactMemory, FrictionLaw, NormalLaw, RevoluteClearance};
+use clr_contact::{
+    BodyState, ContactMemory, FrictionLaw, GuideSurface, MultipointDetector, NormalLaw,
+    RevoluteClearance,
+};
 use nalgebra::Vector2;
+
+use crate::flexible::FlexBeam;
+
+/// A slider on a face of a flexible beam (clr-contact multipoint detection over the clr-beam
+/// deformed-shape queries).
+pub(crate) struct FlexGuide {
+    /// Index of the beam in the model's beams.
+    pub(crate) beam: usize,
+    pub(crate) path: Path,
+    pub(crate) face: Face,
+    pub(crate) detector: MultipointDetector,
+    /// Full-DOF displacement and velocity buffers of the beam (scattered from q, q̇).
+    pub(crate) qfull: Vec<f64>,
+    pub(crate) qdfull: Vec<f64>,
+}
+
+/// The deformed beam face as a clr-contact guide surface (s = undeformed arc length).
+struct BeamFace<'a> {
+    path: &'a Path,
+    face: Face,
+    q: &'a [f64],
+    qd: &'a [f64],
+}
+
+impl BeamFace<'_> {
+    fn at(&self, s: f64) -> clr_beam::SurfacePoint {
+        self.path
+            .surface(s, self.face, self.q, self.qd)
+            .unwrap_or(clr_beam::SurfacePoint {
+                position: [f64::NAN; 2],
+                velocity: [f64::NAN; 2],
+                normal: [f64::NAN; 2],
+                normal_rate: [f64::NAN; 2],
+            })
+    }
+}
+
+impl GuideSurface for BeamFace<'_> {
+    fn arc_range(&self) -> (f64, f64) {
+        (0.0, self.path.length())
+    }
+    fn point(&self, s: f64) -> Vector2<f64> {
+        let p = self.at(s).position;
+        Vector2::new(p[0], p[1])
+    }
+    fn tangent(&self, s: f64) -> Vector2<f64> {
+        // dr/ds direction: the outward normal turned back by ∓90° (upper face: n = k̂ × t)
+        let n = self.at(s).normal;
+        match self.face {
+            Face::Upper => Vector2::new(n[1], -n[0]),
+            Face::Lower => Vector2::new(-n[1], n[0]),
+        }
+    }
+    fn normal(&self, s: f64) -> Vector2<f64> {
+        let n = self.at(s).normal;
+        Vector2::new(n[0], n[1])
+    }
+    fn velocity(&self, s: f64) -> Vector2<f64> {
+        let v = self.at(s).velocity;
+        Vector2::new(v[0], v[1])
+    }
+}
 
 /// Geometry of a contact element.
 pub(crate) enum ClearanceKind {
@@ -17,6 +83,8 @@ pub(crate) enum ClearanceKind {
         angle: f64,
         width: f64,
     },
+    /// Slider (body j) on a flexible beam face; `i` is unused (the ground).
+    FlexGuide(Box<FlexGuide>),
 }
 
 pub(crate) struct Clearance {
@@ -56,11 +124,21 @@ pub struct ContactReport {
 }
 
 impl Clearance {
-    /// Number of contact points (1 revolute, 4 corners translational).
+    /// Number of contact-memory slots (1 revolute, 4 corners translational, every detector
+    /// candidate for a flexible guide).
     pub(crate) fn points(&self) -> usize {
-        match self.kind {
+        match &self.kind {
             ClearanceKind::Revolute(_) => 1,
             ClearanceKind::Translational { .. } => 4,
+            ClearanceKind::FlexGuide(g) => g.detector.point_count(),
+        }
+    }
+
+    /// Number of onset event functions (0 for a flexible guide: its onsets are not located).
+    pub(crate) fn event_points(&self) -> usize {
+        match &self.kind {
+            ClearanceKind::FlexGuide(_) => 0,
+            _ => self.points(),
         }
     }
 
@@ -85,6 +163,8 @@ impl Clearance {
                 let v = bj.point_velocity(p) - bi.point_velocity(p);
                 (y.abs() - 0.5 * width, v.dot(&n))
             }
+            // per-candidate gaps are inside the detector; only active points are known
+            ClearanceKind::FlexGuide(_) => (-1.0, 0.0),
         }
     }
 
@@ -165,12 +245,134 @@ impl Clearance {
                 rep.penetration = dmax;
                 rep.penetration_rate = rate;
             }
+            // handled by apply_flex (it needs the beam coordinates)
+            ClearanceKind::FlexGuide(_) => {}
         }
         rep
     }
 
+    /// Index of the beam of a flexible-guide element.
+    pub(crate) fn flex_beam(&self) -> Option<usize> {
+        match &self.kind {
+            ClearanceKind::FlexGuide(g) => Some(g.beam),
+            _ => None,
+        }
+    }
+
+    /// Detect the slider (state `bj`) against the deformed beam at (q, q̇).
+    fn detect_flex(&mut self, fb: &FlexBeam, q: &[f64], qd: &[f64], bj: &BodyState) {
+        let ClearanceKind::FlexGuide(g) = &mut self.kind else {
+            return;
+        };
+        g.qfull.fill(0.0);
+        g.qdfull.fill(0.0);
+        for (a, &d) in fb.free.iter().enumerate() {
+            g.qfull[d] = q[fb.offset + a];
+            g.qdfull[d] = qd[fb.offset + a];
+        }
+        let surface = BeamFace {
+            path: &g.path,
+            face: g.face,
+            q: &g.qfull,
+            qd: &g.qdfull,
+        };
+        g.detector.detect(&surface, bj);
+    }
+
+    /// Forces of a slider on a flexible guide: on the slider through `add_slider(qf, [f_x, f_y,
+    /// m])`, on the beam as work-equivalent nodal loads of each point load at its arc coordinate
+    /// (clr-beam `surface_load_row`), added to the beam's free DOF in `qf`.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn apply_flex(
+        &mut self,
+        fb: &FlexBeam,
+        q: &[f64],
+        qd: &[f64],
+        bj: &BodyState,
+        memory: &mut ContactMemory,
+        qf: &mut [f64],
+        mut add_slider: impl FnMut(&mut [f64], [f64; 3]),
+    ) -> ContactReport {
+        self.detect_flex(fb, q, qd, bj);
+        let (normal, friction, mem) = (&self.normal, &self.friction, self.mem);
+        let ClearanceKind::FlexGuide(g) = &mut self.kind else {
+            return ContactReport::default();
+        };
+        let mut rep = ContactReport {
+            penetration: f64::NEG_INFINITY,
+            ..Default::default()
+        };
+        let gf = g.detector.apply_forces(|p| {
+            let pc = &p.contact;
+            let vm = memory.impact_velocity(mem + p.id, pc.penetration, pc.normal_velocity);
+            let f_n = normal.force(pc.penetration, pc.normal_velocity, vm);
+            let f_t = friction.force(pc.tangential_velocity, f_n);
+            rep.active_points += 1;
+            rep.normal_force += f_n;
+            rep.friction_force += f_t;
+            rep.dissipated_power += (f_n - normal.elastic_force(pc.penetration))
+                * pc.normal_velocity
+                - f_t * pc.tangential_velocity;
+            if pc.penetration > rep.penetration {
+                rep.penetration = pc.penetration;
+                rep.penetration_rate = pc.normal_velocity;
+            }
+            (f_n, f_t)
+        });
+        if rep.active_points == 0 {
+            rep.penetration = 0.0;
+        }
+        add_slider(qf, gf.as_array());
+        for load in g.detector.loads() {
+            if let Ok(row) = g.path.surface_load_row(load.arc, g.face, &g.qfull) {
+                for k in 0..6 {
+                    if let Some(fi) = fb.free_index[row.dofs[k]] {
+                        qf[fb.offset + fi] += row.fx[k] * load.force.x + row.fy[k] * load.force.y;
+                    }
+                }
+            }
+        }
+        let slider_on_beam = bj.position;
+        rep.eccentricity = [slider_on_beam.x, slider_on_beam.y];
+        rep
+    }
+
+    /// Commit the memory of a flexible-guide element at an accepted state: active detector
+    /// points with their (δ, δ̇), the others as separated (δ = −1 m marker, δ̇ = 0; the next onset
+    /// then takes the current δ̇ as impact velocity).
+    pub(crate) fn commit_flex(
+        &mut self,
+        fb: &FlexBeam,
+        q: &[f64],
+        qd: &[f64],
+        bj: &BodyState,
+        memory: &mut ContactMemory,
+    ) {
+        self.detect_flex(fb, q, qd, bj);
+        let mem = self.mem;
+        let ClearanceKind::FlexGuide(g) = &self.kind else {
+            return;
+        };
+        for id in 0..g.detector.point_count() {
+            match g.detector.points().iter().find(|p| p.id == id) {
+                Some(p) => {
+                    memory.commit(mem + id, p.contact.penetration, p.contact.normal_velocity)
+                }
+                None => memory.commit(mem + id, -1.0, 0.0),
+            }
+        }
+    }
+
     /// Elastic energy ∫F_e dδ summed over the contact points, J.
     pub(crate) fn elastic_energy(&self, bi: &BodyState, bj: &BodyState) -> f64 {
+        if let ClearanceKind::FlexGuide(g) = &self.kind {
+            return g
+                .detector
+                .points()
+                .iter()
+                .map(|p| elastic_energy(&self.normal, p.contact.penetration))
+                .sum();
+        }
         (0..self.points())
             .map(|k| elastic_energy(&self.normal, self.gap(bi, bj, k).0))
             .sum()

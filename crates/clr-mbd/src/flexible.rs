@@ -23,6 +23,10 @@ pub(crate) struct FlexBeam {
     pub(crate) n_dof_full: usize,
     /// Undeformed node positions, m.
     pub(crate) nodes: Vec<[f64; 2]>,
+    /// For each full DOF, its index among the free DOF.
+    pub(crate) free_index: Vec<Option<usize>>,
+    /// The path through all elements (for surface queries), when the model has one.
+    pub(crate) path: Option<clr_beam::Path>,
     /// Free-DOF matrices, row-major nf × nf.
     pub(crate) m: Vec<f64>,
     pub(crate) k: Vec<f64>,
@@ -50,6 +54,8 @@ impl FlexBeam {
             free: map.free.clone(),
             n_dof_full: model.n_dof(),
             nodes: model.nodes().to_vec(),
+            free_index: map.free_index.clone(),
+            path: model.path().ok(),
             m: vec![0.0; nf * nf],
             k: vec![0.0; nf * nf],
             c: vec![0.0; nf * nf],

@@ -42,7 +42,8 @@ pub mod system;
 pub use error::MbdError;
 pub use flexible::NodalLoadFn;
 pub use model::{
-    Anchor, ModelBuilder, RevoluteClearanceSpec, RigidBody, TranslationalClearanceSpec, GROUND,
+    Anchor, FlexibleGuideSpec, ModelBuilder, RevoluteClearanceSpec, RigidBody,
+    TranslationalClearanceSpec, GROUND,
 };
 pub use sim::{Results, SimOptions, SolverKind};
 pub use system::{

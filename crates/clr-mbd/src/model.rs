@@ -10,7 +10,7 @@ use clr_contact::{
 };
 use nalgebra::Vector2;
 
-use crate::clearance::{Clearance, ClearanceKind};
+use crate::clearance::{Clearance, ClearanceKind, FlexGuide};
 use crate::error::MbdError;
 use crate::flexible::{FlexBeam, NodalLoadFn};
 use crate::system::{Con, ForceEl, Frame, Model, Motion};
@@ -141,6 +141,29 @@ pub struct TranslationalClearanceSpec {
     pub friction: FrictionLaw,
 }
 
+/// A rigid rectangular slider on a face of a ground-fixed flexible beam: clr-contact's
+/// multipoint detection (corners, face points, optional reverse check with guide samples)
+/// against the deformed beam surface from clr-beam; the guide reactions become work-equivalent
+/// nodal loads of the beam.
+pub struct FlexibleGuideSpec {
+    /// Beam face the slider runs on (`Upper`: the +h/2 face on the left of the beam axis).
+    pub face: clr_beam::Face,
+    /// Slider length L, m.
+    pub slider_length: f64,
+    /// Slider height h, m.
+    pub slider_height: f64,
+    /// Angle of the slider axis from its body's x axis, rad.
+    pub slider_angle: f64,
+    /// Candidate points on each slider face besides the corners (e.g. 5).
+    pub face_points: usize,
+    /// Guide samples of the reverse check (0 disables it).
+    pub guide_samples: usize,
+    /// Normal-force law of each contact point.
+    pub normal: NormalLaw,
+    /// Friction law of each contact point.
+    pub friction: FrictionLaw,
+}
+
 enum Item {
     Point {
         name: String,
@@ -229,6 +252,12 @@ enum Item {
         beam: String,
         node: usize,
     },
+    SliderOnBeam {
+        name: String,
+        beam: String,
+        slider: Anchor,
+        spec: FlexibleGuideSpec,
+    },
     BeamLoad {
         name: String,
         beam: String,
@@ -255,6 +284,7 @@ impl Item {
             | Item::TransClearance { name, .. }
             | Item::Beam { name, .. }
             | Item::BeamPoint { name, .. }
+            | Item::SliderOnBeam { name, .. }
             | Item::BeamLoad { name, .. } => name,
         }
     }
@@ -275,6 +305,7 @@ impl Item {
             Item::TransClearance { .. } => "translational clearance joint",
             Item::Beam { .. } => "flexible beam",
             Item::BeamPoint { .. } => "beam node point",
+            Item::SliderOnBeam { .. } => "slider on a flexible guide",
             Item::BeamLoad { .. } => "beam nodal load",
         }
     }
@@ -567,6 +598,25 @@ impl ModelBuilder {
         self
     }
 
+    /// A slider on a flexible guide: the slider centre is anchor `slider` (a rigid body), the
+    /// guide is a face of flexible beam `beam` (see [`FlexibleGuideSpec`]). Onsets are not
+    /// located as events for this element.
+    pub fn slider_on_beam(
+        &mut self,
+        name: &str,
+        beam: &str,
+        slider: impl Into<Anchor>,
+        spec: FlexibleGuideSpec,
+    ) -> &mut Self {
+        self.items.push(Item::SliderOnBeam {
+            name: name.into(),
+            beam: beam.into(),
+            slider: slider.into(),
+            spec,
+        });
+        self
+    }
+
     /// A nodal load on beam `beam` at node `node`: `f(t) -> [F_x, F_y, M]` (N, N, N·m, global
     /// axes); components on constrained DOF are taken by the supports.
     pub fn beam_nodal_load(
@@ -810,6 +860,69 @@ impl ModelBuilder {
             let name = item.name().to_string();
             match item {
                 Item::Point { .. } | Item::Beam { .. } | Item::BeamPoint { .. } => {}
+                Item::SliderOnBeam {
+                    beam, slider, spec, ..
+                } => {
+                    let (j, sj) = anchor(&name, &slider)?;
+                    if j == GROUND_ID || j >= self.bodies.len() {
+                        return Err(MbdError::InvalidParameter {
+                            item: name,
+                            what: "slider body",
+                            value: f64::NAN,
+                            requirement:
+                                "the slider must be a rigid body (not the ground or a beam node)",
+                        });
+                    }
+                    let Some(b) = beams.iter().position(|fb| fb.name == beam) else {
+                        return Err(MbdError::UnknownBody {
+                            item: name,
+                            body: beam,
+                            known: "(beams) ".to_string() + &known,
+                        });
+                    };
+                    let Some(path) = beams[b].path.clone() else {
+                        return Err(MbdError::InvalidParameter {
+                            item: name,
+                            what: "beam path",
+                            value: f64::NAN,
+                            requirement: "the beam's elements must form one chain (as BeamModel::straight makes)",
+                        });
+                    };
+                    let contact = |source| MbdError::Contact {
+                        item: name.clone(),
+                        source,
+                    };
+                    let shape = SliderShape::new(
+                        spec.slider_length,
+                        spec.slider_height,
+                        sj,
+                        spec.slider_angle,
+                    )
+                    .map_err(contact)?;
+                    let detector = clr_contact::MultipointDetector::new(
+                        shape,
+                        spec.face_points,
+                        spec.guide_samples,
+                    )
+                    .map_err(contact)?;
+                    let nfull = beams[b].n_dof_full;
+                    clearances.push(Clearance {
+                        name,
+                        i: GROUND_ID,
+                        j,
+                        kind: ClearanceKind::FlexGuide(Box::new(FlexGuide {
+                            beam: b,
+                            path,
+                            face: spec.face,
+                            detector,
+                            qfull: vec![0.0; nfull],
+                            qdfull: vec![0.0; nfull],
+                        })),
+                        normal: spec.normal,
+                        friction: spec.friction,
+                        mem: 0,
+                    });
+                }
                 Item::BeamLoad { beam, node, f, .. } => {
                     let Some(fb) = beams.iter_mut().find(|b| b.name == beam) else {
                         return Err(MbdError::UnknownBody {
@@ -1051,6 +1164,7 @@ fn item_anchors(item: &Item) -> Vec<&Anchor> {
             bearing, journal, ..
         } => vec![bearing, journal],
         Item::TransClearance { guide, slider, .. } => vec![guide, slider],
+        Item::SliderOnBeam { slider, .. } => vec![slider],
         _ => Vec::new(),
     }
 }

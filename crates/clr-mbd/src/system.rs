@@ -281,8 +281,6 @@ pub struct Model {
     pub(crate) sol: Vec<f64>,
     pub(crate) contacts: Vec<ContactReport>,
     pub(crate) solve_ok: bool,
-    /// Total number of contact points (revolute 1, translational 4).
-    pub(crate) n_points: usize,
     /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
     pub(crate) p_diss: f64,
 }
@@ -385,7 +383,6 @@ impl Model {
         lu.resize(n + m);
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
-        let n_points = mem;
         Ok(Model {
             body_names,
             bodies,
@@ -412,7 +409,6 @@ impl Model {
             sol: vec![0.0; n + m],
             contacts: vec![ContactReport::default(); nc],
             solve_ok: true,
-            n_points,
             p_diss: 0.0,
         })
     }
@@ -649,12 +645,18 @@ impl Model {
                 }
             }
         }
-        for (k, cl) in self.clearances.iter().enumerate() {
+        for (k, cl) in self.clearances.iter_mut().enumerate() {
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
-            self.contacts[k] = cl.apply(&bi, &bj, &mut self.memory, |b, g| {
-                add_gen(&self.frames, qf, b, g)
-            });
+            let frames = &self.frames;
+            self.contacts[k] = if let Some(b) = cl.flex_beam() {
+                let j = cl.j;
+                cl.apply_flex(&self.beams[b], q, qd, &bj, &mut self.memory, qf, |qf, g| {
+                    add_gen(frames, qf, j, g)
+                })
+            } else {
+                cl.apply(&bi, &bj, &mut self.memory, |b, g| add_gen(frames, qf, b, g))
+            };
             p_diss += self.contacts[k].dissipated_power;
         }
         for b in &self.beams {
@@ -855,9 +857,13 @@ impl Model {
     pub(crate) fn commit_contacts(&mut self, y: &[f64]) {
         let n = self.n;
         let (q, qd) = y.split_at(n);
-        for cl in &self.clearances {
+        for cl in self.clearances.iter_mut() {
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
+            if let Some(b) = cl.flex_beam() {
+                cl.commit_flex(&self.beams[b], q, qd, &bj, &mut self.memory);
+                continue;
+            }
             for p in 0..cl.points() {
                 let (d, r) = cl.gap(&bi, &bj, p);
                 self.memory.commit(cl.mem + p, d, r);
@@ -916,22 +922,25 @@ impl OdeSystem for Model {
 
     fn n_events(&self) -> usize {
         if self.events_on {
-            self.n_points
+            self.clearances.iter().map(Clearance::event_points).sum()
         } else {
             0
         }
     }
 
-    /// One event per contact point (1 per revolute, 4 corners per translational clearance joint):
+    /// One event per contact point (1 per revolute, 4 corners per translational clearance joint,
+    /// none for a slider on a flexible guide):
     /// its signed penetration δ (m); a rising crossing is a contact onset.
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
         let n = self.n;
         let (q, qd) = y.split_at(n);
+        let mut ev = 0;
         for cl in &self.clearances {
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
-            for p in 0..cl.points() {
-                g[cl.mem + p] = cl.gap(&bi, &bj, p).0;
+            for p in 0..cl.event_points() {
+                g[ev] = cl.gap(&bi, &bj, p).0;
+                ev += 1;
             }
         }
     }
