@@ -98,7 +98,9 @@ pub(crate) fn execute(
             if let Some(p) = progress {
                 settings.progress = Some(p.callback(t_end));
             }
+            let guard = progress.map(|p| p.spinner());
             let r = clr_models::catalog::run(name, parameters, &settings);
+            drop(guard);
             let wall = start.elapsed().as_secs_f64();
             match r {
                 Ok(o) => Ok(Record::from_output(o, "builtin", wall, None)),

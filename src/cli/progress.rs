@@ -3,14 +3,13 @@
 use std::io::IsTerminal;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Shows progress on stderr after one second, only when stderr is a terminal and not `--quiet`.
 pub(crate) struct Progress {
     bar: Option<ProgressBar>,
-    start: Instant,
 }
 
 /// Keeps a spinner alive while a run without progress callbacks is going.
@@ -33,7 +32,6 @@ impl Progress {
         let enabled = !quiet && std::io::stderr().is_terminal();
         Self {
             bar: enabled.then(|| ProgressBar::with_draw_target(None, ProgressDrawTarget::hidden())),
-            start: Instant::now(),
         }
     }
 
@@ -43,39 +41,21 @@ impl Progress {
         }
     }
 
-    /// A callback for clr-models runs: called with the simulated time (s).
+    /// A callback for clr-models runs, called with the simulated time (s): shown as the
+    /// spinner's message (see [`Progress::spinner`]).
     pub(crate) fn callback(&self, t_end: Option<f64>) -> Box<dyn Fn(f64) + Send + Sync> {
         let Some(bar) = self.bar.clone() else {
             return Box::new(|_| {});
         };
-        let start = self.start;
-        match t_end {
-            Some(te) => {
-                bar.set_length(1000);
-                bar.set_style(
-                    ProgressStyle::with_template("{bar:40} {msg} [{elapsed}, eta {eta}]")
-                        .unwrap_or_else(|_| ProgressStyle::default_bar()),
-                );
-                Box::new(move |t| {
-                    if start.elapsed() > Duration::from_secs(1) {
-                        Self::show(&bar);
-                        bar.set_position(((t / te).clamp(0.0, 1.0) * 1000.0) as u64);
-                        bar.set_message(format!("t = {t:.4} s of {te} s"));
-                    }
-                })
-            }
-            None => Box::new(move |t| {
-                if start.elapsed() > Duration::from_secs(1) {
-                    Self::show(&bar);
-                    bar.set_message(format!("t = {t:.4} s"));
-                    bar.tick();
-                }
-            }),
-        }
+        Box::new(move |t| match t_end {
+            Some(te) => bar.set_message(format!("t = {t:.4} s of {te} s")),
+            None => bar.set_message(format!("t = {t:.4} s")),
+        })
     }
 
-    /// A spinner with the elapsed time, shown after one second (for model-file runs, which have
-    /// no progress callback).
+    /// A spinner with the elapsed time (and the simulated time when the model reports it),
+    /// shown after one second. clr-mbd runs report no intermediate progress, so a bar over
+    /// simulated time cannot advance during a run; the spinner shows the run is alive.
     pub(crate) fn spinner(&self) -> SpinnerGuard {
         let done = Arc::new(AtomicBool::new(false));
         if let Some(bar) = self.bar.clone() {
@@ -85,7 +65,7 @@ impl Progress {
                 std::thread::sleep(Duration::from_secs(1));
                 if !d.load(Ordering::SeqCst) {
                     b.set_style(
-                        ProgressStyle::with_template("{spinner} simulating [{elapsed}]")
+                        ProgressStyle::with_template("{spinner} simulating {msg} [{elapsed}]")
                             .unwrap_or_else(|_| ProgressStyle::default_spinner()),
                     );
                     Self::show(&b);
