@@ -892,13 +892,12 @@ impl ModelBuilder {
                         item: name.clone(),
                         source,
                     };
-                    let shape = SliderShape::new(
-                        spec.slider_length,
-                        spec.slider_height,
+                    let shape = slider_shape(
+                        &name,
+                        [spec.slider_length, spec.slider_height],
                         sj,
                         spec.slider_angle,
-                    )
-                    .map_err(contact)?;
+                    )?;
                     let detector = clr_contact::MultipointDetector::new(
                         shape,
                         spec.face_points,
@@ -1102,13 +1101,12 @@ impl ModelBuilder {
                         item: name.clone(),
                         source,
                     };
-                    let shape = SliderShape::new(
-                        spec.slider_length,
-                        spec.slider_height,
+                    let shape = slider_shape(
+                        &name,
+                        [spec.slider_length, spec.slider_height],
                         sj,
                         spec.slider_angle,
-                    )
-                    .map_err(contact)?;
+                    )?;
                     let geometry =
                         TranslationalClearance::new(shape, spec.guide_width, gi, spec.guide_angle)
                             .map_err(contact)?;
@@ -1167,6 +1165,19 @@ fn item_anchors(item: &Item) -> Vec<&Anchor> {
         Item::SliderOnBeam { slider, .. } => vec![slider],
         _ => Vec::new(),
     }
+}
+
+/// A clr-contact slider rectangle (length, height in m) centred at `centre` on its body.
+fn slider_shape(
+    item: &str,
+    size: [f64; 2],
+    centre: Vector2<f64>,
+    angle: f64,
+) -> Result<SliderShape, MbdError> {
+    SliderShape::new(size[0], size[1], centre, angle).map_err(|source| MbdError::Contact {
+        item: item.to_string(),
+        source,
+    })
 }
 
 fn ground_load(item: String) -> MbdError {
