@@ -1,6 +1,7 @@
 //! The built-in models, by name.
 
 use crate::common::parse;
+use crate::flap::{self, FlapParams};
 use crate::manipulator::{self, ManipulatorParams};
 use crate::slider_crank::{self, SliderCrankParams};
 use crate::{ModelsError, RunOutput, RunSettings};
@@ -28,6 +29,12 @@ pub fn entries() -> Vec<Entry> {
                           Modified law c_r = 0.46, Ambrosio friction 0.01, 0.1 mm, 600 rpm",
         },
         Entry {
+            name: "flap",
+            description: "flap actuation system of Wan et al. (2022), rigid linkage \
+                          reconstructed: 0.1 mm clearance in J4 (aux rod-aux lever arm), \
+                          Modified law c_r = 0.46, Ambrosio 0.01, actuator 10 mm at 2 Hz, 0.5 s",
+        },
+        Entry {
             name: "manipulator",
             description: "dual two-link manipulator on a free-floating spacecraft (Kuang, Bai, \
                           Wei 2026), case 3: 0.5 mm clearance in both elbows, 2 s",
@@ -52,6 +59,7 @@ pub fn default_parameters(name: &str) -> Result<serde_json::Value, ModelsError> 
         "slider_crank" => serde_json::to_value(SliderCrankParams::flores()),
         "wan_slider_crank" => serde_json::to_value(SliderCrankParams::wan()),
         "manipulator" => serde_json::to_value(ManipulatorParams::default()),
+        "flap" => serde_json::to_value(FlapParams::default()),
         _ => return Err(unknown(name)),
     };
     v.map_err(|e| crate::common::invalid(name, e.to_string()))
@@ -76,6 +84,10 @@ pub fn run(
         "slider_crank" | "wan_slider_crank" => {
             let p: SliderCrankParams = parse(name, &with_defaults(name, parameters)?)?;
             slider_crank::run(name, &p, settings)
+        }
+        "flap" => {
+            let p: FlapParams = parse(name, &with_defaults(name, parameters)?)?;
+            flap::run(name, &p, settings)
         }
         "manipulator" => {
             let p: ManipulatorParams = parse(name, &with_defaults(name, parameters)?)?;

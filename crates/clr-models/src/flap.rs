@@ -14,11 +14,22 @@
 //! axial modes: the paper's higher modes of the 3-D parts (out-of-plane bending, torsion) are
 //! not reproduced.
 //!
-//! The rigid linkage, its clearance joints and studies, and the floating-frame flexible bodies
-//! are not built yet (see docs/models/flap.md).
+//! Second part: the rigid linkage ([`FlapParams`], [`run`], [`study`]) with up to four
+//! revolute clearance joints, its closed-form ideal kinematics ([`FlapParams::ideal_flap_angle`])
+//! and the clearance studies. The flexible-body studies need a floating-frame flexible body in
+//! clr-mbd, which does not exist yet (only ground-fixed beams): they are not built (see
+//! docs/models/flap.md).
+
+use std::f64::consts::{FRAC_PI_2, PI};
+use std::path::Path;
 
 use clr_beam::{BeamModel, Material, Section, Support};
+use clr_mbd::{Model, ModelBuilder, Motion, Results, RevoluteClearanceSpec, RigidBody};
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
+
+use crate::common::{self, col, non_negative, positive, FrictionParams, Solver};
+use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// The paper's first five eigenfrequencies (Hz) per flexible part.
 pub const PAPER_FREQUENCIES: [(&str, [f64; 5]); 3] = [
@@ -140,9 +151,1004 @@ pub struct Calibration {
     pub frequencies_hz: Vec<f64>,
 }
 
+/// Names of the four candidate clearance joints, in the order of [`FlapParams::clearances`]:
+/// `J1` actuator (piston)–lever arm, `J2` lever-arm ground pivot, `J3` lever arm–auxiliary rod,
+/// `J4` auxiliary rod–auxiliary lever arm.
+pub const JOINTS: [&str; 4] = ["J1", "J2", "J3", "J4"];
+
+/// Parameters of the rigid flap linkage (SI units). Every value not listed as the paper's is a
+/// reconstruction documented in docs/models/flap.md.
+///
+/// Layout at mid-stroke (t = 0): lever-arm pivot O1 at the origin, lever arm vertical (up);
+/// the actuator horizontal, its cylinder pivoted on the ground at distance `actuator_length`
+/// to the left of the actuator joint J1 (on the lever arm at `lever_arm_actuator_distance`);
+/// the auxiliary rod horizontal from the lever-arm tip J3 to J4; the auxiliary lever arm
+/// vertical from its ground pivot O2 up to J4, carrying the flap (chord along +x from O2).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct FlapParams {
+    /// Actuator stroke amplitude, m (paper: x = 10 mm).
+    pub actuator_amplitude: f64,
+    /// Actuator frequency, Hz (paper: f = 2 Hz).
+    pub actuator_frequency: f64,
+    /// Smooth-step ramp of the amplitude over this time, s (reconstruction: 0.25 s, half a
+    /// period, so the motion starts from rest; 0 = no ramp).
+    pub ramp_time: f64,
+    /// Pin-to-pin actuator length at mid-stroke, m (reconstruction 0.25).
+    pub actuator_length: f64,
+    /// Cylinder mass, kg (reconstruction 1.5) and length, m (0.20; centre of mass at mid-length).
+    pub cylinder_mass: f64,
+    /// Cylinder length, m.
+    pub cylinder_length: f64,
+    /// Piston (rod) mass, kg (reconstruction 0.5).
+    pub piston_mass: f64,
+    /// Piston length, m (reconstruction 0.15; its tip is the journal of J1).
+    pub piston_length: f64,
+    /// Lever arm: pivot O1 to the auxiliary-rod joint J3, m (reconstruction 0.10, the
+    /// flexible part's length).
+    pub lever_arm_length: f64,
+    /// Lever arm: pivot O1 to the actuator joint J1, m (reconstruction 0.05).
+    pub lever_arm_actuator_distance: f64,
+    /// Lever arm mass, kg (reconstruction 0.29: steel, 15 mm × 25 mm calibrated section).
+    pub lever_arm_mass: f64,
+    /// Auxiliary rod length J3–J4, m (reconstruction 0.30).
+    pub aux_rod_length: f64,
+    /// Auxiliary rod mass, kg (reconstruction 0.93: steel, 15 mm × 26.6 mm).
+    pub aux_rod_mass: f64,
+    /// Auxiliary lever arm: pivot O2 to J4, m (reconstruction 0.12).
+    pub aux_lever_arm_length: f64,
+    /// Auxiliary lever arm mass, kg (reconstruction 0.32: steel, 15 mm × 22.9 mm).
+    pub aux_lever_arm_mass: f64,
+    /// Flap mass, kg (reconstruction 4.0).
+    pub flap_mass: f64,
+    /// Flap inertia about its centre of mass, kg·m² (reconstruction 0.02).
+    pub flap_inertia: f64,
+    /// Distance of the flap's centre of mass aft of the hinge O2, m (reconstruction 0.10).
+    pub flap_cg_distance: f64,
+    /// Mean aerodynamic hinge moment, N·m, clockwise on the flap (reconstruction 30).
+    pub hinge_moment: f64,
+    /// Aerodynamic hinge stiffness, N·m/rad: M = −(M0 + K·(θ − θ0)) (reconstruction 100).
+    pub hinge_stiffness: f64,
+    /// Gravity −9.81 m/s² along y when true.
+    pub gravity: bool,
+    /// Radial clearance of J1..J4, m; 0 makes the joint ideal (default: 0.1 mm in J4 only).
+    pub clearances: [f64; 4],
+    /// Bearing radius of a clearance joint, m (reconstruction 10 mm).
+    pub bearing_radius: f64,
+    /// Axial (bearing) length L, m (paper: 15 mm).
+    pub axial_length: f64,
+    /// Young's modulus, Pa (reconstruction: steel 207 GPa).
+    pub youngs_modulus: f64,
+    /// Poisson's ratio (0.3).
+    pub poisson_ratio: f64,
+    /// Normal law preset (paper: `Modified`).
+    pub normal_law: String,
+    /// Restitution coefficient (paper: c_r = 0.46).
+    pub restitution: f64,
+    /// Friction (paper: Ambrósio c_f = 0.01, v0 = 0.1 mm/s, v1 = 1 mm/s).
+    pub friction: FrictionParams,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// Metrics use t ≥ transient, s (reconstruction: 0.25 s, the ramp).
+    pub transient: f64,
+    /// Number of phases per actuator period at which the Poincaré sections are taken.
+    pub poincare_phases: usize,
+    /// Relative tolerance (absolute tolerance rtol·1e-3).
+    pub rtol: f64,
+    /// Integrator.
+    pub solver: Solver,
+    /// Output interval of the ideal reference run, s.
+    pub reference_interval: f64,
+}
+
+impl Default for FlapParams {
+    fn default() -> Self {
+        Self {
+            actuator_amplitude: 10e-3,
+            actuator_frequency: 2.0,
+            ramp_time: 0.25,
+            actuator_length: 0.25,
+            cylinder_mass: 1.5,
+            cylinder_length: 0.20,
+            piston_mass: 0.5,
+            piston_length: 0.15,
+            lever_arm_length: 0.10,
+            lever_arm_actuator_distance: 0.05,
+            lever_arm_mass: 0.29,
+            aux_rod_length: 0.30,
+            aux_rod_mass: 0.93,
+            aux_lever_arm_length: 0.12,
+            aux_lever_arm_mass: 0.32,
+            flap_mass: 4.0,
+            flap_inertia: 0.02,
+            flap_cg_distance: 0.10,
+            hinge_moment: 30.0,
+            hinge_stiffness: 100.0,
+            gravity: true,
+            clearances: [0.0, 0.0, 0.0, 0.1e-3],
+            bearing_radius: 10e-3,
+            axial_length: 15e-3,
+            youngs_modulus: 207e9,
+            poisson_ratio: 0.3,
+            normal_law: "Modified".into(),
+            restitution: 0.46,
+            friction: FrictionParams::Ambrosio {
+                mu: 0.01,
+                v0: 1e-4,
+                v1: 1e-3,
+            },
+            duration: 0.5,
+            transient: 0.25,
+            poincare_phases: 20,
+            rtol: 1e-8,
+            solver: Solver::Dopri5,
+            reference_interval: 1e-4,
+        }
+    }
+}
+
+/// A joint of the linkage: (name, bearing body, bearing point, journal body, journal point).
+type JointSpec<'a> = (&'a str, &'a str, [f64; 2], &'a str, [f64; 2]);
+
+/// Smooth step r(t) = 3s² − 2s³, s = t/T (clamped), with r′ and r″.
+fn smoothstep(t: f64, ramp: f64) -> [f64; 3] {
+    if ramp <= 0.0 || t >= ramp {
+        return [1.0, 0.0, 0.0];
+    }
+    let s = (t / ramp).max(0.0);
+    [
+        s * s * (3.0 - 2.0 * s),
+        6.0 * s * (1.0 - s) / ramp,
+        (6.0 - 12.0 * s) / (ramp * ramp),
+    ]
+}
+
+/// Intersection of the circles |P − a| = ra and |P − b| = rb on the left of a→b (sign +1) or
+/// the right (sign −1); `None` when they do not meet.
+fn circle_intersection(a: [f64; 2], ra: f64, b: [f64; 2], rb: f64, sign: f64) -> Option<[f64; 2]> {
+    let (dx, dy) = (b[0] - a[0], b[1] - a[1]);
+    let d = dx.hypot(dy);
+    let l = (ra * ra - rb * rb + d * d) / (2.0 * d);
+    let h2 = ra * ra - l * l;
+    if d.is_nan() || d <= 0.0 || h2 < 0.0 {
+        return None;
+    }
+    let h = h2.sqrt();
+    let (ux, uy) = (dx / d, dy / d);
+    Some([a[0] + l * ux - sign * h * uy, a[1] + l * uy + sign * h * ux])
+}
+
+impl FlapParams {
+    /// Actuator extension x(t) = A·r(t)·sin(2πft) with its first two derivatives (m, m/s,
+    /// m/s²); r is the smooth-step ramp over `ramp_time`.
+    pub fn actuator(&self, t: f64) -> [f64; 3] {
+        let w = 2.0 * PI * self.actuator_frequency;
+        let (s, c) = (w * t).sin_cos();
+        let [r, rd, rdd] = smoothstep(t, self.ramp_time);
+        let a = self.actuator_amplitude;
+        [
+            a * r * s,
+            a * (rd * s + r * w * c),
+            a * (rdd * s + 2.0 * rd * w * c - r * w * w * s),
+        ]
+    }
+
+    /// Actuator period 1/f, s.
+    pub fn period(&self) -> f64 {
+        1.0 / self.actuator_frequency
+    }
+
+    /// Ground points: actuator pivot C0, lever-arm pivot O1, auxiliary-lever pivot O2 (m).
+    pub fn ground_points(&self) -> [[f64; 2]; 3] {
+        let a = self.lever_arm_actuator_distance;
+        let b = self.lever_arm_length;
+        [
+            [-self.actuator_length, a],
+            [0.0, 0.0],
+            [self.aux_rod_length, b - self.aux_lever_arm_length],
+        ]
+    }
+
+    /// Flap angle (auxiliary-lever angle minus its initial value π/2, rad) of the ideal
+    /// mechanism at actuator extension `x`, with auxiliary rod length `rod_length`, by two
+    /// circle intersections (independent of clr-mbd): J1 on the circle of radius a about O1 at
+    /// distance s0 + x from C0 gives the lever angle; J4 on the circle of radius c about O2 at
+    /// distance `rod_length` from J3 gives the auxiliary-lever angle. `None` when the linkage
+    /// cannot be assembled.
+    pub fn ideal_flap_angle(&self, x: f64, rod_length: f64) -> Option<f64> {
+        let [c0, o1, o2] = self.ground_points();
+        let a = self.lever_arm_actuator_distance;
+        // J1: |J1 − O1| = a, |J1 − C0| = s0 + x, above the line C0→O1 side (lever up): the
+        // lever points up at t = 0, J1 = (0, a), which is on the left of O1→C0? use the branch
+        // that contains the assembly configuration
+        let j1 = [
+            circle_intersection(o1, a, c0, self.actuator_length + x, 1.0)?,
+            circle_intersection(o1, a, c0, self.actuator_length + x, -1.0)?,
+        ];
+        let j1 = if j1[0][1] > j1[1][1] { j1[0] } else { j1[1] };
+        let phi = j1[1].atan2(j1[0]);
+        let b = self.lever_arm_length;
+        let j3 = [o1[0] + b * phi.cos(), o1[1] + b * phi.sin()];
+        let cands = [
+            circle_intersection(o2, self.aux_lever_arm_length, j3, rod_length, 1.0)?,
+            circle_intersection(o2, self.aux_lever_arm_length, j3, rod_length, -1.0)?,
+        ];
+        let j4 = if cands[0][1] > cands[1][1] {
+            cands[0]
+        } else {
+            cands[1]
+        };
+        Some((j4[1] - o2[1]).atan2(j4[0] - o2[0]) - FRAC_PI_2)
+    }
+
+    /// Combined auxiliary lever arm + flap in the lever frame (origin at O2, x along O2→J4):
+    /// (mass, inertia about the combined centre of mass, centre of mass).
+    fn aux_lever_with_flap(&self) -> (f64, f64, [f64; 2]) {
+        let c = self.aux_lever_arm_length;
+        let (ml, mf) = (self.aux_lever_arm_mass, self.flap_mass);
+        let rl = [0.5 * c, 0.0];
+        // flap chord along world +x when the lever points up (+y): local (0, −d)
+        let rf = [0.0, -self.flap_cg_distance];
+        let m = ml + mf;
+        let rc = [(ml * rl[0] + mf * rf[0]) / m, (ml * rl[1] + mf * rf[1]) / m];
+        let d2 = |r: [f64; 2]| (r[0] - rc[0]).powi(2) + (r[1] - rc[1]).powi(2);
+        let i = ml * c * c / 12.0 + ml * d2(rl) + self.flap_inertia + mf * d2(rf);
+        (m, i, rc)
+    }
+
+    /// Check every value; the message names the field to change.
+    ///
+    /// # Errors
+    /// A message naming the field.
+    pub fn validate(&self) -> Result<(), String> {
+        for (f, v) in [
+            ("actuator_amplitude", self.actuator_amplitude),
+            ("actuator_frequency", self.actuator_frequency),
+            ("actuator_length", self.actuator_length),
+            ("cylinder_mass", self.cylinder_mass),
+            ("cylinder_length", self.cylinder_length),
+            ("piston_mass", self.piston_mass),
+            ("piston_length", self.piston_length),
+            ("lever_arm_length", self.lever_arm_length),
+            (
+                "lever_arm_actuator_distance",
+                self.lever_arm_actuator_distance,
+            ),
+            ("lever_arm_mass", self.lever_arm_mass),
+            ("aux_rod_length", self.aux_rod_length),
+            ("aux_rod_mass", self.aux_rod_mass),
+            ("aux_lever_arm_length", self.aux_lever_arm_length),
+            ("aux_lever_arm_mass", self.aux_lever_arm_mass),
+            ("flap_mass", self.flap_mass),
+            ("flap_inertia", self.flap_inertia),
+            ("bearing_radius", self.bearing_radius),
+            ("axial_length", self.axial_length),
+            ("youngs_modulus", self.youngs_modulus),
+            ("duration", self.duration),
+            ("rtol", self.rtol),
+            ("reference_interval", self.reference_interval),
+        ] {
+            positive(f, v)?;
+        }
+        for (f, v) in [
+            ("ramp_time", self.ramp_time),
+            ("transient", self.transient),
+            ("flap_cg_distance", self.flap_cg_distance),
+        ] {
+            non_negative(f, v)?;
+        }
+        for (f, v) in [
+            ("hinge_moment", self.hinge_moment),
+            ("hinge_stiffness", self.hinge_stiffness),
+        ] {
+            if !v.is_finite() {
+                return Err(format!("`{f}` = {v} must be finite"));
+            }
+        }
+        if self.actuator_amplitude >= 0.5 * self.actuator_length {
+            return Err(format!(
+                "`actuator_amplitude` = {} m must be below half of `actuator_length` = {} m",
+                self.actuator_amplitude, self.actuator_length
+            ));
+        }
+        if self.actuator_amplitude >= 0.5 * self.lever_arm_actuator_distance {
+            return Err(format!(
+                "`actuator_amplitude` = {} m must be below half of \
+                 `lever_arm_actuator_distance` = {} m (the lever would swing past ±30°)",
+                self.actuator_amplitude, self.lever_arm_actuator_distance
+            ));
+        }
+        for (k, &c) in self.clearances.iter().enumerate() {
+            non_negative(&format!("clearances[{k}]"), c)?;
+            if c >= 0.1 * self.bearing_radius {
+                return Err(format!(
+                    "`clearances[{k}]` = {c} m must be below a tenth of `bearing_radius` = {} m",
+                    self.bearing_radius
+                ));
+            }
+        }
+        if self.poincare_phases == 0 {
+            return Err("`poincare_phases` must be at least 1".into());
+        }
+        if self.duration / self.reference_interval > 1e6 {
+            return Err(format!(
+                "`reference_interval` = {} s gives more than 1e6 reference rows over {} s; \
+                 make it larger",
+                self.reference_interval, self.duration
+            ));
+        }
+        let x = self.actuator_amplitude;
+        for xi in [-x, x] {
+            if self.ideal_flap_angle(xi, self.aux_rod_length).is_none() {
+                return Err(format!(
+                    "the linkage cannot be assembled at actuator extension {xi} m; shorten \
+                     `actuator_amplitude` or change the link lengths"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The clr-mbd model. Bodies `cylinder`, `piston`, `lever_arm`, `aux_rod`,
+    /// `aux_lever_arm` (with the flap); ideal joints `C0` (ground–cylinder), `actuator`
+    /// (translational cylinder–piston), `O2` (ground–auxiliary lever arm); driver `x`; joints
+    /// `J1`..`J4` ideal or clearance per [`FlapParams::clearances`]; torque `hinge`.
+    ///
+    /// # Errors
+    /// Invalid parameters or a clr-mbd build error.
+    pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        self.validate().map_err(|m| common::invalid(model, m))?;
+        let friction = self.friction.law().map_err(|m| common::invalid(model, m))?;
+        let [c0, o1, o2] = self.ground_points();
+        let (a, b) = (self.lever_arm_actuator_distance, self.lever_arm_length);
+        let (lr, lc, lp) = (
+            self.aux_rod_length,
+            self.cylinder_length,
+            self.piston_length,
+        );
+        let mut m = ModelBuilder::new();
+        if self.gravity {
+            m.gravity(0.0, -9.81);
+        }
+        let bar = |mass: f64, len: f64| RigidBody::new(mass, mass * len * len / 12.0);
+        let (mal, ial, rc) = self.aux_lever_with_flap();
+        m.body(
+            "cylinder",
+            bar(self.cylinder_mass, lc).at(c0[0] + 0.5 * lc, c0[1], 0.0),
+        )
+        .body("piston", bar(self.piston_mass, lp).at(-0.5 * lp, a, 0.0))
+        .body(
+            "lever_arm",
+            bar(self.lever_arm_mass, b).at(0.0, 0.5 * b, FRAC_PI_2),
+        )
+        .body("aux_rod", bar(self.aux_rod_mass, lr).at(0.5 * lr, b, 0.0))
+        .body(
+            "aux_lever_arm",
+            // lever frame rotated by π/2: local (u, v) → world (−v, u)
+            RigidBody::new(mal, ial).at(o2[0] - rc[1], o2[1] + rc[0], FRAC_PI_2),
+        )
+        .revolute("C0", ("ground", c0), ("cylinder", [-0.5 * lc, 0.0]))
+        .translational(
+            "actuator",
+            ("cylinder", [-0.5 * lc, 0.0]),
+            ("piston", [0.0, 0.0]),
+            [1.0, 0.0],
+        )
+        .revolute("O2", ("ground", o2), ("aux_lever_arm", [-rc[0], -rc[1]]));
+        let p = self.clone();
+        let s0 = self.actuator_length;
+        m.drive_displacement(
+            "x",
+            ("cylinder", [-0.5 * lc, 0.0]),
+            ("piston", [0.5 * lp, 0.0]),
+            [1.0, 0.0],
+            Motion::new(move |t| {
+                let [x, v, acc] = p.actuator(t);
+                [s0 + x, v, acc]
+            }),
+        );
+        let c = self.aux_lever_arm_length;
+        // (name, bearing body, bearing point, journal body, journal point)
+        let joints: [JointSpec; 4] = [
+            (
+                "J1",
+                "lever_arm",
+                [a - 0.5 * b, 0.0],
+                "piston",
+                [0.5 * lp, 0.0],
+            ),
+            ("J2", "ground", o1, "lever_arm", [-0.5 * b, 0.0]),
+            (
+                "J3",
+                "aux_rod",
+                [-0.5 * lr, 0.0],
+                "lever_arm",
+                [0.5 * b, 0.0],
+            ),
+            (
+                "J4",
+                "aux_rod",
+                [0.5 * lr, 0.0],
+                "aux_lever_arm",
+                [c - rc[0], -rc[1]],
+            ),
+        ];
+        for (k, (name, bi, si, bj, sj)) in joints.into_iter().enumerate() {
+            let cl = self.clearances[k];
+            if cl > 0.0 {
+                let normal = common::preset_law(
+                    &self.normal_law,
+                    self.youngs_modulus,
+                    self.poisson_ratio,
+                    self.bearing_radius,
+                    self.bearing_radius - cl,
+                    self.axial_length,
+                    self.restitution,
+                )
+                .map_err(|m| common::invalid(model, m))?;
+                m.revolute_clearance(
+                    name,
+                    (bi, si),
+                    (bj, sj),
+                    RevoluteClearanceSpec {
+                        bearing_radius: self.bearing_radius,
+                        journal_radius: self.bearing_radius - cl,
+                        normal,
+                        friction,
+                    },
+                );
+            } else {
+                m.revolute(name, (bi, si), (bj, sj));
+            }
+        }
+        let (m0, k, th0) = (self.hinge_moment, self.hinge_stiffness, FRAC_PI_2);
+        m.applied_torque("hinge", "aux_lever_arm", move |_, s| {
+            -(m0 + k * (s.angle - th0))
+        });
+        m.build().map_err(|e| common::build_error(model, e))
+    }
+}
+
+/// Simulate one configuration; appends `flap.angle` (rad, from the initial position) and
+/// `flap.alpha` (rad/s²). `uniform` records every `reference_interval` instead of every step.
+fn simulate(
+    model: &str,
+    p: &FlapParams,
+    settings: &RunSettings,
+    uniform: bool,
+) -> Result<Results, ModelsError> {
+    let mut m = p.build(model)?;
+    let t_end = settings.t_end.unwrap_or(p.duration);
+    let n_out = ((t_end / p.reference_interval).round() as usize).max(1);
+    let opts = common::options(p.duration, p.rtol, p.solver, settings, !uniform, n_out);
+    let mut res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
+    let angle: Vec<f64> = col(&res, "aux_lever_arm.theta")
+        .iter()
+        .map(|th| th - FRAC_PI_2)
+        .collect();
+    let alpha = col(&res, "aux_lever_arm.alpha");
+    common::append_columns(
+        &mut res,
+        vec![("flap.angle".into(), angle), ("flap.alpha".into(), alpha)],
+    );
+    Ok(res)
+}
+
+/// Stroboscopic (Poincaré-section) spread of the journal-centre position of joint `j`: the
+/// eccentricity is sampled at t = t0 + (k + i/N)·T for every whole period k after `t0` and each
+/// of the N phases i; per phase the RMS distance of the samples from their mean is taken, and
+/// the mean over phases is divided by the clearance. 0 for a periodic (period-T) response,
+/// of order 1 when the journal wanders over the whole clearance circle from period to period.
+/// `None` with fewer than two whole periods.
+pub fn poincare_spread(
+    res: &Results,
+    joint: &str,
+    clearance: f64,
+    t0: f64,
+    period: f64,
+    phases: usize,
+) -> Option<f64> {
+    let t = col(res, "t");
+    let (ex, ey) = (
+        col(res, &format!("{joint}.ex")),
+        col(res, &format!("{joint}.ey")),
+    );
+    let t_end = *t.last()?;
+    let periods = ((t_end - t0) / period + 1e-9).floor() as usize;
+    if periods < 2 || ex.is_empty() {
+        return None;
+    }
+    let mut total = 0.0;
+    for i in 0..phases {
+        let pts: Vec<[f64; 2]> = (0..periods)
+            .map(|k| {
+                let ts = t0 + (k as f64 + i as f64 / phases as f64) * period;
+                [common::interp(&t, &ex, ts), common::interp(&t, &ey, ts)]
+            })
+            .collect();
+        let n = pts.len() as f64;
+        let mx = pts.iter().map(|p| p[0]).sum::<f64>() / n;
+        let my = pts.iter().map(|p| p[1]).sum::<f64>() / n;
+        let var = pts
+            .iter()
+            .map(|p| (p[0] - mx).powi(2) + (p[1] - my).powi(2))
+            .sum::<f64>()
+            / n;
+        total += var.sqrt();
+    }
+    Some(total / phases as f64 / clearance)
+}
+
+/// Metrics against the ideal run; appends `flap.error` and `flap.alpha_error`.
+fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
+    let t = col(res, "t");
+    let ti = col(ideal, "t");
+    let (a, ai) = (col(res, "flap.angle"), col(ideal, "flap.angle"));
+    let (al, ali) = (col(res, "flap.alpha"), col(ideal, "flap.alpha"));
+    let err: Vec<f64> = (0..t.len())
+        .map(|r| a[r] - common::interp(&ti, &ai, t[r]))
+        .collect();
+    let aerr: Vec<f64> = (0..t.len())
+        .map(|r| al[r] - common::interp(&ti, &ali, t[r]))
+        .collect();
+    let t0 = p.transient;
+    let mut m = vec![
+        Metric::new(
+            "flap_angle_error_max",
+            common::peak_abs(&t, &err, t0),
+            "rad",
+            "largest |flap angle − ideal flap angle| after the transient",
+        ),
+        Metric::new(
+            "flap_angle_error_rms",
+            common::time_rms(&t, &err, t0),
+            "rad",
+            "time RMS of the flap angle error after the transient",
+        ),
+        Metric::new(
+            "flap_acceleration_oscillation_peak",
+            common::peak_abs(&t, &aerr, t0),
+            "rad/s^2",
+            "largest |flap angular acceleration − ideal| after the transient",
+        ),
+        Metric::new(
+            "flap_acceleration_oscillation_rms",
+            common::time_rms(&t, &aerr, t0),
+            "rad/s^2",
+            "time RMS of the flap angular acceleration − ideal after the transient",
+        ),
+        Metric::new(
+            "flap_angle_amplitude_ideal",
+            common::peak_abs(&ti, &ai, t0),
+            "rad",
+            "largest |flap angle| of the ideal mechanism after the transient",
+        ),
+        Metric::new(
+            "flap_acceleration_peak_ideal",
+            common::peak_abs(&ti, &ali, t0),
+            "rad/s^2",
+            "largest |flap angular acceleration| of the ideal mechanism after the transient",
+        ),
+    ];
+    let mut spreads = Vec::new();
+    for (k, j) in JOINTS.iter().enumerate() {
+        let c = p.clearances[k];
+        if c <= 0.0 {
+            continue;
+        }
+        m.push(Metric::new(
+            &format!("{j}_peak_contact_force"),
+            common::peak_abs(&t, &col(res, &format!("{j}.normal_force")), t0),
+            "N",
+            &format!("largest normal force in clearance joint {j} after the transient"),
+        ));
+        m.push(Metric::new(
+            &format!("{j}_contact_time_fraction"),
+            common::time_mean(&t, &col(res, &format!("{j}.contact")), t0),
+            "-",
+            &format!("fraction of the time after the transient with contact in {j}"),
+        ));
+        if let Some(s) = poincare_spread(res, j, c, t0, p.period(), p.poincare_phases) {
+            m.push(Metric::new(
+                &format!("{j}_poincare_spread"),
+                s,
+                "-",
+                &format!(
+                    "stroboscopic spread of the {j} journal centre over the periods after the \
+                     transient, mean over the phases, / clearance"
+                ),
+            ));
+            spreads.push(s);
+        }
+    }
+    let peak_f = m
+        .iter()
+        .filter(|x| x.name.ends_with("_peak_contact_force"))
+        .map(|x| x.value)
+        .fold(0.0, f64::max);
+    m.push(Metric::new(
+        "peak_contact_force",
+        peak_f,
+        "N",
+        "largest normal force over the clearance joints after the transient",
+    ));
+    if !spreads.is_empty() {
+        m.push(Metric::new(
+            "poincare_spread",
+            spreads.iter().cloned().fold(0.0, f64::max),
+            "-",
+            "largest Poincaré-section spread over the clearance joints (irregularity)",
+        ));
+    }
+    common::append_columns(
+        res,
+        vec![
+            ("flap.error".into(), err),
+            ("flap.alpha_error".into(), aerr),
+        ],
+    );
+    m
+}
+
+/// Simulate the linkage and its ideal counterpart (same parameters, all joints ideal) and
+/// return the clearance run with the flap-angle error, acceleration oscillation, contact and
+/// irregularity metrics.
+///
+/// # Errors
+/// Invalid parameters, build or simulation errors.
+pub fn run(model: &str, p: &FlapParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
+    common::check_settings(model, settings)?;
+    p.validate().map_err(|m| common::invalid(model, m))?;
+    let ideal_p = FlapParams {
+        clearances: [0.0; 4],
+        ..p.clone()
+    };
+    let ideal = simulate(model, &ideal_p, settings, true)?;
+    let mut res = simulate(model, p, settings, false)?;
+    if let Some(cb) = &settings.progress {
+        cb(settings.t_end.unwrap_or(p.duration));
+    }
+    let mut metrics = compare(p, &mut res, &ideal);
+    metrics.push(Metric::new(
+        "steps",
+        res.stats.accepted as f64,
+        "-",
+        "accepted integrator steps",
+    ));
+    metrics.push(Metric::new(
+        "contact_onsets",
+        res.onsets as f64,
+        "-",
+        "contact onsets located as events",
+    ));
+    let params = serde_json::to_value(p).unwrap_or_default();
+    Ok(common::output(model, res, metrics, params))
+}
+
+/// One configuration of the flap studies.
+#[derive(Debug, Clone)]
+pub struct StudyCase {
+    /// Study: `size` (clearance of J4), `position` (one clearance joint, 0.1 mm), `number`
+    /// (J1..Jn with 0.1 mm).
+    pub study: String,
+    /// Case label (`c0.05mm`, `J2`, `n3`, …).
+    pub label: String,
+    /// The study's abscissa: clearance (mm), joint number (1–4) or number of clearance joints.
+    pub x: f64,
+    /// Clearances of J1..J4, m.
+    pub clearances: [f64; 4],
+    /// Metrics of [`run`].
+    pub metrics: Vec<Metric>,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+impl StudyCase {
+    /// A metric by name (NaN when absent).
+    pub fn metric(&self, name: &str) -> f64 {
+        self.metrics
+            .iter()
+            .find(|m| m.name == name)
+            .map_or(f64::NAN, |m| m.value)
+    }
+}
+
+/// The study configurations: (study, label, abscissa, clearances). Clearance sizes 0.05, 0.1,
+/// 0.2, 0.5 mm in J4; each joint alone with 0.1 mm; J1..Jn with 0.1 mm for n = 1..4.
+pub fn study_configurations() -> Vec<(String, String, f64, [f64; 4])> {
+    let mut v = Vec::new();
+    for c_mm in [0.05, 0.1, 0.2, 0.5] {
+        v.push((
+            "size".to_string(),
+            format!("c{c_mm}mm"),
+            c_mm,
+            [0.0, 0.0, 0.0, c_mm * 1e-3],
+        ));
+    }
+    for k in 0..4 {
+        let mut c = [0.0; 4];
+        c[k] = 0.1e-3;
+        v.push(("position".into(), JOINTS[k].into(), (k + 1) as f64, c));
+    }
+    for n in 1..=4 {
+        let mut c = [0.0; 4];
+        c.iter_mut().take(n).for_each(|x| *x = 0.1e-3);
+        v.push(("number".into(), format!("n{n}"), n as f64, c));
+    }
+    v
+}
+
+/// Run the clearance-size, clearance-position and number-of-joints studies in parallel (rayon)
+/// with `base` for every other parameter, writing under `dir`: `<study>_<label>.csv` (every
+/// column), `summary.csv` (metrics per case) and figures (`size_oscillation`,
+/// `size_contact_force`, `position_oscillation`, `number_oscillation`, `number_poincare`,
+/// `orbits_size`, `orbits_n4`, `alpha_error_size`, `poincare_n4`).
+///
+/// # Errors
+/// The first failing case, or an output error.
+pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<StudyCase>, String> {
+    let runs: Vec<Result<(StudyCase, Results), String>> = study_configurations()
+        .into_par_iter()
+        .map(|(study, label, x, clearances)| {
+            let start = std::time::Instant::now();
+            let p = FlapParams {
+                clearances,
+                ..base.clone()
+            };
+            let out = run("flap", &p, &RunSettings::default())
+                .map_err(|e| format!("{study} {label}: {e}"))?;
+            Ok((
+                StudyCase {
+                    study,
+                    label,
+                    x,
+                    clearances,
+                    metrics: out.metrics,
+                    wall_s: start.elapsed().as_secs_f64(),
+                },
+                out.results,
+            ))
+        })
+        .collect();
+    let mut cases = Vec::new();
+    let mut results = Vec::new();
+    for r in runs {
+        let (c, res) = r?;
+        common::write_results_csv(&res, dir, &format!("{}_{}", c.study, c.label))?;
+        cases.push(c);
+        results.push(res);
+    }
+    write_summary(dir, &cases)?;
+    study_figures(dir, base, &cases, &results)?;
+    Ok(cases)
+}
+
+fn write_summary(dir: &Path, cases: &[StudyCase]) -> Result<(), String> {
+    let mut names: Vec<String> = Vec::new();
+    for c in cases {
+        for m in &c.metrics {
+            if !names.contains(&m.name) {
+                names.push(m.name.clone());
+            }
+        }
+    }
+    let mut header = vec!["study", "case", "x", "c1", "c2", "c3", "c4", "wall_s"];
+    header.extend(names.iter().map(|s| s.as_str()));
+    let rows: Vec<Vec<String>> = cases
+        .iter()
+        .map(|c| {
+            let mut r = vec![c.study.clone(), c.label.clone(), format!("{}", c.x)];
+            r.extend(c.clearances.iter().map(|v| format!("{v:e}")));
+            r.push(format!("{:.3}", c.wall_s));
+            r.extend(names.iter().map(|n| format!("{:e}", c.metric(n))));
+            r
+        })
+        .collect();
+    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
+}
+
+fn study_figures(
+    dir: &Path,
+    base: &FlapParams,
+    cases: &[StudyCase],
+    results: &[Results],
+) -> Result<(), String> {
+    use clr_plot::Figure;
+    let save = |f: Figure, name: &str| {
+        f.save(dir.join(name))
+            .map(|_| ())
+            .map_err(|e| e.to_string())
+    };
+    const MAX: usize = 3000;
+    let series = |study: &str, metric: &str| -> Vec<(f64, f64)> {
+        cases
+            .iter()
+            .filter(|c| c.study == study)
+            .map(|c| (c.x, c.metric(metric)))
+            .collect()
+    };
+    let osc = |title: &str, study: &str, xl: &str| {
+        Figure::new(title)
+            .x_label(xl)
+            .y_label("flap angular-acceleration oscillation (rad/s²)")
+            .line("peak", series(study, "flap_acceleration_oscillation_peak"))
+            .points("peak ", series(study, "flap_acceleration_oscillation_peak"))
+            .line("RMS", series(study, "flap_acceleration_oscillation_rms"))
+            .points("RMS ", series(study, "flap_acceleration_oscillation_rms"))
+    };
+    save(
+        osc(
+            "Clearance size (J4): flap acceleration oscillation",
+            "size",
+            "radial clearance (mm)",
+        ),
+        "size_oscillation",
+    )?;
+    save(
+        Figure::new("Clearance size (J4): peak contact force and flap angle error")
+            .x_label("radial clearance (mm)")
+            .y_label("peak contact force (N)")
+            .line("peak contact force", series("size", "peak_contact_force"))
+            .points("", series("size", "peak_contact_force")),
+        "size_contact_force",
+    )?;
+    save(
+        osc(
+            "Clearance-joint position (0.1 mm, one joint): flap acceleration oscillation",
+            "position",
+            "clearance joint (1 actuator, 2 lever pivot, 3 lever-rod, 4 rod-aux lever)",
+        ),
+        "position_oscillation",
+    )?;
+    save(
+        osc(
+            "Number of clearance joints (J1..Jn, 0.1 mm): flap acceleration oscillation",
+            "number",
+            "number of clearance joints",
+        ),
+        "number_oscillation",
+    )?;
+    save(
+        Figure::new("Number of clearance joints: Poincaré-section spread (largest joint)")
+            .x_label("number of clearance joints")
+            .y_label("spread / clearance (–)")
+            .line("spread", series("number", "poincare_spread"))
+            .points("", series("number", "poincare_spread")),
+        "number_poincare",
+    )?;
+    let mut orb = Figure::new("Journal-centre orbits in J4 (bearing frame), clearance sizes")
+        .x_label("e_x (mm)")
+        .y_label("e_y (mm)")
+        .equal_aspect();
+    let mut aerr = Figure::new("Flap angular acceleration − ideal, clearance sizes (J4)")
+        .x_label("time (s)")
+        .y_label("α − α_ideal (rad/s²)");
+    let mut orb4 = Figure::new("Journal-centre orbits, four clearance joints of 0.1 mm")
+        .x_label("e_x (mm)")
+        .y_label("e_y (mm)")
+        .equal_aspect();
+    let mut poin =
+        Figure::new("Poincaré sections (once per period, phase 0), four clearance joints")
+            .x_label("e_x (mm)")
+            .y_label("e_y (mm)")
+            .equal_aspect();
+    let mm = |v: Vec<f64>| v.into_iter().map(|x| x * 1e3).collect::<Vec<_>>();
+    for (c, r) in cases.iter().zip(results) {
+        let t = col(r, "t");
+        if c.study == "size" {
+            orb = orb.line(
+                c.label.clone(),
+                common::thin(&mm(col(r, "J4.ex")), &mm(col(r, "J4.ey")), MAX),
+            );
+            aerr = aerr.line(
+                c.label.clone(),
+                common::thin(&t, &col(r, "flap.alpha_error"), MAX),
+            );
+        }
+        if c.study == "number" && c.label == "n4" {
+            for j in JOINTS {
+                let (ex, ey) = (col(r, &format!("{j}.ex")), col(r, &format!("{j}.ey")));
+                orb4 = orb4.line(j, common::thin(&mm(ex.clone()), &mm(ey.clone()), MAX));
+                let t_end = t.last().copied().unwrap_or(0.0);
+                let mut pts = Vec::new();
+                let mut ts = base.transient;
+                while ts <= t_end {
+                    pts.push((
+                        common::interp(&t, &ex, ts) * 1e3,
+                        common::interp(&t, &ey, ts) * 1e3,
+                    ));
+                    ts += base.period();
+                }
+                poin = poin.points(j, pts);
+            }
+        }
+    }
+    save(orb, "orbits_size")?;
+    save(aerr, "alpha_error_size")?;
+    save(orb4, "orbits_n4")?;
+    save(poin, "poincare_n4")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ideal_linkage_follows_the_closed_form_kinematics() {
+        // independent formulation: the flap angle of the ideal mechanism from two circle
+        // intersections (FlapParams::ideal_flap_angle) at the actuator extension x(t); the
+        // multibody solution may differ only by the constraint drift (Baumgarte) and the
+        // integration error, far below 1e-7 rad
+        let p = FlapParams {
+            clearances: [0.0; 4],
+            duration: 0.3,
+            ..FlapParams::default()
+        };
+        let res = simulate("flap", &p, &RunSettings::default(), true).unwrap();
+        let (t, a) = (col(&res, "t"), col(&res, "flap.angle"));
+        let mut worst = 0.0f64;
+        for r in 0..t.len() {
+            let x = p.actuator(t[r])[0];
+            let cf = p.ideal_flap_angle(x, p.aux_rod_length).unwrap();
+            worst = worst.max((a[r] - cf).abs());
+        }
+        assert!(worst < 1e-7, "largest deviation {worst} rad");
+        // and the flap does move (amplitude well above the tolerance)
+        let amp = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        assert!(amp > 0.05, "{amp}");
+    }
+
+    #[test]
+    fn flap_with_clearance_in_j4_stays_inside_the_rod_length_envelope() {
+        // closed-form bound: with only J4 a clearance joint, |J4_aux − J3| lies within
+        // l ± (c + δ_max), so the flap angle lies between the ideal angles for those two rod
+        // lengths (circle intersections) at every instant
+        let p = FlapParams {
+            duration: 0.3,
+            ..FlapParams::default()
+        };
+        let out = run("flap", &p, &RunSettings::default()).unwrap();
+        let r = &out.results;
+        let (t, a) = (col(r, "t"), col(r, "flap.angle"));
+        let pen = col(r, "J4.penetration")
+            .iter()
+            .fold(0.0f64, |m, v| m.max(*v));
+        let play = p.clearances[3] + pen;
+        let mut worst = f64::NEG_INFINITY;
+        for k in 0..t.len() {
+            let x = p.actuator(t[k])[0];
+            let lo = p.ideal_flap_angle(x, p.aux_rod_length - play).unwrap();
+            let hi = p.ideal_flap_angle(x, p.aux_rod_length + play).unwrap();
+            let (lo, hi) = (lo.min(hi), lo.max(hi));
+            worst = worst.max(lo - a[k]).max(a[k] - hi);
+        }
+        assert!(worst <= 1e-9, "envelope exceeded by {worst} rad");
+        // the error is of the order of the clearance over the lever length
+        let e = out
+            .metrics
+            .iter()
+            .find(|m| m.name == "flap_angle_error_max")
+            .unwrap()
+            .value;
+        assert!(e > 0.2 * p.clearances[3] / p.aux_lever_arm_length, "{e}");
+        assert_eq!(out.units.len(), out.results.columns.len());
+    }
+
+    #[test]
+    fn invalid_flap_parameters_name_the_field() {
+        let p = FlapParams {
+            clearances: [0.0, 0.0, 0.0, 0.005],
+            ..FlapParams::default()
+        };
+        let e = run("flap", &p, &RunSettings::default()).unwrap_err();
+        assert!(e.to_string().contains("clearances[3]"), "{e}");
+        let p = FlapParams {
+            actuator_amplitude: 0.03,
+            ..FlapParams::default()
+        };
+        let e = p.validate().unwrap_err();
+        assert!(e.contains("actuator_amplitude"), "{e}");
+    }
 
     #[test]
     fn calibrated_rod_matches_the_paper_and_the_closed_form() {
