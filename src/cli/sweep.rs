@@ -123,7 +123,11 @@ pub(crate) fn sweep_command(
         points
             .par_iter()
             .map(|(k, values, job)| {
-                let rec: Record = execute(job, args.t_end, args.rtol, None)?;
+                let rec: Record =
+                    execute(job, args.t_end, args.rtol, None).map_err(|e| match e {
+                        CliError::Input(m) => CliError::Input(format!("sweep point {k}: {m}")),
+                        other => other,
+                    })?;
                 let dir = out.join(format!("point-{k:05}"));
                 write_run(&dir, &rec, args.t_end, args.rtol, !args.no_figures)?;
                 if let Some(b) = &bar {
