@@ -938,7 +938,10 @@ impl ModelSpec {
         options.contact_events = s.contact_events.unwrap_or(true);
         let resolved = serde_json::json!({
             "model": {"name": model.name, "description": model.description, "gravity": gravity},
-            "body": m.body, "point": m.point, "joint": m.joint, "driver": m.driver,
+            "body": bodies.iter().map(|(n, b)| serde_json::json!({
+                "name": n, "mass": b.mass, "inertia": b.inertia, "position": b.position,
+                "angle": b.angle, "velocity": b.velocity, "angular_velocity": b.angular_velocity,
+            })).collect::<Vec<_>>(), "point": m.point, "joint": m.joint, "driver": m.driver,
             "force": m.force, "clearance": m.clearance, "beam": m.beam,
             "solver": {"method": method, "rtol": rtol, "atol": atol,
                 "h_max": if h_max.is_finite() { Some(h_max) } else { None },
@@ -947,6 +950,8 @@ impl ModelSpec {
             "output": {"t_start": t0, "t_end": t_end, "intervals": intervals,
                 "every_step": options.every_step},
         });
+        let mut resolved = resolved;
+        strip_nulls(&mut resolved);
         Ok(Self {
             file: file.to_string(),
             src: src.to_string(),
@@ -1410,4 +1415,16 @@ fn translational_geometry(
     let ga = v.finite(&p.key("guide_angle"), c.guide_angle.unwrap_or(0.0))?;
     let sa = v.finite(&p.key("slider_angle"), c.slider_angle.unwrap_or(0.0))?;
     Ok((guide, slider, [w, ga, l, h, sa]))
+}
+
+/// Remove absent (null) values from JSON objects, recursively.
+fn strip_nulls(v: &mut serde_json::Value) {
+    match v {
+        serde_json::Value::Object(o) => {
+            o.retain(|_, x| !x.is_null());
+            o.values_mut().for_each(strip_nulls);
+        }
+        serde_json::Value::Array(a) => a.iter_mut().for_each(strip_nulls),
+        _ => {}
+    }
 }

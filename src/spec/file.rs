@@ -12,10 +12,8 @@ use super::{Loaded, SpecError};
 #[serde(deny_unknown_fields)]
 pub struct ModelFile {
     /// `[model]`: name, description, gravity, or `builtin`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub model: Option<ModelSection>,
     /// `[parameters]` of a built-in model.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub parameters: Option<toml::Table>,
     /// `[[body]]` rigid bodies.
     #[serde(default)]
@@ -39,10 +37,8 @@ pub struct ModelFile {
     #[serde(default)]
     pub beam: Vec<BeamFile>,
     /// `[solver]` integrator settings.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub solver: Option<SolverFile>,
     /// `[output]` duration and output times.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub output: Option<OutputFile>,
 }
 
@@ -51,16 +47,12 @@ pub struct ModelFile {
 #[serde(deny_unknown_fields)]
 pub struct ModelSection {
     /// Model name (used in reports).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// One-line description.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
     /// Gravitational acceleration (g_x, g_y), m/s².
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub gravity: Option<[f64; 2]>,
     /// Name of a built-in model (then only `[parameters]` may follow).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub builtin: Option<String>,
 }
 
@@ -69,25 +61,18 @@ pub struct ModelSection {
 #[serde(deny_unknown_fields)]
 pub struct BodyFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// Mass, kg.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub mass: Option<f64>,
     /// Moment of inertia about the centre of mass, kg·m².
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub inertia: Option<f64>,
     /// Initial centre-of-mass position, m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub position: Option<[f64; 2]>,
     /// Initial angle, rad.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub angle: Option<f64>,
     /// Initial centre-of-mass velocity, m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub velocity: Option<[f64; 2]>,
     /// Initial angular velocity, rad/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub angular_velocity: Option<f64>,
 }
 
@@ -96,19 +81,14 @@ pub struct BodyFile {
 #[serde(deny_unknown_fields)]
 pub struct PointFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// Body (or `ground`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// Local coordinates in the body frame (origin at the centre of mass), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub at: Option<[f64; 2]>,
     /// Beam whose node this point is (instead of `body` and `at`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub beam: Option<String>,
     /// Node index on `beam`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub node: Option<u64>,
 }
 
@@ -120,20 +100,15 @@ pub type AnchorFile = toml::Value;
 #[serde(deny_unknown_fields)]
 pub struct JointFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// `revolute`, `fixed` or `translational`.
     #[serde(rename = "type")]
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
     /// First anchor (on body i).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub a: Option<AnchorFile>,
     /// Second anchor (on body j).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub b: Option<AnchorFile>,
     /// Sliding axis in body i's frame (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub axis: Option<[f64; 2]>,
 }
 
@@ -142,32 +117,23 @@ pub struct JointFile {
 #[serde(deny_unknown_fields)]
 pub struct DriverFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// `angle`, `relative_angle` or `displacement`.
     #[serde(rename = "type")]
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
     /// Driven body (`angle`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// First body (`relative_angle`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body_i: Option<String>,
     /// Second body (`relative_angle`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body_j: Option<String>,
     /// First anchor (`displacement`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub a: Option<AnchorFile>,
     /// Second anchor (`displacement`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub b: Option<AnchorFile>,
     /// Axis on body i (`displacement`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub axis: Option<[f64; 2]>,
     /// The prescribed motion.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub motion: Option<toml::Table>,
 }
 
@@ -176,59 +142,41 @@ pub struct DriverFile {
 #[serde(deny_unknown_fields)]
 pub struct ForceFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// `spring_damper`, `rotational_spring_damper`, `force`, `torque`, `torque_between`.
     #[serde(rename = "type")]
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
     /// First anchor (spring_damper).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub a: Option<AnchorFile>,
     /// Second anchor (spring_damper).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub b: Option<AnchorFile>,
     /// Anchor of an applied force.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub at: Option<AnchorFile>,
     /// Body of an applied torque.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body: Option<String>,
     /// First body (rotational spring, torque_between).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body_i: Option<String>,
     /// Second body (rotational spring, torque_between).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub body_j: Option<String>,
     /// Stiffness, N/m or N·m/rad.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
     /// Damping, N·s/m or N·m·s/rad.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub damping: Option<f64>,
     /// Free length, m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub free_length: Option<f64>,
     /// Free angle, rad.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub free_angle: Option<f64>,
     /// x component of an applied force as a time function, N.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub fx: Option<toml::Table>,
     /// y component of an applied force as a time function, N.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub fy: Option<toml::Table>,
     /// Torque as a time function, N·m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub torque: Option<toml::Table>,
     /// Beam of a nodal load.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub beam: Option<String>,
     /// Node of a nodal load.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub node: Option<u64>,
     /// Moment of a nodal load as a time function, N·m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub moment: Option<toml::Table>,
 }
 
@@ -237,50 +185,35 @@ pub struct ForceFile {
 #[serde(deny_unknown_fields)]
 pub struct ClearanceFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// `revolute` (the only kind so far).
     #[serde(rename = "type")]
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
     /// Bearing centre anchor.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub bearing: Option<AnchorFile>,
     /// Journal centre anchor.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub journal: Option<AnchorFile>,
     /// Bearing (hole) radius, m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub bearing_radius: Option<f64>,
     /// Journal (pin) radius, m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub journal_radius: Option<f64>,
     /// Normal-force law.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub normal: Option<NormalFile>,
     /// Friction law (absent: frictionless).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub friction: Option<FrictionFile>,
     /// Guide frame anchor (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub guide: Option<AnchorFile>,
     /// Slider centre anchor (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub slider: Option<AnchorFile>,
     /// Inner width of the guide, m (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub guide_width: Option<f64>,
     /// Angle of the guide axis in the guide body's frame, rad (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub guide_angle: Option<f64>,
     /// Slider length along its axis, m (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub slider_length: Option<f64>,
     /// Slider height across the guide, m (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub slider_height: Option<f64>,
     /// Angle of the slider axis in the slider body's frame, rad (translational).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub slider_angle: Option<f64>,
 }
 
@@ -289,31 +222,23 @@ pub struct ClearanceFile {
 #[serde(deny_unknown_fields)]
 pub struct BeamFile {
     /// Unique name.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub name: Option<String>,
     /// First end (node 0), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub start: Option<[f64; 2]>,
     /// Last end (node `elements`), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub end: Option<[f64; 2]>,
     /// Number of equal elements.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub elements: Option<u64>,
     /// Material.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub material: Option<BeamMaterialFile>,
     /// Cross-section.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub section: Option<SectionFile>,
     /// Supports by node.
     #[serde(default)]
     pub supports: Vec<SupportFile>,
     /// Rayleigh damping [α (1/s), β (s)].
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub rayleigh: Option<[f64; 2]>,
     /// `consistent` (default) or `lumped` mass.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub mass: Option<String>,
 }
 
@@ -322,13 +247,10 @@ pub struct BeamFile {
 #[serde(deny_unknown_fields)]
 pub struct BeamMaterialFile {
     /// Young's modulus, Pa.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub youngs_modulus: Option<f64>,
     /// Density, kg/m³.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub density: Option<f64>,
     /// Poisson's ratio (default 0.3).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub poisson_ratio: Option<f64>,
 }
 
@@ -337,28 +259,20 @@ pub struct BeamMaterialFile {
 #[serde(deny_unknown_fields)]
 pub struct SectionFile {
     /// `rectangular`, `circular`, `tube` or `general`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub shape: Option<String>,
     /// Width (rectangular), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub width: Option<f64>,
     /// Depth in the bending plane (rectangular, general), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub depth: Option<f64>,
     /// Diameter (circular), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub diameter: Option<f64>,
     /// Outer diameter (tube), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub outer_diameter: Option<f64>,
     /// Wall thickness (tube), m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub wall: Option<f64>,
     /// Area (general), m².
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub area: Option<f64>,
     /// Second moment of area (general), m⁴.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub second_moment: Option<f64>,
 }
 
@@ -367,11 +281,9 @@ pub struct SectionFile {
 #[serde(deny_unknown_fields)]
 pub struct SupportFile {
     /// Node index (0 at `start`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub node: Option<u64>,
     /// `clamped`, `pinned`, `roller_x`, `roller_y`.
     #[serde(rename = "type")]
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub kind: Option<String>,
 }
 
@@ -380,10 +292,8 @@ pub struct SupportFile {
 #[serde(deny_unknown_fields)]
 pub struct MaterialFile {
     /// Young's modulus, Pa.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub youngs_modulus: Option<f64>,
     /// Poisson's ratio, –.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub poisson_ratio: Option<f64>,
 }
 
@@ -393,35 +303,25 @@ pub struct MaterialFile {
 pub struct NormalFile {
     /// Elastic law (`hertz`, `power`, `linear`, `hertz-internal-cylinder`, `liu`, `bai-zhao`,
     /// `johnson`, `pereira`) or `preset`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub law: Option<String>,
     /// Damping factor name (clr-contact `DampingFactor::from_name`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub damping: Option<String>,
     /// Input coefficient of restitution c_e ∈ (0, 1].
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub restitution: Option<f64>,
     /// Stiffness K (N/m^n) for `hertz`, `power`, `linear`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub stiffness: Option<f64>,
     /// Exponent n for `power`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub exponent: Option<f64>,
     /// Axial length L, m.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub length: Option<f64>,
     /// Bearing material.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub bearing_material: Option<MaterialFile>,
     /// Journal material.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub journal_material: Option<MaterialFile>,
     /// Flap-paper label for `law = "preset"` (`Hertz`, `LN`, `Gonthier`, `Bai`, `Wang`,
     /// `Modified`).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub preset: Option<String>,
     /// Floor of the impact velocity δ̇⁻, m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub min_impact_velocity: Option<f64>,
 }
 
@@ -430,31 +330,22 @@ pub struct NormalFile {
 #[serde(deny_unknown_fields)]
 pub struct FrictionFile {
     /// `none`, `coulomb`, `ambrosio`, `ambrosio-smooth`, `threlfall`, `stribeck`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub law: Option<String>,
     /// Friction coefficient μ.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub mu: Option<f64>,
     /// Regularization velocity (coulomb), m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub v_reg: Option<f64>,
     /// Lower velocity v0 (ambrosio, threlfall), m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub v0: Option<f64>,
     /// Upper velocity v1 (ambrosio), m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub v1: Option<f64>,
     /// Static coefficient (stribeck).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub mu_s: Option<f64>,
     /// Dynamic coefficient (stribeck).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub mu_d: Option<f64>,
     /// Stiction velocity (stribeck), m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub v_s: Option<f64>,
     /// Dynamic velocity (stribeck), m/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub v_d: Option<f64>,
 }
 
@@ -463,31 +354,22 @@ pub struct FrictionFile {
 #[serde(deny_unknown_fields)]
 pub struct SolverFile {
     /// `ndf` (default) or `dopri5`.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub method: Option<String>,
     /// Relative tolerance.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub rtol: Option<f64>,
     /// Absolute tolerance.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub atol: Option<f64>,
     /// Largest step, s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub h_max: Option<f64>,
     /// Step budget.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub max_steps: Option<u64>,
     /// Baumgarte α, 1/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub baumgarte_alpha: Option<f64>,
     /// Baumgarte β, 1/s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub baumgarte_beta: Option<f64>,
     /// Projection threshold on ‖Φ‖∞ (m or rad); absent: no projection.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub projection: Option<f64>,
     /// Locate contact onsets as events (default true).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub contact_events: Option<bool>,
 }
 
@@ -496,16 +378,12 @@ pub struct SolverFile {
 #[serde(deny_unknown_fields)]
 pub struct OutputFile {
     /// Start time, s (default 0).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub t_start: Option<f64>,
     /// End time, s.
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub t_end: Option<f64>,
     /// Number of equal output intervals (default 500).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub intervals: Option<u64>,
     /// Also record after every accepted step (default false).
-    #[serde(skip_serializing_if = "Option::is_none")]
     pub every_step: Option<bool>,
 }
 
