@@ -642,3 +642,24 @@ fn translational_clearance_file_rests_on_its_weight() {
     );
     assert!(!out.join("orbit_guide.svg").exists());
 }
+
+/// Every built-in exports to a file whose resolved parameters equal the defaults exactly.
+#[test]
+fn every_builtin_exports_to_an_equal_file() {
+    let dir = scratch("export-all");
+    for e in clr_models::catalog::entries() {
+        let file = dir.join(format!("{}.toml", e.name));
+        let o = clr(&["export", e.name, "--out", file.to_str().unwrap()]);
+        assert!(o.status.success(), "{}: {}", e.name, stderr(&o));
+        match clr::spec::load(&file, &[]) {
+            Ok(clr::spec::Loaded::Builtin { name, parameters }) => {
+                assert_eq!(name, e.name);
+                assert_eq!(
+                    parameters,
+                    clr_models::catalog::default_parameters(e.name).unwrap()
+                );
+            }
+            other => panic!("{}: {other:?}", e.name),
+        }
+    }
+}
