@@ -247,7 +247,11 @@ fn compare_figures(out: &Path, table: &str) {
     if n_vary == 0 {
         return;
     }
-    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // rows of another width (a damaged file given to `clr merge`) are not drawn
+    let rows: Vec<Vec<&str>> = lines
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|r| r.len() == head.len())
+        .collect();
     let numeric_x = rows.iter().all(|r| r[2].parse::<f64>().is_ok());
     for (m, name) in head.iter().enumerate().skip(status + 2).take(16) {
         let mut groups: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
@@ -301,6 +305,12 @@ pub(crate) fn merge_command(dirs: &[PathBuf], out: &Path) -> Result<(), CliError
     for d in dirs {
         let meta: serde_json::Value = serde_json::from_str(&read(d.join("sweep.json"))?)
             .map_err(|e| CliError::Input(format!("{}: {e}", d.join("sweep.json").display())))?;
+        if !meta.is_object() {
+            return Err(CliError::Input(format!(
+                "{}: not a sweep description (expected a JSON object written by clr sweep)",
+                d.join("sweep.json").display()
+            )));
+        }
         match &meta0 {
             None => meta0 = Some(meta.clone()),
             Some(m0) => {
@@ -324,6 +334,13 @@ pub(crate) fn merge_command(dirs: &[PathBuf], out: &Path) -> Result<(), CliError
                 .next()
                 .and_then(|s| s.parse().ok())
                 .ok_or_else(|| CliError::Input(format!("{}: bad row `{l}`", d.display())))?;
+            let total = meta["total_points"].as_u64().unwrap_or(0) as usize;
+            if k >= total {
+                return Err(CliError::Input(format!(
+                    "{}: point {k} is outside the sweep's {total} points",
+                    d.display()
+                )));
+            }
             if let Some((_, first)) = rows.get(&k) {
                 return Err(CliError::Input(format!(
                     "point {k} appears in both {} and {}; give each shard once",
