@@ -161,7 +161,9 @@ fn partial_results(
     s: &ModelSpec,
     sol: &clr_ode::Solution,
 ) -> clr_mbd::Results {
+    // rigid-body coordinates come first in q (beam coordinates follow and are not written)
     let n = model.n_coordinates();
+    let nb = s.body_names().len();
     let mut columns = vec!["t".to_string()];
     for b in s.body_names() {
         for c in ["x", "y", "theta", "vx", "vy", "omega"] {
@@ -172,7 +174,7 @@ fn partial_results(
     for k in 0..sol.len() {
         let y = sol.state(k);
         data.push(sol.t[k]);
-        for b in 0..n / 3 {
+        for b in 0..nb {
             data.extend_from_slice(&y[3 * b..3 * b + 3]);
             data.extend_from_slice(&y[n + 3 * b..n + 3 * b + 3]);
         }
