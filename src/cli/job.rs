@@ -135,7 +135,10 @@ pub(crate) fn execute(
                     .without_orbits(s))
                 }
                 Err(clr_mbd::MbdError::Solver(e)) => {
-                    let msg = e.to_string();
+                    let msg = format!(
+                        "{e} (in the model file these are [solver] max_steps, rtol, atol, \
+                         method)"
+                    );
                     let res = partial_results(&model, s, e.solution());
                     Ok(Record::from_results(
                         &s.name,
