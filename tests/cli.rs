@@ -546,38 +546,41 @@ fn malformed_files_exit_2_with_a_located_message() {
     }
 }
 
-/// The built-in `slider_crank` written as a generic model file (tests/data/slider_crank.toml,
-/// an independent description of the same mechanism through the model-file path) gives the
-/// built-in's time histories bit for bit, column by column.
+/// Built-in models written as generic model files (tests/data/slider_crank.toml,
+/// tests/data/manipulator.toml: independent descriptions of the same mechanisms through the
+/// model-file path) give the built-ins' time histories bit for bit, column by column.
 #[test]
-fn generic_slider_crank_file_equals_the_builtin() {
-    let dir = scratch("generic-slider-crank");
-    let (a, b) = (dir.join("builtin"), dir.join("file"));
-    let common = ["--t-end", "4e-3", "--quiet", "--no-figures", "--out"];
-    let o = clr(&[
-        &["run", "slider_crank"][..],
-        &common[..],
-        &[a.to_str().unwrap()],
-    ]
-    .concat());
-    assert!(o.status.success(), "{}", stderr(&o));
-    let file = data("slider_crank.toml");
-    let o = clr(&[
-        &["run", file.as_str()][..],
-        &common[..],
-        &[b.to_str().unwrap()],
-    ]
-    .concat());
-    assert!(o.status.success(), "{}", stderr(&o));
-    let (na, ra) = read_csv(&a.join("results.csv"));
-    let (nb, rb) = read_csv(&b.join("results.csv"));
-    assert_eq!(ra.len(), rb.len());
-    assert!(rb.len() > 50 && nb.len() > 40);
-    for name in &nb {
-        let x = column(&na, &ra, name);
-        let y = column(&nb, &rb, name);
-        for (k, (p, q)) in x.iter().zip(&y).enumerate() {
-            assert!(p.to_bits() == q.to_bits(), "{name} row {k}: {p} vs {q}");
+fn generic_files_equal_their_builtins() {
+    for (model, file, t_end) in [
+        ("slider_crank", "slider_crank.toml", "4e-3"),
+        ("manipulator", "manipulator.toml", "0.1"),
+    ] {
+        let dir = scratch(&format!("generic-{model}"));
+        let (a, b) = (dir.join("builtin"), dir.join("file"));
+        let common = ["--t-end", t_end, "--quiet", "--no-figures", "--out"];
+        let o = clr(&[&["run", model][..], &common[..], &[a.to_str().unwrap()]].concat());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let file = data(file);
+        let o = clr(&[
+            &["run", file.as_str()][..],
+            &common[..],
+            &[b.to_str().unwrap()],
+        ]
+        .concat());
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (na, ra) = read_csv(&a.join("results.csv"));
+        let (nb, rb) = read_csv(&b.join("results.csv"));
+        assert_eq!(ra.len(), rb.len(), "{model}");
+        assert!(rb.len() > 5 && nb.len() > 40, "{model}: {} rows", rb.len());
+        for name in &nb {
+            let x = column(&na, &ra, name);
+            let y = column(&nb, &rb, name);
+            for (k, (p, q)) in x.iter().zip(&y).enumerate() {
+                assert!(
+                    p.to_bits() == q.to_bits(),
+                    "{model} {name} row {k}: {p} vs {q}"
+                );
+            }
         }
     }
 }
