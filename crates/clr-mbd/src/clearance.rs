@@ -4,8 +4,8 @@
 use clr_beam::{Face, Path};
 use clr_contact::translational::TranslationalClearance;
 use clr_contact::{
-    BodyState, ContactMemory, FrictionLaw, GuideSurface, MultipointDetector, NormalLaw,
-    RevoluteClearance,
+    BodyState, ContactMemory, ForceApplication, FrictionLaw, GuideSurface, MultipointDetector,
+    NormalLaw, RevoluteClearance,
 };
 use nalgebra::Vector2;
 
@@ -73,8 +73,8 @@ impl GuideSurface for BeamFace<'_> {
 
 /// Geometry of a contact element.
 pub(crate) enum ClearanceKind {
-    /// Journal (body j) in bearing (body i).
-    Revolute(RevoluteClearance),
+    /// Journal (body j) in bearing (body i), with where its force pair acts.
+    Revolute(RevoluteClearance, ForceApplication),
     /// Slider (body j) in a guide (body i) whose frame sits at `origin` (local to i) rotated by
     /// `angle`; inner width `width`.
     Translational {
@@ -128,7 +128,7 @@ impl Clearance {
     /// candidate for a flexible guide).
     pub(crate) fn points(&self) -> usize {
         match &self.kind {
-            ClearanceKind::Revolute(_) => 1,
+            ClearanceKind::Revolute(..) => 1,
             ClearanceKind::Translational { .. } => 4,
             ClearanceKind::FlexGuide(g) => g.detector.point_count(),
         }
@@ -145,7 +145,7 @@ impl Clearance {
     /// Signed penetration δ (m, > 0 in contact) and its rate δ̇ (m/s) of contact point k.
     pub(crate) fn gap(&self, bi: &BodyState, bj: &BodyState, k: usize) -> (f64, f64) {
         match &self.kind {
-            ClearanceKind::Revolute(g) => {
+            ClearanceKind::Revolute(g, _) => {
                 let c = g.contact(bi, bj);
                 (c.penetration, c.normal_velocity)
             }
@@ -178,7 +178,7 @@ impl Clearance {
     ) -> ContactReport {
         let mut rep = ContactReport::default();
         match &self.kind {
-            ClearanceKind::Revolute(g) => {
+            ClearanceKind::Revolute(g, application) => {
                 let ct = g.contact(bi, bj);
                 let local = bi.to_local(bi.position + ct.eccentricity_vector);
                 rep.penetration = ct.penetration;
@@ -186,7 +186,8 @@ impl Clearance {
                 rep.eccentricity = [local.x, local.y];
                 if ct.in_contact() {
                     let vm = memory.impact_velocity(self.mem, ct.penetration, ct.normal_velocity);
-                    let jf = ct.forces_from_laws(&self.normal, &self.friction, vm);
+                    let jf =
+                        ct.forces_from_laws_with(&self.normal, &self.friction, vm, *application);
                     add(self.i, jf.bearing.as_array());
                     add(self.j, jf.journal.as_array());
                     rep.active_points = 1;

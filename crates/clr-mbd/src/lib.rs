@@ -39,6 +39,7 @@ pub mod model;
 pub mod sim;
 pub mod system;
 
+pub use clr_contact::ForceApplication;
 pub use error::MbdError;
 pub use flexible::NodalLoadFn;
 pub use model::{

@@ -6,7 +6,8 @@
 use std::collections::HashMap;
 
 use clr_contact::{
-    BodyState, FrictionLaw, NormalLaw, RevoluteClearance, SliderShape, TranslationalClearance,
+    BodyState, ForceApplication, FrictionLaw, NormalLaw, RevoluteClearance, SliderShape,
+    TranslationalClearance,
 };
 use nalgebra::Vector2;
 
@@ -329,6 +330,7 @@ pub struct ModelBuilder {
     bodies: Vec<(String, RigidBody)>,
     items: Vec<Item>,
     gravity: [f64; 2],
+    force_application: Option<ForceApplication>,
 }
 
 impl ModelBuilder {
@@ -340,6 +342,15 @@ impl ModelBuilder {
     /// Gravitational acceleration (g_x, g_y) in m/s², e.g. (0, −9.81).
     pub fn gravity(&mut self, gx: f64, gy: f64) -> &mut Self {
         self.gravity = [gx, gy];
+        self
+    }
+
+    /// Where the force pair of every revolute clearance joint acts (default
+    /// [`ForceApplication::CommonPoint`]: collinear action and reaction, so the joints conserve
+    /// the system's angular momentum; [`ForceApplication::ContactPoints`] is the published Flores
+    /// et al. (2004) form, whose friction pair adds a moment δ·F_T — see clr-contact's `revolute`).
+    pub fn clearance_force_application(&mut self, application: ForceApplication) -> &mut Self {
+        self.force_application = Some(application);
         self
     }
 
@@ -1082,7 +1093,11 @@ impl ModelBuilder {
                         name,
                         i,
                         j,
-                        kind: ClearanceKind::Revolute(geometry),
+                        kind: ClearanceKind::Revolute(
+                            geometry,
+                            self.force_application
+                                .unwrap_or(ForceApplication::CommonPoint),
+                        ),
                         normal: spec.normal,
                         friction: spec.friction,
                         mem: 0,

@@ -9,6 +9,28 @@ use serde::{Deserialize, Serialize};
 
 use crate::{ModelsError, RunOutput, RunSettings};
 
+/// Where the force pair of a revolute clearance joint acts (serialized `"common_point"`,
+/// `"contact_points"`); see `clr_contact::ForceApplication`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum PairApplication {
+    /// Both forces at the midpoint of the two contact points: conserves angular momentum.
+    #[default]
+    CommonPoint,
+    /// Each force at its own body's contact point (Flores et al. 2004): the friction pair adds
+    /// a moment δ·F_T.
+    ContactPoints,
+}
+
+impl From<PairApplication> for clr_contact::ForceApplication {
+    fn from(a: PairApplication) -> Self {
+        match a {
+            PairApplication::CommonPoint => Self::CommonPoint,
+            PairApplication::ContactPoints => Self::ContactPoints,
+        }
+    }
+}
+
 /// Integrator choice of a model (serialized in lower case: `"dopri5"`, `"ndf"`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -22,7 +22,7 @@ use clr_mbd::{Model, ModelBuilder, Results, RevoluteClearanceSpec, RigidBody};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, non_negative, positive, FrictionParams, Solver};
+use crate::common::{self, col, non_negative, positive, FrictionParams, PairApplication, Solver};
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// Names of the paper's cases, in order.
@@ -65,6 +65,9 @@ pub struct ManipulatorParams {
     pub restitution: f64,
     /// Friction law (paper: Bai/Stribeck μ_s = 0.2, μ_d = 0.1, v_s = 0.01, v_d = 0.1 m/s).
     pub friction: FrictionParams,
+    /// Where each clearance joint's force pair acts (default `common_point`, which conserves
+    /// angular momentum; `contact_points` is the Flores et al. (2004) form).
+    pub force_application: PairApplication,
     /// Simulated time, s (reconstruction: 2, one torque period).
     pub duration: f64,
     /// Relative tolerance (absolute tolerance rtol·1e-3).
@@ -98,6 +101,7 @@ impl Default for ManipulatorParams {
                 v_s: 0.01,
                 v_d: 0.1,
             },
+            force_application: PairApplication::CommonPoint,
             duration: 2.0,
             rtol: 1e-9,
             solver: Solver::Dopri5,
@@ -197,6 +201,7 @@ impl ManipulatorParams {
         let friction = self.friction.law().map_err(|m| common::invalid(model, m))?;
         let (l, a) = (self.link_length, self.mount_offset);
         let mut b = ModelBuilder::new();
+        b.clearance_force_application(self.force_application.into());
         b.body(
             "base",
             RigidBody::new(self.base_mass, self.base_inertia).at(0.0, 0.0, 0.0),
