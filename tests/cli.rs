@@ -547,13 +547,14 @@ fn malformed_files_exit_2_with_a_located_message() {
 }
 
 /// Built-in models written as generic model files (tests/data/slider_crank.toml,
-/// tests/data/manipulator.toml: independent descriptions of the same mechanisms through the
+/// wan_slider_crank.toml, manipulator.toml: independent descriptions of the same mechanisms through the
 /// model-file path) give the built-ins' time histories bit for bit, column by column.
 #[test]
 fn generic_files_equal_their_builtins() {
     for (model, file, t_end) in [
         ("slider_crank", "slider_crank.toml", "4e-3"),
         ("manipulator", "manipulator.toml", "0.1"),
+        ("wan_slider_crank", "wan_slider_crank.toml", "0.01"),
     ] {
         let dir = scratch(&format!("generic-{model}"));
         let (a, b) = (dir.join("builtin"), dir.join("file"));

@@ -6,8 +6,9 @@ use std::path::Path;
 
 use clr::spec::{load_str, Loaded};
 
-const FILES: [&str; 6] = [
+const FILES: [&str; 7] = [
     "pendulum.toml",
+    "wan_slider_crank.toml",
     "manipulator.toml",
     "journal_bearing.toml",
     "slider_crank.toml",
