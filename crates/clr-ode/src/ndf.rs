@@ -595,6 +595,12 @@ impl Method for NdfMethod {
             for i in 0..n {
                 self.scale[i] = ctx.atol[i] + ctx.rtol * self.y_new[i].abs();
             }
+            if let Some(r) = &opts.h_scaled_error {
+                let hs = h.min(1.0);
+                for s in &mut self.scale[r.clone()] {
+                    *s /= hs;
+                }
+            }
             let ec = self.error_const[k];
             let mut acc = 0.0;
             for i in 0..n {

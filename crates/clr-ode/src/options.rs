@@ -67,6 +67,14 @@ pub struct Options {
     /// order of a method). NDF/BDF raise the order by one per step up to `max_order` unless
     /// started with a history ([`crate::Ndf::start_with_history`]).
     pub fixed_step: bool,
+    /// NDF/BDF only: components whose local error estimate is multiplied by min(h, 1) (h the
+    /// step in units of t) before the error norm; `None` (default) for none. Use it for the
+    /// velocities of a second-order system y = (x, ẋ) with undamped or lightly damped stiff
+    /// modes: where h·ω ≫ 1 the velocity of such a mode behaves like an index-2 variable (its
+    /// error is the position error divided by h), so an unscaled test pins h at h·ω ≲ 1. The
+    /// same scaling as RADAU5's index-2 variables (Hairer & Wanner, Solving ODEs II, 2nd ed.,
+    /// §VII.4, and the NIND2 option of their code). See docs/ode.md, "Undamped structures".
+    pub h_scaled_error: Option<std::ops::Range<usize>>,
 }
 
 impl Default for Options {
@@ -83,6 +91,7 @@ impl Default for Options {
             formula: Formula::Ndf,
             max_newton_failures: 20,
             fixed_step: false,
+            h_scaled_error: None,
         }
     }
 }
@@ -141,6 +150,12 @@ impl Options {
     /// Set the per-step limit of Newton failures.
     pub fn max_newton_failures(mut self, n: usize) -> Self {
         self.max_newton_failures = n;
+        self
+    }
+    /// Multiply the local error estimate of `components` (e.g. the velocities n..2n of
+    /// y = (x, ẋ)) by min(h, 1) before the error norm (see [`Options::h_scaled_error`]).
+    pub fn h_scaled_error(mut self, components: std::ops::Range<usize>) -> Self {
+        self.h_scaled_error = Some(components);
         self
     }
     /// Fixed steps of size `h` with no error control.

@@ -360,6 +360,14 @@ impl<M: Method> Solver<M> {
                 o.max_order
             )));
         }
+        if let Some(r) = &o.h_scaled_error {
+            if r.start >= r.end || r.end > n {
+                return Err(invalid(format!(
+                    "h_scaled_error = {}..{} must be a non-empty range within 0..{n}",
+                    r.start, r.end
+                )));
+            }
+        }
         if o.max_steps == 0 {
             return Err(invalid("max_steps must be at least 1"));
         }
