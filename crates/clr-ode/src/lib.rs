@@ -9,7 +9,8 @@
 //! default), h_max, h_min floor, max_steps, [`Output`] every step / at given times / end only):
 //! - [`Ndf`]: the variable-order (1–5) NDF solver of ode15s (Shampine & Reichelt 1997), or
 //!   plain BDF with [`Options::bdf`]; simplified Newton with Jacobian and LU reuse; stiff
-//!   problems and index-1 DAEs.
+//!   problems and index-1 DAEs. For structural models y = (x, ẋ) with undamped stiff modes use
+//!   `max_order(2)` and [`Options::h_scaled_error`] on the velocities (docs/ode.md).
 //! - [`Dopri5`]: Dormand–Prince 5(4), PI step control, 4th-order dense output; non-stiff.
 //!
 //! Both locate events on their dense output (Illinois root finding), call an [`Observer`] after
