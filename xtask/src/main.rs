@@ -8,6 +8,7 @@
 
 mod bench;
 mod figures;
+mod minimal_slider_crank;
 mod report;
 mod verify;
 
@@ -31,7 +32,7 @@ pub fn target_dir() -> PathBuf {
 
 const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
-  bench    benchmarks against peers (groups: ode); writes target/bench/<group>.json
+  bench    benchmarks against peers (groups: ode, mbd); writes target/bench/<group>.json
   figures  regenerate docs/figures/";
 
 fn main() -> ExitCode {

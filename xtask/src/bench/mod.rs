@@ -1,6 +1,7 @@
 //! `cargo xtask bench`: clr side by side with peer solvers, in one run.
 
 mod clr;
+mod mbd;
 mod ode;
 mod peers;
 
@@ -12,11 +13,16 @@ const USAGE: &str =
         and OREGO at rtol 1e-6 and 1e-8 (default), plus a clr/diffsol work-precision sweep
         (rtol 1e-5 ... 1e-10) for the equal-accuracy comparison; writes target/bench/ode.json,
         target/bench/ode.md and work-precision figures target/bench/ode_<problem>.{svg,png}
-        (with --docs-figures also docs/figures/bench_ode_<problem>.{svg,png})";
+        (with --docs-figures also docs/figures/bench_ode_<problem>.{svg,png})
+       cargo xtask bench mbd [--min-time SECONDS] [--exudyn-h H1,H2] [--no-scipy] [--no-exudyn]
+  mbd   clearance slider–crank of issue 5: clr (NDF, DOPRI5 at rtol 1e-6) vs Exudyn
+        (generalized-α, h = 1e-5 and 1e-6) vs SciPy solve_ivp LSODA/BDF; wall time and slider
+        error at 5/10 ms against the independent formulation; writes target/bench/mbd.{json,md}";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {
         Some("ode") => ode::run(&args[1..]),
+        Some("mbd") => mbd::run(&args[1..]),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

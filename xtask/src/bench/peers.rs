@@ -86,7 +86,7 @@ fn has_scipy(python: &Path) -> bool {
 }
 
 /// Make sure `bench/.venv` exists and can import scipy and numpy; returns its interpreter.
-fn ensure_venv(root: &Path) -> Result<PathBuf, String> {
+pub fn ensure_venv(root: &Path) -> Result<PathBuf, String> {
     let venv = root.join("bench").join(".venv");
     let python = venv_python(&venv);
     if python.exists() && has_scipy(&python) {
