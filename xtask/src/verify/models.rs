@@ -504,10 +504,8 @@ fn flap_linkage_cases(filter: &Filter, out: &mut Vec<Case>) {
                 id,
                 format!("{study} study cases completed"),
                 "-",
-                format!(
-                    "study of the paper (Wan et al. 2022) on the reconstructed rigid linkage; \
-                     every configuration must run (4 cases); values reported in the note"
-                ),
+                "study of the paper (Wan et al. 2022) on the reconstructed rigid linkage; every \
+                 configuration must run (4 cases); values reported in the note",
             )
             .absolute(n as f64, 4.0, 0.0)
             .note(summary(study)),
