@@ -14,6 +14,7 @@ use nalgebra::Vector2;
 use crate::clearance::{Clearance, ClearanceKind, FlexGuide};
 use crate::error::MbdError;
 use crate::flexible::{FlexBeam, NodalLoadFn};
+use crate::floating::FloatingBody;
 use crate::system::{Con, ForceEl, Frame, Model, Motion};
 
 /// Name of the ground body (fixed at the origin, angle 0). It is always defined.
@@ -331,7 +332,17 @@ pub struct ModelBuilder {
     items: Vec<Item>,
     gravity: [f64; 2],
     force_application: Option<ForceApplication>,
+    floating: Vec<FloatingSpec>,
 }
+
+/// A floating flexible body as given to the builder: name, beam model, reduction, pose, velocity.
+type FloatingSpec = (
+    String,
+    Box<clr_beam::BeamModel>,
+    Box<clr_beam::ReducedModel>,
+    [f64; 3],
+    [f64; 3],
+);
 
 impl ModelBuilder {
     /// An empty model (only the ground), no gravity.
@@ -597,6 +608,33 @@ impl ModelBuilder {
         self
     }
 
+    /// A moving flexible body in a floating frame of reference (Shabana 2020 ch. 5; formulation
+    /// in the crate documentation, section "Floating-frame flexible bodies"): the beam `model`
+    /// (coordinates in the body frame, m; its supports are the reference conditions, e.g. a clamp
+    /// at node 0) and its reduction `reduced` (from `model.modal_truncation(n)` or
+    /// `model.craig_bampton(..)`), the initial frame pose `pose` = (R_x m, R_y m, θ rad) and
+    /// velocity (Ṙ_x, Ṙ_y m/s, θ̇ rad/s); elastic coordinates start at rest and undeformed.
+    /// Attach joints at its reference nodes with `(name, node)` anchors or body-local
+    /// `(name, [x, y])` anchors. Its coordinates `name.x`, `name.y`, `name.theta`, `name.q<k>`
+    /// come after the rigid bodies' in q.
+    pub fn floating_beam(
+        &mut self,
+        name: &str,
+        model: clr_beam::BeamModel,
+        reduced: clr_beam::ReducedModel,
+        pose: [f64; 3],
+        velocity: [f64; 3],
+    ) -> &mut Self {
+        self.floating.push((
+            name.into(),
+            Box::new(model),
+            Box::new(reduced),
+            pose,
+            velocity,
+        ));
+        self
+    }
+
     /// A named point at node `node` of flexible beam `beam`: joints, springs, forces and contact
     /// elements anchored at it (`Anchor::Point(name)`, or just `"name"`) move with the node's
     /// displacement and rotation (small-rotation node frame).
@@ -701,6 +739,17 @@ impl ModelBuilder {
             }
             body_ids.insert(name.clone(), k);
         }
+        // floating bodies: frame index after the rigid bodies, coordinates before the beams
+        let mut floating: Vec<FloatingBody> = Vec::with_capacity(self.floating.len());
+        let mut offset = 3 * self.bodies.len();
+        for (name, model, red, pose, vel) in &self.floating {
+            claim(name, "floating flexible body")?;
+            let mut fb = FloatingBody::new(name, model, red, *pose, *vel)?;
+            fb.offset = offset;
+            offset += fb.n_coords();
+            body_ids.insert(name.clone(), self.bodies.len() + floating.len());
+            floating.push(fb);
+        }
         for item in &self.items {
             claim(item.name(), item.kind())?;
         }
@@ -777,13 +826,18 @@ impl ModelBuilder {
                 Ok(())
             }
         };
-        let angle0 = |id: usize| -> f64 { self.bodies.get(id).map_or(0.0, |b| b.1.angle) };
+        let nb = self.bodies.len();
+        let angle0 = |id: usize| -> f64 {
+            match self.bodies.get(id) {
+                Some(b) => b.1.angle,
+                None => floating.get(id.wrapping_sub(nb)).map_or(0.0, |f| f.pose[2]),
+            }
+        };
         let mut cons: Vec<Con> = Vec::new();
         let mut forces: Vec<ForceEl> = Vec::new();
         let mut clearances: Vec<Clearance> = Vec::new();
         let mut motions: Vec<Motion> = Vec::new();
         let mut beams: Vec<FlexBeam> = Vec::new();
-        let mut offset = 3 * self.bodies.len();
         let mut items = Vec::with_capacity(self.items.len());
         for item in self.items {
             if let Item::Beam { name, model } = item {
@@ -797,6 +851,12 @@ impl ModelBuilder {
         }
         // attachment frames: rigid bodies, then the beam nodes named by beam_node_point
         let mut frames: Vec<Frame> = (0..self.bodies.len()).map(Frame::rigid).collect();
+        frames.extend(floating.iter().map(|f| Frame {
+            cols: [Some(f.offset), Some(f.offset + 1), Some(f.offset + 2)],
+            base: Vector2::zeros(),
+        }));
+        let mut float_nodes: HashMap<(String, usize), (usize, Vector2<f64>)> = HashMap::new();
+        let mut float_points: HashMap<String, (usize, Vector2<f64>)> = HashMap::new();
         let mut node_points: HashMap<String, usize> = HashMap::new();
         let mut node_frames: HashMap<(String, usize), usize> = HashMap::new();
         let mut wanted: Vec<(String, String, usize, Option<String>)> = Vec::new();
@@ -811,6 +871,23 @@ impl ModelBuilder {
             }
         }
         for (name, beam, node, point) in &wanted {
+            if let Some(f) = floating.iter().position(|f| &f.name == beam) {
+                if !floating[f].is_reference_node(*node) {
+                    return Err(MbdError::InvalidParameter {
+                        item: name.clone(),
+                        what: "floating-body node index",
+                        value: *node as f64,
+                        requirement: "must be a reference node of the floating body (all three DOF constrained in its beam model, e.g. the clamped node 0)",
+                    });
+                }
+                let p = floating[f].nodes[*node];
+                let a = (nb + f, Vector2::new(p[0], p[1]));
+                float_nodes.insert((beam.clone(), *node), a);
+                if let Some(p) = point {
+                    float_points.insert(p.clone(), a);
+                }
+                continue;
+            }
             {
                 let key = (beam.clone(), *node);
                 if let Some(&k) = node_frames.get(&key) {
@@ -855,6 +932,10 @@ impl ModelBuilder {
             match a {
                 Anchor::Point(p) if node_points.contains_key(p) => {
                     Ok((node_points[p], Vector2::zeros()))
+                }
+                Anchor::Point(p) if float_points.contains_key(p) => Ok(float_points[p]),
+                Anchor::BeamNode(b, k) if float_nodes.contains_key(&(b.clone(), *k)) => {
+                    Ok(float_nodes[&(b.clone(), *k)])
                 }
                 Anchor::BeamNode(b, k) => node_frames
                     .get(&(b.clone(), *k))
@@ -1153,6 +1234,7 @@ impl ModelBuilder {
         Model::assemble(
             self.bodies,
             beams,
+            floating,
             frames,
             point_list,
             cons,

@@ -217,6 +217,9 @@ impl Model {
         for b in &self.beams {
             c.extend(b.dof_names());
         }
+        for f in &self.floating {
+            c.extend(f.coord_names());
+        }
         for j in self.joint_names() {
             for s in ["Fx", "Fy", "M"] {
                 c.push(format!("{j}.{s}"));
@@ -262,6 +265,9 @@ impl Model {
         }
         for b in &self.beams {
             out.extend_from_slice(&q[b.offset..b.offset + b.n_free()]);
+        }
+        for f in &self.floating {
+            out.extend_from_slice(&q[f.offset..f.offset + f.n_coords()]);
         }
         for s in self.joint_starts() {
             out.extend_from_slice(&self.reaction(s));

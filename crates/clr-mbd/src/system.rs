@@ -19,6 +19,7 @@ use clr_contact::{BodyState, ContactMemory};
 use crate::clearance::Clearance;
 pub use crate::clearance::ContactReport;
 use crate::flexible::FlexBeam;
+use crate::floating::FloatingBody;
 use clr_ode::linalg::DenseLu;
 use clr_ode::{Direction, OdeSystem};
 use nalgebra::Vector2;
@@ -255,6 +256,8 @@ pub struct Model {
     pub(crate) body_names: Vec<String>,
     pub(crate) bodies: Vec<RigidBody>,
     pub(crate) beams: Vec<FlexBeam>,
+    /// Floating-frame flexible bodies (coordinates after the beams).
+    pub(crate) floating: Vec<FloatingBody>,
     /// Attachment frames: rigid bodies first (index = body index), then beam nodes.
     pub(crate) frames: Vec<Frame>,
     pub(crate) points: Vec<(String, usize, Vector2<f64>)>,
@@ -286,12 +289,12 @@ pub struct Model {
 }
 
 #[inline]
-fn perp(v: Vector2<f64>) -> Vector2<f64> {
+pub(crate) fn perp(v: Vector2<f64>) -> Vector2<f64> {
     Vector2::new(-v.y, v.x)
 }
 
 #[inline]
-fn rot(th: f64, s: Vector2<f64>) -> Vector2<f64> {
+pub(crate) fn rot(th: f64, s: Vector2<f64>) -> Vector2<f64> {
     let (sn, c) = th.sin_cos();
     Vector2::new(c * s.x - sn * s.y, sn * s.x + c * s.y)
 }
@@ -341,6 +344,7 @@ impl Model {
     pub(crate) fn assemble(
         bodies: Vec<(String, RigidBody)>,
         beams: Vec<FlexBeam>,
+        floating: Vec<FloatingBody>,
         frames: Vec<Frame>,
         points: Vec<(String, usize, Vector2<f64>)>,
         mut cons: Vec<Con>,
@@ -354,7 +358,9 @@ impl Model {
             c.row = m;
             m += c.rows();
         }
-        let n = 3 * bodies.len() + beams.iter().map(FlexBeam::n_free).sum::<usize>();
+        let n = 3 * bodies.len()
+            + beams.iter().map(FlexBeam::n_free).sum::<usize>()
+            + floating.iter().map(FloatingBody::n_coords).sum::<usize>();
         if n == 0 {
             return Err(MbdError::InvalidParameter {
                 item: "model".into(),
@@ -387,6 +393,7 @@ impl Model {
             body_names,
             bodies,
             beams,
+            floating,
             frames,
             points,
             cons,
@@ -477,6 +484,10 @@ impl Model {
             y[n + 3 * k] = b.velocity[0];
             y[n + 3 * k + 1] = b.velocity[1];
             y[n + 3 * k + 2] = b.angular_velocity;
+        }
+        for f in &self.floating {
+            y[f.offset..f.offset + 3].copy_from_slice(&f.pose);
+            y[n + f.offset..n + f.offset + 3].copy_from_slice(&f.velocity);
         }
         y
     }
@@ -662,6 +673,9 @@ impl Model {
         for b in &self.beams {
             p_diss += b.forces(t, q, qd, &mut self.qf);
         }
+        for f in &self.floating {
+            p_diss += f.forces(q, qd, self.gravity, &mut self.qf);
+        }
         self.p_diss = p_diss;
     }
 
@@ -686,6 +700,9 @@ impl Model {
                     a[(o + r) + (o + c) * nm] = fb.m[r * nf + c];
                 }
             }
+        }
+        for f in &self.floating {
+            f.add_mass(q, a, nm);
         }
         for r in 0..m {
             for c in 0..n {
@@ -732,6 +749,12 @@ impl Model {
         for b in &self.beams {
             let (ek, ee) = b.energies(q, qd);
             e.kinetic += ek;
+            e.elastic += ee;
+        }
+        for f in &self.floating {
+            let [ek, ep, ee] = f.energies(q, qd, self.gravity);
+            e.kinetic += ek;
+            e.potential += ep;
             e.elastic += ee;
         }
         for f in &self.forces {
