@@ -12,17 +12,29 @@ approaching), δ̇⁻ the rate at the onset of the current contact; F_T opposes 
 
 from __future__ import annotations
 
-from typing import Optional, Sequence
+import json
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
 from . import _native
-from ._native import ContactError, damping_names, elastic_kinds, friction_kinds, preset_names
+from ._native import (
+    ContactError,
+    ModelError,
+    damping_names,
+    elastic_kinds,
+    friction_kinds,
+    preset_names,
+)
 
 __version__ = _native.__version__
 
 __all__ = [
     "ContactError",
+    "ModelError",
+    "SimulationError",
+    "list_models",
+    "run_model",
     "NormalLaw",
     "FrictionLaw",
     "RevoluteJoint",
@@ -254,3 +266,56 @@ def effective_restitution(chi):
     """Restitution e (–) a multiplicative law with damping factor χ ≥ 0 produces in a free
     impact: the root of (1 + e)χ = ln[(1 + χ)/(1 − χe)] (contact-laws.md §1.3)."""
     return _apply(_native.effective_restitution, chi)
+
+
+class SimulationError(RuntimeError):
+    """The integrator failed during :func:`run_model`; ``result`` holds the partial results
+    (the same dict as a successful run, up to the last accepted time) and the message says which
+    solver setting to change."""
+
+    def __init__(self, message: str, result: Dict[str, Any]):
+        super().__init__(message)
+        self.result = result
+
+
+def list_models() -> List[Tuple[str, str]]:
+    """The built-in models as ``(name, description)`` pairs (as ``clr list`` prints them)."""
+    return list(_native.list_models())
+
+
+def run_model(
+    name_or_path: str,
+    set: Optional[Mapping[str, Any]] = None,
+    t_end: Optional[float] = None,
+    rtol: Optional[float] = None,
+) -> Dict[str, Any]:
+    """Run a whole clr model as ``clr run`` does, without writing files.
+
+    ``name_or_path`` is a built-in model name (see :func:`list_models`) or a model file
+    (docs/model-file.md; a path ending in ``.toml`` or any existing file). ``set`` maps dotted
+    names to values exactly like ``clr run --set name=value`` (e.g. ``{"restitution": 0.5}`` for a
+    built-in, ``{"body.rod.mass": 2.0, "solver.rtol": 1e-9}`` for a file); strings are read as
+    on the command line. ``t_end`` (s) and ``rtol`` override the model's end time and relative
+    tolerance.
+
+    Returns a dict: ``time`` (s) and every recorded column (``"crank.theta"``, ``"B.normal_force"``,
+    …) as float64 arrays, the same numbers as ``clr run``'s results.csv; ``units`` (key → unit);
+    ``metrics`` (name → float) and ``metric_units``; ``parameters`` (the full resolved parameters,
+    a dict); ``model`` and ``source`` (``"builtin"`` or the file).
+
+    Raises :class:`ModelError` (a ``ValueError``) for an unknown name (the message lists the
+    valid ones), a malformed model file (``file:line:column: field `...`: what to change``) or a
+    bad override, and :class:`SimulationError` when the integrator fails.
+    """
+    set_dict = None if set is None else dict(set)
+    out = _native.run_model(
+        str(name_or_path),
+        set_dict,
+        None if t_end is None else float(t_end),
+        None if rtol is None else float(rtol),
+    )
+    out["parameters"] = json.loads(out["parameters"])
+    error = out.pop("error")
+    if error is not None:
+        raise SimulationError(error, out)
+    return out

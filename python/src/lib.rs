@@ -21,6 +21,8 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+mod models;
+
 create_exception!(
     _native,
     ContactError,
@@ -455,5 +457,8 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(elastic_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(friction_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
+    m.add("ModelError", m.py().get_type::<models::ModelError>())?;
+    m.add_function(wrap_pyfunction!(models::list_models, m)?)?;
+    m.add_function(wrap_pyfunction!(models::run_model, m)?)?;
     Ok(())
 }

@@ -3,141 +3,31 @@
 use std::io::Write;
 use std::path::Path;
 
-use clr_models::{Metric, RunOutput};
+use clr::spec::run::Outcome;
 use clr_plot::Figure;
 
 use super::CliError;
 
-/// The outcome of one run, from a built-in model or a model file.
+/// The outcome of one run (`clr::spec::run::Outcome`, whose fields it derefs to) and its wall
+/// time.
 pub(crate) struct Record {
-    /// Model name.
-    pub model: String,
-    /// `builtin` or the model file path.
-    pub source: String,
-    /// Time histories.
-    pub results: clr_mbd::Results,
-    /// Unit of each column.
-    pub units: Vec<String>,
-    /// Scalar metrics.
-    pub metrics: Vec<Metric>,
-    /// Full resolved parameters.
-    pub parameters: serde_json::Value,
+    /// Model, source, results, units, metrics, parameters, error.
+    pub outcome: Outcome,
     /// Wall time of the simulation, s.
     pub wall_s: f64,
-    /// The solver's error when the run failed (results are then partial).
-    pub error: Option<String>,
-    /// Clearance joints that get no orbit figure (translational ones).
-    pub no_orbit: Vec<String>,
 }
 
-/// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`).
-pub(crate) fn unit_of(column: &str) -> &'static str {
-    if column == "t" {
-        return "s";
-    }
-    if column == "violation.position" {
-        return "m or rad";
-    }
-    if column == "violation.velocity" {
-        return "m/s or rad/s";
-    }
-    if column.starts_with("energy.") {
-        return "J";
-    }
-    match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" => "m",
-        "theta" => "rad",
-        "vx" | "vy" | "rate" => "m/s",
-        "omega" => "rad/s",
-        "ax" | "ay" => "m/s^2",
-        "alpha" => "rad/s^2",
-        "Fx" | "Fy" | "normal_force" | "friction_force" => "N",
-        "M" => "N*m",
-        _ => "-",
+impl std::ops::Deref for Record {
+    type Target = Outcome;
+    fn deref(&self) -> &Outcome {
+        &self.outcome
     }
 }
 
 impl Record {
-    pub(crate) fn from_output(
-        o: RunOutput,
-        source: &str,
-        wall_s: f64,
-        error: Option<String>,
-    ) -> Self {
-        let units = if o.units.len() == o.results.columns.len() {
-            o.units
-        } else {
-            o.results
-                .columns
-                .iter()
-                .map(|c| unit_of(c).to_string())
-                .collect()
-        };
-        Self {
-            model: o.model,
-            source: source.to_string(),
-            results: o.results,
-            units,
-            metrics: o.metrics,
-            parameters: o.parameters,
-            wall_s,
-            error,
-            no_orbit: Vec::new(),
-        }
-    }
-
-    pub(crate) fn from_results(
-        model: &str,
-        source: &str,
-        results: clr_mbd::Results,
-        metrics: Vec<Metric>,
-        parameters: serde_json::Value,
-        wall_s: f64,
-        error: Option<String>,
-    ) -> Self {
-        let units = results
-            .columns
-            .iter()
-            .map(|c| unit_of(c).to_string())
-            .collect();
-        Self {
-            model: model.to_string(),
-            source: source.to_string(),
-            results,
-            units,
-            metrics,
-            parameters,
-            wall_s,
-            error,
-            no_orbit: Vec::new(),
-        }
-    }
-
-    pub(crate) fn empty(
-        model: &str,
-        parameters: serde_json::Value,
-        wall_s: f64,
-        error: String,
-    ) -> Self {
-        Self {
-            model: model.to_string(),
-            source: "builtin".into(),
-            results: clr_mbd::Results {
-                columns: vec!["t".into()],
-                data: Vec::new(),
-                stats: Default::default(),
-                onsets: 0,
-                projections: 0,
-                max_position_violation: f64::NAN,
-                y_final: Vec::new(),
-            },
-            units: vec!["s".into()],
-            metrics: Vec::new(),
-            parameters,
-            wall_s,
-            error: Some(error),
-            no_orbit: Vec::new(),
-        }
+    /// A record of a library run outcome and its wall time (s).
+    pub(crate) fn new(outcome: Outcome, wall_s: f64) -> Self {
+        Self { outcome, wall_s }
     }
 }
 

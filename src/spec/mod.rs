@@ -16,6 +16,7 @@ mod build;
 mod file;
 pub mod locate;
 mod overrides;
+pub mod run;
 mod timefn;
 
 use std::path::Path;

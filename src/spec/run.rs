@@ -1,0 +1,378 @@
+//! One run of a built-in model or a model file, as `clr run` does it, without writing files:
+//! [`resolve`] a target (a catalog name or a `.toml` path) with `--set` overrides, then
+//! [`execute`] it into an [`Outcome`] (time histories, units, metrics, resolved parameters).
+//! The command-line tool and the Python package both go through these two functions, so a
+//! run from either gives the same numbers bit for bit.
+
+use std::path::Path;
+
+use clr_models::{Metric, RunOutput, RunSettings};
+
+use super::{apply_json_override, Assignment, Loaded, ModelSpec, SpecError};
+
+/// Why a target could not be resolved or run (bad input; a solver failure is not an error but
+/// an [`Outcome`] with `error` set).
+#[derive(Debug, Clone, thiserror::Error)]
+pub enum RunError {
+    /// A model file or override error with its place.
+    #[error(transparent)]
+    Spec(#[from] SpecError),
+    /// Any other bad input (unknown model name, invalid parameters of a built-in).
+    #[error("{0}")]
+    Input(String),
+}
+
+/// A resolved target, ready to run (plain data: `Send`).
+#[derive(Debug, Clone)]
+pub enum Job {
+    /// A catalog model with its full parameters.
+    Builtin {
+        /// Catalog name.
+        name: String,
+        /// Full resolved parameters (defaults with the overrides applied).
+        parameters: serde_json::Value,
+    },
+    /// A validated generic model file.
+    Generic(Box<ModelSpec>),
+}
+
+/// The outcome of one run, from a built-in model or a model file.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// Model name.
+    pub model: String,
+    /// `builtin` or the model file path.
+    pub source: String,
+    /// Time histories (column `t` in s first).
+    pub results: clr_mbd::Results,
+    /// Unit of each column of `results`, in the same order.
+    pub units: Vec<String>,
+    /// Scalar metrics.
+    pub metrics: Vec<Metric>,
+    /// Full resolved parameters.
+    pub parameters: serde_json::Value,
+    /// The solver's error when the run failed (results are then partial).
+    pub error: Option<String>,
+    /// Clearance joints that get no orbit figure (translational ones).
+    pub no_orbit: Vec<String>,
+}
+
+/// True when `target` names a model file rather than a built-in model.
+pub fn is_file(target: &str) -> bool {
+    target.ends_with(".toml") || Path::new(target).is_file()
+}
+
+/// Resolve a target (a built-in name or a model file path) with its overrides, end time (s)
+/// and relative tolerance.
+///
+/// # Errors
+/// [`RunError`] for an unknown name (the message lists the valid ones), a malformed file
+/// (file:line: field), a bad override, or a non-positive `t_end`/`rtol`.
+pub fn resolve(
+    target: &str,
+    overrides: &[Assignment],
+    t_end: Option<f64>,
+    rtol: Option<f64>,
+) -> Result<Job, RunError> {
+    let mut job = if is_file(target) {
+        match super::load(Path::new(target), overrides)? {
+            Loaded::Builtin { name, parameters } => Job::Builtin { name, parameters },
+            Loaded::Generic(s) => Job::Generic(s),
+        }
+    } else {
+        let mut parameters = clr_models::catalog::default_parameters(target).map_err(|_| {
+            let names: Vec<&str> = clr_models::catalog::entries()
+                .iter()
+                .map(|e| e.name)
+                .collect();
+            RunError::Input(format!(
+                "unknown built-in model `{target}`; {} (or give a model file ending in .toml)",
+                super::locate::suggestion(target, names.iter().copied())
+            ))
+        })?;
+        for a in overrides {
+            apply_json_override(&mut parameters, a)?;
+        }
+        Job::Builtin {
+            name: target.to_string(),
+            parameters,
+        }
+    };
+    if let Some(t) = t_end {
+        if !(t.is_finite() && t > 0.0) {
+            return Err(SpecError::plain("--t-end", "", format!("{t} s must be > 0")).into());
+        }
+    }
+    if let Some(r) = rtol {
+        if !(r.is_finite() && r > 0.0) {
+            return Err(SpecError::plain("--rtol", "", format!("{r} must be > 0")).into());
+        }
+    }
+    if let Job::Generic(s) = &mut job {
+        if let Some(t) = t_end {
+            s.set_t_end(t)?;
+        }
+        if let Some(r) = rtol {
+            s.set_rtol(r)?;
+        }
+    }
+    Ok(job)
+}
+
+impl Outcome {
+    fn from_output(o: RunOutput, error: Option<String>) -> Self {
+        let units = if o.units.len() == o.results.columns.len() {
+            o.units
+        } else {
+            o.results
+                .columns
+                .iter()
+                .map(|c| unit_of(c).to_string())
+                .collect()
+        };
+        Self {
+            model: o.model,
+            source: "builtin".into(),
+            results: o.results,
+            units,
+            metrics: o.metrics,
+            parameters: o.parameters,
+            error,
+            no_orbit: Vec::new(),
+        }
+    }
+
+    fn from_results(
+        s: &ModelSpec,
+        results: clr_mbd::Results,
+        metrics: Vec<Metric>,
+        error: Option<String>,
+    ) -> Self {
+        let units = results
+            .columns
+            .iter()
+            .map(|c| unit_of(c).to_string())
+            .collect();
+        Self {
+            model: s.name.clone(),
+            source: s.file.clone(),
+            results,
+            units,
+            metrics,
+            parameters: s.resolved.clone(),
+            error,
+            // translational clearances of a model file have no orbit
+            no_orbit: s
+                .clearances
+                .iter()
+                .filter(|(_, radial)| radial.is_none())
+                .map(|(n, _)| n.clone())
+                .collect(),
+        }
+    }
+
+    fn empty(model: &str, parameters: serde_json::Value, error: String) -> Self {
+        Self {
+            model: model.to_string(),
+            source: "builtin".into(),
+            results: clr_mbd::Results {
+                columns: vec!["t".into()],
+                data: Vec::new(),
+                stats: Default::default(),
+                onsets: 0,
+                projections: 0,
+                max_position_violation: f64::NAN,
+                y_final: Vec::new(),
+            },
+            units: vec!["s".into()],
+            metrics: Vec::new(),
+            parameters,
+            error: Some(error),
+            no_orbit: Vec::new(),
+        }
+    }
+}
+
+/// Run a job with the end time (s) and relative tolerance of [`resolve`]; `progress` is
+/// called now and then with the simulated time (s) of a built-in model. A simulation failure
+/// still returns an [`Outcome`] (with `error` set and the partial results); only bad input is
+/// an `Err`.
+///
+/// # Errors
+/// [`RunError`] when the model cannot be built from its parameters.
+pub fn execute(
+    job: &Job,
+    t_end: Option<f64>,
+    rtol: Option<f64>,
+    progress: Option<Box<dyn Fn(f64) + Send + Sync>>,
+) -> Result<Outcome, RunError> {
+    match job {
+        Job::Builtin { name, parameters } => {
+            let settings = RunSettings {
+                t_end,
+                rtol,
+                progress,
+            };
+            match clr_models::catalog::run(name, parameters, &settings) {
+                Ok(o) => Ok(Outcome::from_output(o, None)),
+                Err(clr_models::ModelsError::Simulation {
+                    message, partial, ..
+                }) => match partial {
+                    Some(o) => Ok(Outcome::from_output(*o, Some(message))),
+                    None => Ok(Outcome::empty(name, parameters.clone(), message)),
+                },
+                Err(e) => Err(RunError::Input(e.to_string())),
+            }
+        }
+        Job::Generic(s) => {
+            let built = s.build()?;
+            let mut model = built.model;
+            match model.simulate(&built.options) {
+                Ok(res) => {
+                    let metrics = generic_metrics(&res, s);
+                    Ok(Outcome::from_results(s, res, metrics, None))
+                }
+                Err(clr_mbd::MbdError::Solver(e)) => {
+                    let msg = format!(
+                        "{e} (in the model file these are [solver] max_steps, rtol, atol, \
+                         method)"
+                    );
+                    let res = partial_results(&model, s, e.solution());
+                    Ok(Outcome::from_results(s, res, Vec::new(), Some(msg)))
+                }
+                Err(e) => Err(s.model_error(&e).into()),
+            }
+        }
+    }
+}
+
+/// The coordinates and velocities the integrator had computed before a failure, as results
+/// (columns `t`, `B.x B.y B.theta B.vx B.vy B.omega` per body).
+fn partial_results(
+    model: &clr_mbd::Model,
+    s: &ModelSpec,
+    sol: &clr_ode::Solution,
+) -> clr_mbd::Results {
+    // rigid-body coordinates come first in q (beam coordinates follow and are not written)
+    let n = model.n_coordinates();
+    let nb = s.body_names().len();
+    let mut columns = vec!["t".to_string()];
+    for b in s.body_names() {
+        for c in ["x", "y", "theta", "vx", "vy", "omega"] {
+            columns.push(format!("{b}.{c}"));
+        }
+    }
+    let mut data = Vec::new();
+    for k in 0..sol.len() {
+        let y = sol.state(k);
+        data.push(sol.t[k]);
+        for b in 0..nb {
+            data.extend_from_slice(&y[3 * b..3 * b + 3]);
+            data.extend_from_slice(&y[n + 3 * b..n + 3 * b + 3]);
+        }
+    }
+    clr_mbd::Results {
+        columns,
+        data,
+        stats: sol.stats,
+        onsets: 0,
+        projections: 0,
+        max_position_violation: f64::NAN,
+        y_final: sol.y_final.clone(),
+    }
+}
+
+fn max_abs(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+/// Metrics of a generic model run, computed from its recorded columns.
+fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
+    let mut m = Vec::new();
+    for (c, radial) in &s.clearances {
+        if let Some(f) = r.column(&format!("{c}.normal_force")) {
+            m.push(Metric::new(
+                &format!("{c}.peak_normal_force"),
+                max_abs(&f),
+                "N",
+                "largest normal contact force at the output times",
+            ));
+        }
+        if let Some(p) = r.column(&format!("{c}.penetration")) {
+            m.push(Metric::new(
+                &format!("{c}.max_penetration"),
+                p.iter().fold(f64::NEG_INFINITY, |a, &x| a.max(x)),
+                "m",
+                "largest penetration (negative: never in contact) at the output times",
+            ));
+        }
+        if let Some(radial) = radial {
+            m.push(Metric::new(
+                &format!("{c}.radial_clearance"),
+                *radial,
+                "m",
+                "bearing radius minus journal radius",
+            ));
+        }
+        if let Some(f) = r.column(&format!("{c}.Fx")) {
+            m.push(Metric::new(
+                &format!("{c}.peak_reaction"),
+                max_abs(&f),
+                "N",
+                "",
+            ));
+        }
+    }
+    if let Some(e) = r.column("energy.total") {
+        let e0 = e.first().copied().unwrap_or(0.0);
+        let drift = e.iter().fold(0.0f64, |a, &x| a.max((x - e0).abs()));
+        m.push(Metric::new(
+            "energy_change",
+            drift,
+            "J",
+            "largest |E(t) − E(0)| of the total mechanical energy (work of drivers, damping \
+             and contact included)",
+        ));
+    }
+    m.push(Metric::new(
+        "contact_onsets",
+        r.onsets as f64,
+        "-",
+        "contact onsets located as events",
+    ));
+    m.push(Metric::new(
+        "max_position_violation",
+        r.max_position_violation,
+        "m or rad",
+        "largest constraint violation after accepted steps",
+    ));
+    m
+}
+
+/// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`): `s`, `m`,
+/// `rad`, `N`, … or `-`.
+pub fn unit_of(column: &str) -> &'static str {
+    if column == "t" {
+        return "s";
+    }
+    if column == "violation.position" {
+        return "m or rad";
+    }
+    if column == "violation.velocity" {
+        return "m/s or rad/s";
+    }
+    if column.starts_with("energy.") {
+        return "J";
+    }
+    match column.rsplit('.').next().unwrap_or("") {
+        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" => "m",
+        "theta" => "rad",
+        "vx" | "vy" | "rate" => "m/s",
+        "omega" => "rad/s",
+        "ax" | "ay" => "m/s^2",
+        "alpha" => "rad/s^2",
+        "Fx" | "Fy" | "normal_force" | "friction_force" => "N",
+        "M" => "N*m",
+        _ => "-",
+    }
+}
