@@ -831,7 +831,7 @@ pub fn run(model: &str, p: &FlapParams, settings: &RunSettings) -> Result<RunOut
 #[derive(Debug, Clone)]
 pub struct StudyCase {
     /// Study: `size` (clearance of J4), `position` (one clearance joint, 0.1 mm), `number`
-    /// (J1..Jn with 0.1 mm).
+    /// (J1..Jn with 0.1 mm), `load` (zero mean hinge moment).
     pub study: String,
     /// Case label (`c0.05mm`, `J2`, `n3`, …).
     pub label: String,
@@ -855,9 +855,15 @@ impl StudyCase {
     }
 }
 
-/// The study configurations: (study, label, abscissa, clearances). Clearance sizes 0.05, 0.1,
-/// 0.2, 0.5 mm in J4; each joint alone with 0.1 mm; J1..Jn with 0.1 mm for n = 1..4.
-pub fn study_configurations() -> Vec<(String, String, f64, [f64; 4])> {
+/// One study configuration: (study, label, abscissa, clearances of J1..J4 in m, mean hinge
+/// moment in N·m or `None` for the base value).
+pub type StudyConfiguration = (String, String, f64, [f64; 4], Option<f64>);
+
+/// The study configurations. Clearance sizes 0.05, 0.1, 0.2, 0.5 mm in J4; each joint alone
+/// with 0.1 mm; J1..Jn with 0.1 mm for n = 1..4; `load`: J1 alone and J1..J4 (0.1 mm) with a
+/// zero mean hinge moment (M = −K(θ − θ0) changes sign with the swing, so the joints unload
+/// and the journals cross their clearance).
+pub fn study_configurations() -> Vec<StudyConfiguration> {
     let mut v = Vec::new();
     for c_mm in [0.05, 0.1, 0.2, 0.5] {
         v.push((
@@ -865,36 +871,51 @@ pub fn study_configurations() -> Vec<(String, String, f64, [f64; 4])> {
             format!("c{c_mm}mm"),
             c_mm,
             [0.0, 0.0, 0.0, c_mm * 1e-3],
+            None,
         ));
     }
     for k in 0..4 {
         let mut c = [0.0; 4];
         c[k] = 0.1e-3;
-        v.push(("position".into(), JOINTS[k].into(), (k + 1) as f64, c));
+        v.push(("position".into(), JOINTS[k].into(), (k + 1) as f64, c, None));
     }
     for n in 1..=4 {
         let mut c = [0.0; 4];
         c.iter_mut().take(n).for_each(|x| *x = 0.1e-3);
-        v.push(("number".into(), format!("n{n}"), n as f64, c));
+        v.push(("number".into(), format!("n{n}"), n as f64, c, None));
+    }
+    for n in [1usize, 4] {
+        let mut c = [0.0; 4];
+        c.iter_mut().take(n).for_each(|x| *x = 0.1e-3);
+        v.push((
+            "load".into(),
+            format!("reversing_n{n}"),
+            n as f64,
+            c,
+            Some(0.0),
+        ));
     }
     v
 }
 
-/// Run the clearance-size, clearance-position and number-of-joints studies in parallel (rayon)
+/// Run the clearance-size, clearance-position, number-of-joints and load studies in parallel
+/// (rayon)
 /// with `base` for every other parameter, writing under `dir`: `<study>_<label>.csv` (every
 /// column), `summary.csv` (metrics per case) and figures (`size_oscillation`,
 /// `size_contact_force`, `position_oscillation`, `number_oscillation`, `number_poincare`,
-/// `orbits_size`, `orbits_n4`, `alpha_error_size`, `poincare_n4`).
+/// `orbits_size`, `alpha_error_size`, `orbits_n4`, `poincare_n4`, `orbits_reversing_n4`,
+/// `poincare_reversing_n4`).
 ///
 /// # Errors
 /// The first failing case, or an output error.
 pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<StudyCase>, String> {
     let runs: Vec<Result<(StudyCase, Results), String>> = study_configurations()
         .into_par_iter()
-        .map(|(study, label, x, clearances)| {
+        .map(|(study, label, x, clearances, hinge)| {
             let start = std::time::Instant::now();
             let p = FlapParams {
                 clearances,
+                hinge_moment: hinge.unwrap_or(base.hinge_moment),
                 ..base.clone()
             };
             let out = run("flap", &p, &RunSettings::default())
@@ -1025,16 +1046,39 @@ fn study_figures(
     let mut aerr = Figure::new("Flap angular acceleration − ideal, clearance sizes (J4)")
         .x_label("time (s)")
         .y_label("α − α_ideal (rad/s²)");
-    let mut orb4 = Figure::new("Journal-centre orbits, four clearance joints of 0.1 mm")
+    let mm = |v: Vec<f64>| v.into_iter().map(|x| x * 1e3).collect::<Vec<_>>();
+    // orbits and Poincaré sections (once per period, phase 0) of the four-joint cases
+    let four_joint = |r: &Results, what: &str| {
+        let t = col(r, "t");
+        let mut orb = Figure::new(format!(
+            "Journal-centre orbits, four clearance joints, {what}"
+        ))
         .x_label("e_x (mm)")
         .y_label("e_y (mm)")
         .equal_aspect();
-    let mut poin =
-        Figure::new("Poincaré sections (once per period, phase 0), four clearance joints")
-            .x_label("e_x (mm)")
-            .y_label("e_y (mm)")
-            .equal_aspect();
-    let mm = |v: Vec<f64>| v.into_iter().map(|x| x * 1e3).collect::<Vec<_>>();
+        let mut poin = Figure::new(format!(
+            "Poincaré sections (once per period, phase 0), four clearance joints, {what}"
+        ))
+        .x_label("e_x (mm)")
+        .y_label("e_y (mm)")
+        .equal_aspect();
+        for j in JOINTS {
+            let (ex, ey) = (col(r, &format!("{j}.ex")), col(r, &format!("{j}.ey")));
+            orb = orb.line(j, common::thin(&mm(ex.clone()), &mm(ey.clone()), MAX));
+            let t_end = t.last().copied().unwrap_or(0.0);
+            let mut pts = Vec::new();
+            let mut ts = base.transient;
+            while ts <= t_end {
+                pts.push((
+                    common::interp(&t, &ex, ts) * 1e3,
+                    common::interp(&t, &ey, ts) * 1e3,
+                ));
+                ts += base.period();
+            }
+            poin = poin.points(j, pts);
+        }
+        (orb, poin)
+    };
     for (c, r) in cases.iter().zip(results) {
         let t = col(r, "t");
         if c.study == "size" {
@@ -1047,28 +1091,19 @@ fn study_figures(
                 common::thin(&t, &col(r, "flap.alpha_error"), MAX),
             );
         }
-        if c.study == "number" && c.label == "n4" {
-            for j in JOINTS {
-                let (ex, ey) = (col(r, &format!("{j}.ex")), col(r, &format!("{j}.ey")));
-                orb4 = orb4.line(j, common::thin(&mm(ex.clone()), &mm(ey.clone()), MAX));
-                let t_end = t.last().copied().unwrap_or(0.0);
-                let mut pts = Vec::new();
-                let mut ts = base.transient;
-                while ts <= t_end {
-                    pts.push((
-                        common::interp(&t, &ex, ts) * 1e3,
-                        common::interp(&t, &ey, ts) * 1e3,
-                    ));
-                    ts += base.period();
-                }
-                poin = poin.points(j, pts);
-            }
+        let tag = match (c.study.as_str(), c.label.as_str()) {
+            ("number", "n4") => Some(("n4", "hinge moment 30 N·m")),
+            ("load", "reversing_n4") => Some(("reversing_n4", "zero mean hinge moment")),
+            _ => None,
+        };
+        if let Some((tag, what)) = tag {
+            let (o, p) = four_joint(r, what);
+            save(o, &format!("orbits_{tag}"))?;
+            save(p, &format!("poincare_{tag}"))?;
         }
     }
     save(orb, "orbits_size")?;
-    save(aerr, "alpha_error_size")?;
-    save(orb4, "orbits_n4")?;
-    save(poin, "poincare_n4")
+    save(aerr, "alpha_error_size")
 }
 
 #[cfg(test)]
