@@ -34,7 +34,7 @@
 mod clearance;
 pub mod error;
 mod flexible;
-mod floating;
+pub mod floating;
 mod init;
 pub mod model;
 pub mod sim;

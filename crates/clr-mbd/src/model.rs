@@ -609,7 +609,7 @@ impl ModelBuilder {
     }
 
     /// A moving flexible body in a floating frame of reference (Shabana 2020 ch. 5; formulation
-    /// in the crate documentation, section "Floating-frame flexible bodies"): the beam `model`
+    /// and reference conditions in [`crate::floating`]): the beam `model`
     /// (coordinates in the body frame, m; its supports are the reference conditions, e.g. a clamp
     /// at node 0) and its reduction `reduced` (from `model.modal_truncation(n)` or
     /// `model.craig_bampton(..)`), the initial frame pose `pose` = (R_x m, R_y m, θ rad) and

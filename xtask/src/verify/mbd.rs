@@ -832,7 +832,7 @@ fn floating_pendulum_cases(out: &mut Vec<Case>) {
     let es = [2e11, 2e12, 2e13];
     let runs: Vec<_> = es
         .iter()
-        .map(|&e| floating_pendulum(e, SolverKind::Dopri5))
+        .map(|&e| floating_pendulum(e, SolverKind::Ndf))
         .collect();
     let errs: Vec<f64> = runs
         .iter()
@@ -840,7 +840,7 @@ fn floating_pendulum_cases(out: &mut Vec<Case>) {
         .collect();
     let notes = format!(
         "steel-like beam L = 1 m, 10 mm square, 8 elements, 3 cantilever modes (clamp at the pin \
-         node = tangent frame), DOPRI5 rtol 1e-9, 0.5 s from horizontal; max tip distance / L at \
+         node = tangent frame), NDF rtol 1e-9, 0.5 s from horizontal; max tip distance / L at \
          E = 2e11, 2e12, 2e13 Pa: {:.3e}, {:.3e}, {:.3e}",
         errs[0], errs[1], errs[2]
     );
@@ -851,8 +851,11 @@ fn floating_pendulum_cases(out: &mut Vec<Case>) {
         src,
     );
     out.push(match &runs[2] {
-        Ok(v) => case.at_most(v.0, 1e-3).note(notes.clone()),
-        Err(e) => case.failed(1e-3, e.as_str()),
+        // tolerance 1e-5 of L: the elastic tip deflection falls as 1/E, ~3e-4 of L at
+        // E = 2e11 Pa for this beam (quasi-static bending under the inertial load), so ~3e-6
+        // at 2e13 Pa; the bound leaves a factor 3 for integration and truncation error
+        Ok(v) => case.at_most(v.0, 1e-5).note(notes.clone()),
+        Err(e) => case.failed(1e-5, e.as_str()),
     });
     let mono = errs[1] < errs[0] && errs[2] < errs[1];
     out.push(
