@@ -4,8 +4,8 @@
 use clr_beam::{Face, Path};
 use clr_contact::translational::TranslationalClearance;
 use clr_contact::{
-    BodyState, ContactMemory, ForceApplication, FrictionLaw, GuideSurface, MultipointDetector,
-    NormalLaw, RevoluteClearance,
+    BodyState, ContactClass, ContactMemory, ForceApplication, FrictionLaw, GuideSurface,
+    MultipointDetector, NormalLaw, RevoluteClearance,
 };
 use nalgebra::Vector2;
 
@@ -18,6 +18,8 @@ pub(crate) struct FlexGuide {
     pub(crate) beam: usize,
     pub(crate) path: Path,
     pub(crate) face: Face,
+    /// Law used while the contact is an area contact (see `FlexibleGuideSpec::area_normal`).
+    pub(crate) area_normal: Option<NormalLaw>,
     pub(crate) detector: MultipointDetector,
     /// Full-DOF displacement and velocity buffers of the beam (scattered from q, q̇).
     pub(crate) qfull: Vec<f64>,
@@ -303,16 +305,25 @@ impl Clearance {
             penetration: f64::NEG_INFINITY,
             ..Default::default()
         };
+        // area contact: the area law with each point's tributary length (NormalLaw is Copy, so
+        // this allocates nothing); line contact or no area law: the line law
+        let area = match (g.detector.class(), g.area_normal) {
+            (ContactClass::Area { .. }, Some(law)) => Some(law),
+            _ => None,
+        };
         let gf = g.detector.apply_forces(|p| {
             let pc = &p.contact;
             let vm = memory.impact_velocity(mem + p.id, pc.penetration, pc.normal_velocity);
-            let f_n = normal.force(pc.penetration, pc.normal_velocity, vm);
+            let law = match area {
+                Some(a) => a.with_contact_length(p.tributary_length),
+                None => *normal,
+            };
+            let f_n = law.force(pc.penetration, pc.normal_velocity, vm);
             let f_t = friction.force(pc.tangential_velocity, f_n);
             rep.active_points += 1;
             rep.normal_force += f_n;
             rep.friction_force += f_t;
-            rep.dissipated_power += (f_n - normal.elastic_force(pc.penetration))
-                * pc.normal_velocity
+            rep.dissipated_power += (f_n - law.elastic_force(pc.penetration)) * pc.normal_velocity
                 - f_t * pc.tangential_velocity;
             if pc.penetration > rep.penetration {
                 rep.penetration = pc.penetration;
@@ -367,11 +378,19 @@ impl Clearance {
     /// Elastic energy ∫F_e dδ summed over the contact points, J.
     pub(crate) fn elastic_energy(&self, bi: &BodyState, bj: &BodyState) -> f64 {
         if let ClearanceKind::FlexGuide(g) = &self.kind {
+            let area = match (g.detector.class(), g.area_normal) {
+                (ContactClass::Area { .. }, Some(law)) => Some(law),
+                _ => None,
+            };
             return g
                 .detector
                 .points()
                 .iter()
-                .map(|p| elastic_energy(&self.normal, p.contact.penetration))
+                .map(|p| {
+                    let law =
+                        area.map_or(self.normal, |a| a.with_contact_length(p.tributary_length));
+                    elastic_energy(&law, p.contact.penetration)
+                })
                 .sum();
         }
         (0..self.points())

@@ -160,8 +160,14 @@ pub struct FlexibleGuideSpec {
     pub face_points: usize,
     /// Guide samples of the reverse check (0 disables it).
     pub guide_samples: usize,
-    /// Normal-force law of each contact point.
+    /// Normal-force law of each contact point (the line law, e.g. [`NormalLaw::flores_line`]).
     pub normal: NormalLaw,
+    /// Optional area law (e.g. [`NormalLaw::area`]) used instead of `normal` while the detector
+    /// classifies the contact as area contact (`clr_contact::ContactClass::Area`, a whole slider
+    /// face on the guide): each active point then gets this law with its contact length set to
+    /// the point's tributary length, so the Winkler term integrates the pressure over the face.
+    /// `None` keeps `normal` for every contact (the previous behaviour).
+    pub area_normal: Option<NormalLaw>,
     /// Friction law of each contact point.
     pub friction: FrictionLaw,
 }
@@ -1005,6 +1011,7 @@ impl ModelBuilder {
                             beam: b,
                             path,
                             face: spec.face,
+                            area_normal: spec.area_normal,
                             detector,
                             qfull: vec![0.0; nfull],
                             qdfull: vec![0.0; nfull],

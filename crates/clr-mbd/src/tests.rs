@@ -584,6 +584,7 @@ fn slider_on_flexible_guide_conserves_energy() {
                 face_points: 3,
                 guide_samples: 0,
                 normal: law,
+                area_normal: None,
                 friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
             },
         );

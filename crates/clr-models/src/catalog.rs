@@ -2,6 +2,7 @@
 
 use crate::common::parse;
 use crate::flap::{self, FlapParams};
+use crate::guide::{self, GuideParams};
 use crate::manipulator::{self, ManipulatorParams};
 use crate::slider_crank::{self, SliderCrankParams};
 use crate::{ModelsError, RunOutput, RunSettings};
@@ -35,6 +36,12 @@ pub fn entries() -> Vec<Entry> {
                           Modified law c_r = 0.46, Ambrosio 0.01, actuator 10 mm at 2 Hz, 0.5 s",
         },
         Entry {
+            name: "guide",
+            description: "sliding guide of a telescopic mechanism (seed 000), reconstructed: \
+                          slider with 0.5 mm clearance on a 1 m aluminium cantilever guide, \
+                          Flores line / area law, Ambrosio friction, deployment at 1 m/s",
+        },
+        Entry {
             name: "manipulator",
             description: "dual two-link manipulator on a free-floating spacecraft (Kuang, Bai, \
                           Wei 2026), case 3: 0.5 mm clearance in both elbows, 2 s",
@@ -60,6 +67,7 @@ pub fn default_parameters(name: &str) -> Result<serde_json::Value, ModelsError> 
         "wan_slider_crank" => serde_json::to_value(SliderCrankParams::wan()),
         "manipulator" => serde_json::to_value(ManipulatorParams::default()),
         "flap" => serde_json::to_value(FlapParams::default()),
+        "guide" => serde_json::to_value(GuideParams::default()),
         _ => return Err(unknown(name)),
     };
     v.map_err(|e| crate::common::invalid(name, e.to_string()))
@@ -88,6 +96,10 @@ pub fn run(
         "flap" => {
             let p: FlapParams = parse(name, &with_defaults(name, parameters)?)?;
             flap::run(name, &p, settings)
+        }
+        "guide" => {
+            let p: GuideParams = parse(name, &with_defaults(name, parameters)?)?;
+            guide::run(name, &p, settings)
         }
         "manipulator" => {
             let p: ManipulatorParams = parse(name, &with_defaults(name, parameters)?)?;

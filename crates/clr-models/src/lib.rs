@@ -11,6 +11,7 @@ pub mod catalog;
 pub mod common;
 pub mod error;
 pub mod flap;
+pub mod guide;
 pub mod manipulator;
 pub mod output;
 pub mod slider_crank;

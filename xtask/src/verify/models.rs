@@ -554,6 +554,7 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
     flap_eigen_cases(filter, &mut out);
     flap_linkage_cases(filter, &mut out);
     manipulator_cases(filter, &mut out);
+    guide_cases(filter, &mut out);
     out
 }
 
@@ -589,4 +590,108 @@ pub fn figures(dir: &Path) -> Result<(), String> {
         }
     }
     Ok(())
+}
+
+fn guide_dir(study: &str) -> std::path::PathBuf {
+    crate::target_dir().join("models").join("guide").join(study)
+}
+
+/// Sliding guide (seed 000, paper-systems.md §3): the published trends, each with both
+/// measured values in the note. Parameters are reconstructions (docs/models/guide.md).
+fn guide_cases(filter: &Filter, out: &mut Vec<Case>) {
+    use clr_models::guide::{self, StudyRun};
+    let src = "sliding-guide paper (seed 000, abstract; paper-systems.md §3.1): finding \
+               reproduced as a trend, parameters reconstructed (docs/models/guide.md)";
+    let get = |runs: &[StudyRun], n: &str, m: &str| -> f64 {
+        runs.iter()
+            .find(|r| r.name == n)
+            .map_or(f64::NAN, |r| r.metric(m))
+    };
+    if filter.wants("models.guide.elastic") {
+        let start = std::time::Instant::now();
+        match guide::elastic_vs_rigid(&guide_dir("elastic_vs_rigid")) {
+            Ok(runs) => {
+                let (fe, fr) = (
+                    get(&runs, "elastic", "peak_contact_force"),
+                    get(&runs, "rigid", "peak_contact_force"),
+                );
+                out.push(
+                    Case::new(
+                        "models.guide.elastic.peak_force",
+                        "peak contact force, elastic guide ≤ rigid guide",
+                        "N",
+                        src,
+                    )
+                    .at_most(fe, fr)
+                    .note(format!("elastic {fe:.4e} N, rigid {fr:.4e} N")),
+                );
+                let (ye, yr) = (
+                    get(&runs, "elastic", "max_lateral_displacement"),
+                    get(&runs, "rigid", "max_lateral_displacement"),
+                );
+                out.push(
+                    Case::new(
+                        "models.guide.elastic.lateral",
+                        "max slider lateral displacement, elastic guide ≥ rigid guide",
+                        "m",
+                        src,
+                    )
+                    .at_least(ye, yr)
+                    .note(format!("elastic {ye:.4e} m, rigid {yr:.4e} m")),
+                );
+                println!(
+                    "models.guide elastic_vs_rigid: {:.1} s wall (2 runs in parallel)",
+                    start.elapsed().as_secs_f64()
+                );
+            }
+            Err(e) => out.push(
+                Case::new("models.guide.elastic.study", "elastic vs rigid", "-", src)
+                    .failed(0.0, e),
+            ),
+        }
+    }
+    if filter.wants("models.guide.clearance") {
+        let start = std::time::Instant::now();
+        let cs = [0.25e-3, 0.5e-3, 1.0e-3];
+        match guide::clearance_study(&guide_dir("clearance"), &cs) {
+            Ok(runs) => {
+                let v = |m: &str| -> Vec<f64> { runs.iter().map(|r| r.metric(m)).collect() };
+                for (id, m, unit, larger) in [
+                    ("peak_force", "peak_contact_force", "N", true),
+                    ("tip_oscillation", "tip_oscillation_amplitude", "m", true),
+                    ("friction", "mean_friction_force", "N", false),
+                ] {
+                    let x = v(m);
+                    // monotone over the three clearances: the smallest step in the expected
+                    // direction must be ≥ 0
+                    let step = x
+                        .windows(2)
+                        .map(|w| if larger { w[1] - w[0] } else { w[0] - w[1] })
+                        .fold(f64::INFINITY, f64::min);
+                    let dir = if larger { "increases" } else { "decreases" };
+                    out.push(
+                        Case::new(
+                            format!("models.guide.clearance.{id}"),
+                            format!("{m} {dir} with clearance (smallest step, ≥ 0)"),
+                            unit,
+                            src,
+                        )
+                        .at_least(step, 0.0)
+                        .note(format!(
+                            "c = 0.25/0.5/1.0 mm: {:.4e}, {:.4e}, {:.4e} {unit}",
+                            x[0], x[1], x[2]
+                        )),
+                    );
+                }
+                println!(
+                    "models.guide clearance study: {:.1} s wall (3 runs in parallel)",
+                    start.elapsed().as_secs_f64()
+                );
+            }
+            Err(e) => out.push(
+                Case::new("models.guide.clearance.study", "clearance study", "-", src)
+                    .failed(0.0, e),
+            ),
+        }
+    }
 }

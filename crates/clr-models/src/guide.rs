@@ -1,0 +1,640 @@
+//! Sliding guide of a telescopic mechanism (morphing aircraft; seed 000, paper-systems.md §3):
+//! a rigid slider driven along a cantilevered Euler–Bernoulli guide (clr-beam) with clearance to
+//! both guide faces, under a lateral load. Multipoint detection (clr-contact), the Flores line law
+//! for line contact and the restitution-corrected variable-stiffness area law for area contact
+//! (`clr_mbd::FlexibleGuideSpec::area_normal`), Ambrósio friction.
+//!
+//! Every dimension, material, load and speed is a **reconstruction** (the full text is not
+//! available); values and reasons are in docs/models/guide.md. The rigid-guide variant is the
+//! same model with every guide node clamped except the tip rotation (identical contact code).
+
+use std::path::Path;
+
+use clr_beam::{BeamModel, Face, Material, Section, Support};
+use clr_contact::{GuideFace, NormalLaw};
+use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Motion, Results, RigidBody};
+use nalgebra::Vector2;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::common::{self, col, FrictionParams, Solver};
+use crate::{Metric, ModelsError, RunOutput, RunSettings};
+
+/// Parameters of the single sliding guide (SI units). Defaults: [`GuideParams::default`]; every
+/// value is a reconstruction documented in docs/models/guide.md.
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct GuideParams {
+    /// Guide (cantilever) length, m.
+    pub guide_length: f64,
+    /// Guide section width b (out of plane), m.
+    pub guide_width: f64,
+    /// Guide section depth h (in the bending plane), m.
+    pub guide_depth: f64,
+    /// Guide Young's modulus, Pa.
+    pub youngs_modulus: f64,
+    /// Guide density, kg/m³.
+    pub density: f64,
+    /// Poisson ratio of guide and slider, –.
+    pub poisson_ratio: f64,
+    /// Number of Euler–Bernoulli elements of the guide.
+    pub elements: usize,
+    /// Mass-proportional Rayleigh coefficient α of the guide, 1/s.
+    pub rayleigh_alpha: f64,
+    /// `false`: the rigid-guide variant (every guide node clamped except the tip rotation; the
+    /// slider must stay off the last element).
+    pub elastic_guide: bool,
+    /// Slider mass, kg.
+    pub slider_mass: f64,
+    /// Slider pad length L along the guide, m.
+    pub slider_length: f64,
+    /// Height of each of the two slider pads (above and below the guide), m.
+    pub pad_height: f64,
+    /// Clearance between each pad and its guide face (nominal, slider centred), m.
+    pub clearance: f64,
+    /// Rounding radius of the slider pad edges (line-contact Hertz law), m.
+    pub edge_radius: f64,
+    /// Depth of the elastic layer of the area law's Winkler term, m.
+    pub layer_depth: f64,
+    /// Restitution coefficient c_e of both laws, –.
+    pub restitution: f64,
+    /// Friction law of every contact point.
+    pub friction: FrictionParams,
+    /// Candidate points per slider face besides the corners.
+    pub face_points: usize,
+    /// Guide samples of the reverse check.
+    pub guide_samples: usize,
+    /// Lateral load on the slider (−y, towards the guide's upper face), N.
+    pub lateral_load: f64,
+    /// Axial offset of the lateral load's point from the slider centre (+ towards the tip), m.
+    pub load_offset: f64,
+    /// Slider start position along the guide (from the root), m.
+    pub start: f64,
+    /// Slider end position along the guide, m (> start: deployment; < start: retraction).
+    pub end: f64,
+    /// Actuator speed (constant), m/s.
+    pub speed: f64,
+    /// Relative tolerance of the integrator.
+    pub rtol: f64,
+    /// Integrator.
+    pub solver: Solver,
+}
+
+impl Default for GuideParams {
+    fn default() -> Self {
+        Self {
+            guide_length: 1.0,
+            guide_width: 0.02,
+            guide_depth: 0.03,
+            youngs_modulus: 70e9,
+            density: 2700.0,
+            poisson_ratio: 0.33,
+            elements: 6,
+            rayleigh_alpha: 6.0,
+            elastic_guide: true,
+            slider_mass: 0.5,
+            slider_length: 0.06,
+            pad_height: 0.01,
+            clearance: 0.5e-3,
+            edge_radius: 1e-3,
+            layer_depth: 5e-3,
+            restitution: 0.8,
+            friction: FrictionParams::Ambrosio {
+                mu: 0.1,
+                v0: 1e-4,
+                v1: 1e-3,
+            },
+            face_points: 3,
+            guide_samples: 0,
+            lateral_load: 50.0,
+            load_offset: 0.01,
+            start: 0.6,
+            end: 0.8,
+            speed: 1.0,
+            rtol: 1e-4,
+            solver: Solver::Dopri5,
+        }
+    }
+}
+
+impl GuideParams {
+    /// Check every field; the message names the field to change.
+    ///
+    /// # Errors
+    /// A description of the first invalid field.
+    pub fn validate(&self) -> Result<(), String> {
+        for (f, v) in [
+            ("guide_length", self.guide_length),
+            ("guide_width", self.guide_width),
+            ("guide_depth", self.guide_depth),
+            ("youngs_modulus", self.youngs_modulus),
+            ("density", self.density),
+            ("slider_mass", self.slider_mass),
+            ("slider_length", self.slider_length),
+            ("pad_height", self.pad_height),
+            ("clearance", self.clearance),
+            ("edge_radius", self.edge_radius),
+            ("layer_depth", self.layer_depth),
+            ("restitution", self.restitution),
+            ("speed", self.speed),
+            ("rtol", self.rtol),
+        ] {
+            common::positive(f, v)?;
+        }
+        common::non_negative("rayleigh_alpha", self.rayleigh_alpha)?;
+        common::non_negative("lateral_load", self.lateral_load)?;
+        if self.elements == 0 {
+            return Err("`elements` must be at least 1".into());
+        }
+        let half = 0.5 * self.slider_length;
+        for (f, x) in [("start", self.start), ("end", self.end)] {
+            if !(x.is_finite() && x - half >= 0.0 && x + half <= self.guide_length) {
+                return Err(format!(
+                    "`{f}` = {x} m puts the slider (half length {half} m) off the guide \
+                     [0, {}] m",
+                    self.guide_length
+                ));
+            }
+        }
+        let last = self.guide_length * (1.0 - 1.0 / self.elements as f64);
+        if !self.elastic_guide && self.start.max(self.end) + half > last {
+            return Err(format!(
+                "the rigid-guide variant keeps the last element flexible (its tip rotation is \
+                 free): keep `start`/`end` + half the slider length ≤ {last} m"
+            ));
+        }
+        if self.start == self.end {
+            return Err("`start` and `end` must differ (the slider must move)".into());
+        }
+        Ok(())
+    }
+
+    /// Run duration |end − start| / speed, s.
+    pub fn duration(&self) -> f64 {
+        (self.end - self.start).abs() / self.speed
+    }
+
+    /// First bending frequency of the clamped-free guide, Hz: f₁ = (β₁L)²/(2π)·√(EI/(ρAL⁴)),
+    /// β₁L = 1.875104 (Euler–Bernoulli cantilever; e.g. Rao, *Vibration of Continuous
+    /// Systems*, 2007, §11.5).
+    pub fn first_frequency(&self) -> f64 {
+        let (b, h, l) = (self.guide_width, self.guide_depth, self.guide_length);
+        let ei = self.youngs_modulus * b * h.powi(3) / 12.0;
+        let rho_a = self.density * b * h;
+        1.875_104_f64.powi(2) / (2.0 * std::f64::consts::PI) * (ei / (rho_a * l.powi(4))).sqrt()
+    }
+
+    /// The multibody model: guide beam `guide` (x from 0 at the clamped root), slider `slider`
+    /// centred on the guide axis, contact elements `upper` (slider's upper pad on the guide's
+    /// upper face) and `lower`, actuator `actuator` (axial displacement driver), lateral load
+    /// `load`.
+    ///
+    /// # Errors
+    /// Invalid parameters or a clr-mbd build error.
+    pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        self.validate().map_err(|m| common::invalid(model, m))?;
+        let inv = |m: String| common::invalid(model, m);
+        let mat = Material::new(self.youngs_modulus, self.density, self.poisson_ratio)
+            .map_err(|e| inv(e.to_string()))?;
+        let sec = Section::rectangular(self.guide_width, self.guide_depth)
+            .map_err(|e| inv(e.to_string()))?;
+        let mut beam = BeamModel::straight(
+            [0.0, 0.0],
+            [self.guide_length, 0.0],
+            self.elements,
+            mat,
+            sec,
+        )
+        .map_err(|e| inv(e.to_string()))?;
+        beam.support(0, Support::Clamped)
+            .map_err(|e| inv(e.to_string()))?;
+        if !self.elastic_guide {
+            // rigid guide: every node clamped except the tip node's rotation (clr-mbd needs at
+            // least one free beam coordinate); the tip rotation only bends the last element,
+            // which the slider never reaches (checked in `validate`)
+            for n in 1..=self.elements {
+                let s = if n == self.elements {
+                    Support::Pinned
+                } else {
+                    Support::Clamped
+                };
+                beam.support(n, s).map_err(|e| inv(e.to_string()))?;
+            }
+        }
+        beam.set_rayleigh(self.rayleigh_alpha, 0.0);
+        let cm = clr_contact::Material::new(self.youngs_modulus, self.poisson_ratio)
+            .map_err(|e| inv(e.to_string()))?;
+        let face = GuideFace {
+            slider: cm,
+            guide: cm,
+            edge_radius: self.edge_radius,
+            width: self.guide_width,
+            layer_depth: self.layer_depth,
+        };
+        let line =
+            NormalLaw::flores_line(&face, self.restitution).map_err(|e| inv(e.to_string()))?;
+        let area = NormalLaw::area(&face, self.restitution, 0.0).map_err(|e| inv(e.to_string()))?;
+        let friction = self.friction.law().map_err(inv)?;
+        let (l, hp, c) = (self.slider_length, self.pad_height, self.clearance);
+        let off = 0.5 * self.guide_depth + c + 0.5 * hp;
+        let height = 2.0 * off + hp;
+        let inertia = self.slider_mass * (l * l + height * height) / 12.0;
+        let dir = (self.end - self.start).signum();
+        let v = dir * self.speed;
+        let spec = |f: Face| FlexibleGuideSpec {
+            face: f,
+            slider_length: l,
+            slider_height: hp,
+            slider_angle: 0.0,
+            face_points: self.face_points,
+            guide_samples: self.guide_samples,
+            normal: line,
+            area_normal: Some(area),
+            friction,
+        };
+        let load = self.lateral_load;
+        let mut b = ModelBuilder::new();
+        b.flexible_beam("guide", beam)
+            .body(
+                "slider",
+                RigidBody::new(self.slider_mass, inertia)
+                    .at(self.start, 0.0, 0.0)
+                    .moving(v, 0.0, 0.0),
+            )
+            .slider_on_beam("upper", "guide", ("slider", [0.0, off]), spec(Face::Upper))
+            .slider_on_beam("lower", "guide", ("slider", [0.0, -off]), spec(Face::Lower))
+            .drive_displacement(
+                "actuator",
+                ("ground", [0.0, 0.0]),
+                ("slider", [0.0, 0.0]),
+                [1.0, 0.0],
+                Motion::linear(self.start, v),
+            )
+            .applied_force("load", ("slider", [self.load_offset, 0.0]), move |_, _| {
+                Vector2::new(0.0, -load)
+            });
+        b.build().map_err(|e| common::build_error(model, e))
+    }
+}
+
+/// Oscillation amplitude of a signal about its running mean over `window` s: the largest
+/// |v − mean_window(v)| over rows with t ≥ t_from (centred window, trapezoidal means). Removes
+/// the quasi-static trend of a moving load so only the vibration is measured.
+pub fn oscillation_amplitude(t: &[f64], v: &[f64], window: f64, t_from: f64) -> f64 {
+    let n = t.len();
+    let mut out = 0.0f64;
+    let (mut lo, mut hi) = (0usize, 0usize);
+    for k in 0..n {
+        let (a, b) = (t[k] - 0.5 * window, t[k] + 0.5 * window);
+        if a < t[0] || b > t[n - 1] || t[k] < t_from {
+            continue;
+        }
+        while t[lo] < a {
+            lo += 1;
+        }
+        while hi + 1 < n && t[hi + 1] <= b {
+            hi += 1;
+        }
+        let mean = common::time_mean(&t[lo..=hi], &v[lo..=hi], f64::NEG_INFINITY);
+        out = out.max((v[k] - mean).abs());
+    }
+    out
+}
+
+/// Number of contact onsets (0 → 1 transitions of a `*.contact` column, every accepted step).
+fn onsets(contact: &[f64]) -> usize {
+    contact
+        .windows(2)
+        .filter(|w| w[0] < 0.5 && w[1] >= 0.5)
+        .count()
+}
+
+/// Simulate and compute the metrics (see docs/models/guide.md): slider lateral displacement
+/// (max, RMS), peak contact force, guide-tip deflection oscillation amplitude, time-averaged
+/// friction force, number of impacts, actuator force peak, equivalent friction coefficient.
+///
+/// # Errors
+/// Invalid parameters, build or simulation errors.
+pub fn run(model: &str, p: &GuideParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
+    common::check_settings(model, settings)?;
+    let mut m = p.build(model)?;
+    let opts = common::options(p.duration(), p.rtol, p.solver, settings, true, 0);
+    let res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
+    if let Some(cb) = &settings.progress {
+        cb(opts.t_end);
+    }
+    let metrics = metrics(p, &res);
+    let params = serde_json::to_value(p).unwrap_or_default();
+    Ok(common::output(model, res, metrics, params))
+}
+
+fn metrics(p: &GuideParams, res: &Results) -> Vec<Metric> {
+    let t = col(res, "t");
+    let y = col(res, "slider.y");
+    let sum = |a: &str, b: &str| -> Vec<f64> {
+        col(res, a)
+            .iter()
+            .zip(col(res, b))
+            .map(|(x, y)| x + y)
+            .collect()
+    };
+    let fn_total = sum("upper.normal_force", "lower.normal_force");
+    let ft_abs: Vec<f64> = col(res, "upper.friction_force")
+        .iter()
+        .zip(col(res, "lower.friction_force"))
+        .map(|(a, b)| a.abs() + b.abs())
+        .collect();
+    let peak_fn = common::peak_abs(&t, &col(res, "upper.normal_force"), 0.0).max(common::peak_abs(
+        &t,
+        &col(res, "lower.normal_force"),
+        0.0,
+    ));
+    let tip = res
+        .column(&format!("guide.n{}.v", p.elements))
+        .unwrap_or_else(|| vec![0.0; t.len()]);
+    let period = 1.0 / p.first_frequency();
+    let impacts = onsets(&col(res, "upper.contact")) + onsets(&col(res, "lower.contact"));
+    let mean_fn = common::time_mean(&t, &fn_total, 0.0);
+    let mean_ft = common::time_mean(&t, &ft_abs, 0.0);
+    vec![
+        Metric::new(
+            "max_lateral_displacement",
+            common::peak_abs(&t, &y, 0.0),
+            "m",
+            "largest |y| of the slider centre (0 = centred on the undeformed guide)",
+        ),
+        Metric::new(
+            "rms_lateral_displacement",
+            common::time_rms(&t, &y, 0.0),
+            "m",
+            "time RMS of the slider centre's y",
+        ),
+        Metric::new(
+            "peak_contact_force",
+            peak_fn,
+            "N",
+            "largest normal force of either face (sum over that face's points)",
+        ),
+        Metric::new(
+            "tip_oscillation_amplitude",
+            oscillation_amplitude(&t, &tip, period, 0.0),
+            "m",
+            "largest |tip deflection − its running mean over one first-mode period|",
+        ),
+        Metric::new(
+            "max_tip_deflection",
+            common::peak_abs(&t, &tip, 0.0),
+            "m",
+            "largest |guide-tip deflection|",
+        ),
+        Metric::new(
+            "mean_friction_force",
+            mean_ft,
+            "N",
+            "time average of |friction| summed over both faces",
+        ),
+        Metric::new(
+            "mean_normal_force",
+            mean_fn,
+            "N",
+            "time average of the normal force summed over both faces",
+        ),
+        Metric::new(
+            "impacts",
+            impacts as f64,
+            "-",
+            "contact onsets of both faces (0→1 transitions over the accepted steps)",
+        ),
+        Metric::new(
+            "peak_actuator_force",
+            common::peak_abs(&t, &col(res, "actuator.Fx"), 0.0),
+            "N",
+            "largest |axial actuator reaction| (jamming indicator)",
+        ),
+        Metric::new(
+            "equivalent_friction_coefficient",
+            if mean_fn > 0.0 {
+                mean_ft / mean_fn
+            } else {
+                0.0
+            },
+            "-",
+            "∫|F_T| dt / ∫F_N dt over the run (friction along the guide over normal load)",
+        ),
+        Metric::new(
+            "steps",
+            res.stats.accepted as f64,
+            "-",
+            "accepted integrator steps",
+        ),
+    ]
+}
+
+/// One run of a study.
+#[derive(Debug, Clone)]
+pub struct StudyRun {
+    /// Run name (e.g. `elastic`, `rigid`, `c0.5mm`).
+    pub name: String,
+    /// The parameters.
+    pub params: GuideParams,
+    /// Metrics of [`run`].
+    pub metrics: Vec<Metric>,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+impl StudyRun {
+    /// A metric by name (NaN when absent).
+    pub fn metric(&self, name: &str) -> f64 {
+        self.metrics
+            .iter()
+            .find(|m| m.name == name)
+            .map_or(f64::NAN, |m| m.value)
+    }
+}
+
+/// Run named parameter sets in parallel, writing `<name>.csv` and `summary.csv` under `dir`
+/// and figures of the slider's y, the tip deflection and the contact force.
+///
+/// # Errors
+/// The first failing run, or an output error.
+pub fn study(dir: &Path, runs: Vec<(String, GuideParams)>) -> Result<Vec<StudyRun>, String> {
+    let out: Vec<Result<(StudyRun, Results), String>> = runs
+        .into_par_iter()
+        .map(|(name, params)| {
+            let start = std::time::Instant::now();
+            let o = run("guide", &params, &RunSettings::default())
+                .map_err(|e| format!("{name}: {e}"))?;
+            Ok((
+                StudyRun {
+                    name,
+                    params,
+                    metrics: o.metrics,
+                    wall_s: start.elapsed().as_secs_f64(),
+                },
+                o.results,
+            ))
+        })
+        .collect();
+    let mut done = Vec::new();
+    let mut results = Vec::new();
+    for r in out {
+        let (s, res) = r?;
+        common::write_results_csv(&res, dir, &s.name)?;
+        done.push(s);
+        results.push(res);
+    }
+    write_summary(dir, &done)?;
+    figures(dir, &done, &results)?;
+    Ok(done)
+}
+
+/// Elastic against rigid guide (default parameters otherwise), under `dir`.
+///
+/// # Errors
+/// See [`study`].
+pub fn elastic_vs_rigid(dir: &Path) -> Result<Vec<StudyRun>, String> {
+    let e = GuideParams::default();
+    let r = GuideParams {
+        elastic_guide: false,
+        ..GuideParams::default()
+    };
+    study(dir, vec![("elastic".into(), e), ("rigid".into(), r)])
+}
+
+/// Clearance study: the default elastic guide at each clearance (m), under `dir`.
+///
+/// # Errors
+/// See [`study`].
+pub fn clearance_study(dir: &Path, clearances: &[f64]) -> Result<Vec<StudyRun>, String> {
+    let runs = clearances
+        .iter()
+        .map(|&c| {
+            (
+                format!("c{:.2}mm", c * 1e3),
+                GuideParams {
+                    clearance: c,
+                    ..GuideParams::default()
+                },
+            )
+        })
+        .collect();
+    study(dir, runs)
+}
+
+fn write_summary(dir: &Path, runs: &[StudyRun]) -> Result<(), String> {
+    let names: Vec<String> = runs
+        .first()
+        .map(|r| r.metrics.iter().map(|m| m.name.clone()).collect())
+        .unwrap_or_default();
+    let mut header = vec!["run", "wall_s"];
+    header.extend(names.iter().map(|s| s.as_str()));
+    let rows: Vec<Vec<String>> = runs
+        .iter()
+        .map(|r| {
+            let mut row = vec![r.name.clone(), format!("{:.3}", r.wall_s)];
+            row.extend(names.iter().map(|n| format!("{:e}", r.metric(n))));
+            row
+        })
+        .collect();
+    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
+}
+
+fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), String> {
+    use clr_plot::Figure;
+    const MAX: usize = 3000;
+    let mut fy = Figure::new("Slider lateral displacement")
+        .x_label("time (s)")
+        .y_label("slider y (mm)");
+    let mut ftip = Figure::new("Guide-tip deflection")
+        .x_label("time (s)")
+        .y_label("tip deflection (mm)");
+    let mut ff = Figure::new("Contact force (upper face)")
+        .x_label("time (s)")
+        .y_label("normal force (N)");
+    for (r, res) in runs.iter().zip(results) {
+        let t = col(res, "t");
+        let mm = |v: Vec<f64>| v.iter().map(|x| x * 1e3).collect::<Vec<_>>();
+        fy = fy.line(
+            r.name.clone(),
+            common::thin(&t, &mm(col(res, "slider.y")), MAX),
+        );
+        let tip = res
+            .column(&format!("guide.n{}.v", r.params.elements))
+            .unwrap_or_else(|| vec![0.0; t.len()]);
+        ftip = ftip.line(r.name.clone(), common::thin(&t, &mm(tip), MAX));
+        ff = ff.line(
+            r.name.clone(),
+            common::thin(&t, &col(res, "upper.normal_force"), MAX),
+        );
+    }
+    for (f, name) in [(fy, "lateral"), (ftip, "tip"), (ff, "contact_force")] {
+        f.save(dir.join(name)).map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn oscillation_amplitude_of_a_sine_on_a_ramp() {
+        // closed form: v = a t + A sin(2π t/T); the running mean over one period T of the sine
+        // is 0 and of the ramp is the ramp itself, so the amplitude is A (to sampling error)
+        let (a, amp, period) = (3.0, 0.25, 0.1);
+        let t: Vec<f64> = (0..=20_000).map(|k| k as f64 * 1e-4).collect();
+        let v: Vec<f64> = t
+            .iter()
+            .map(|&x| a * x + amp * (2.0 * std::f64::consts::PI * x / period).sin())
+            .collect();
+        let got = oscillation_amplitude(&t, &v, period, 0.0);
+        assert!((got - amp).abs() < 1e-3 * amp, "{got}");
+    }
+
+    #[test]
+    fn first_frequency_matches_the_fe_guide() {
+        // independent formulation: clr-beam's modal analysis of the same 8-element guide
+        let p = GuideParams::default();
+        let mat = Material::new(p.youngs_modulus, p.density, p.poisson_ratio).unwrap();
+        let sec = Section::rectangular(p.guide_width, p.guide_depth).unwrap();
+        let mut beam =
+            BeamModel::straight([0.0, 0.0], [p.guide_length, 0.0], p.elements, mat, sec).unwrap();
+        beam.support(0, Support::Clamped).unwrap();
+        let modes = beam.modes(1).unwrap();
+        let f_fe = modes.frequencies_hz()[0];
+        assert!(
+            (f_fe - p.first_frequency()).abs() < 1e-4 * f_fe,
+            "{f_fe} vs {}",
+            p.first_frequency()
+        );
+    }
+
+    #[test]
+    fn invalid_position_names_the_field() {
+        let p = GuideParams {
+            end: 0.99,
+            ..GuideParams::default()
+        };
+        let e = run("guide", &p, &RunSettings::default()).unwrap_err();
+        assert!(e.to_string().contains("`end`"), "{e}");
+    }
+
+    #[test]
+    fn short_run_stays_within_the_clearance_band() {
+        // closed-form bound: the slider centre can move laterally by the clearance plus the
+        // contact penetration plus the guide's deflection under the slider; with a rigid guide
+        // only by c + δ (δ ≪ c here), and it does cross the clearance under the load
+        let p = GuideParams {
+            elastic_guide: false,
+            end: 0.65,
+            ..GuideParams::default()
+        };
+        let out = run("guide", &p, &RunSettings::default()).unwrap();
+        let get = |n: &str| out.metrics.iter().find(|m| m.name == n).unwrap().value;
+        let y = get("max_lateral_displacement");
+        assert!(y < 1.1 * p.clearance, "{y}");
+        assert!(y > 0.9 * p.clearance, "{y}");
+        assert!(get("peak_contact_force") > p.lateral_load);
+    }
+}
