@@ -43,9 +43,17 @@
 //! rigid-body motion. The supports set on the `BeamModel` are the reference conditions: a
 //! clamp at node 0 with modal truncation (cantilever modes) or Craig–Bampton attaches the frame
 //! tangentially at that node (Shabana's tangent frame). The reduced stiffness must be positive
-//! definite (checked). Joints attach exactly at reference nodes (all three DOF constrained in the
-//! beam model: they move rigidly with the frame), through `Anchor::BeamNode(name, node)` or
-//! body-local anchors `Anchor::Local(name, ū₀)`; joints at deforming nodes are not supported.
+//! definite (checked).
+//!
+//! # Attachment
+//! At a reference node (all three DOF constrained in the beam model: it moves rigidly with the
+//! frame) and at body-local points `Anchor::Local(name, ū₀)`, joints attach to the body frame
+//! directly. At a deforming node (`Anchor::BeamNode(name, node)`, e.g. the free tip or a
+//! Craig–Bampton interface node) the model gets three massless node-frame coordinates
+//! (p_x, p_y, ψ) tied to the body by three constraints, named `<body>.node<k>`:
+//! p − R − A(ū₀ + Φ_N q_f) = 0, ψ − θ − φ_θN·q_f = 0 (small elastic node rotation), with
+//! γ = −θ̇² A ū + 2 θ̇ Ĩ A Φ_N q̇_f for the position rows; the augmented matrix stays regular
+//! (the tie fixes the node coordinates). Joints and forces then attach to that node frame.
 
 use clr_beam::{BeamModel, ReducedModel};
 use nalgebra::Vector2;
@@ -78,6 +86,8 @@ pub(crate) struct FloatingBody {
     pub(crate) nodes: Vec<[f64; 2]>,
     /// T rows, row-major (3 · nodes) × r.
     t: Vec<f64>,
+    /// Deforming nodes with joints: (node, first column of its node-frame coordinates in q).
+    pub(crate) ties: Vec<(usize, usize)>,
 }
 
 impl FloatingBody {
@@ -187,6 +197,7 @@ impl FloatingBody {
             d: flat(&red.damping),
             nodes,
             t,
+            ties: Vec::new(),
         })
     }
 
@@ -323,6 +334,80 @@ impl FloatingBody {
         [t, v, u]
     }
 
+    /// (ū, φ_θ·q_f): body-frame position of node `n` (m) and its elastic rotation (rad).
+    fn node_local(&self, n: usize, qf: &[f64]) -> (Vector2<f64>, f64) {
+        let r = self.r;
+        let mut u = Vector2::new(self.nodes[n][0], self.nodes[n][1]);
+        let mut psi = 0.0;
+        for (k, qk) in qf.iter().enumerate() {
+            u.x += self.t[3 * n * r + k] * qk;
+            u.y += self.t[(3 * n + 1) * r + k] * qk;
+            psi += self.t[(3 * n + 2) * r + k] * qk;
+        }
+        (u, psi)
+    }
+
+    /// Node frame of node `n`: (p_x, p_y, ψ) and its rate, p = R + A ū, ψ = θ + φ_θ·q_f.
+    pub(crate) fn node_frame(&self, n: usize, q: &[f64], qd: &[f64]) -> ([f64; 3], [f64; 3]) {
+        let (o, r) = (self.offset, self.r);
+        let (th, w) = (q[o + 2], qd[o + 2]);
+        let (u, psi) = self.node_local(n, &q[o + 3..o + 3 + r]);
+        let (ud, psid) = self.node_local_rate(n, &qd[o + 3..o + 3 + r]);
+        let au = rot(th, u);
+        let p = Vector2::new(q[o], q[o + 1]) + au;
+        let v = Vector2::new(qd[o], qd[o + 1]) + w * perp(au) + rot(th, ud);
+        ([p.x, p.y, th + psi], [v.x, v.y, w + psid])
+    }
+
+    /// (Φ_N q̇_f, φ_θ·q̇_f): the elastic part of a node's body-frame velocity.
+    fn node_local_rate(&self, n: usize, qfd: &[f64]) -> (Vector2<f64>, f64) {
+        let (u, psi) = self.node_local(n, qfd);
+        (u - Vector2::new(self.nodes[n][0], self.nodes[n][1]), psi)
+    }
+
+    /// The node tie Φ = (p − R − A ū, ψ − θ − φ_θ·q_f) of node `n` whose frame coordinates are
+    /// at `col`: writes Φ, Φ̇, γ (the acceleration right-hand side, −θ̇² A ū + 2 θ̇ Ĩ A Φ_N q̇_f
+    /// for the position rows, 0 for the angle) and the Jacobian rows (`phiq`: 3 rows of n).
+    pub(crate) fn tie(
+        &self,
+        n: usize,
+        col: usize,
+        q: &[f64],
+        qd: &[f64],
+        [phi, phid, gamma]: [&mut [f64]; 3],
+        phiq: &mut [f64],
+    ) {
+        let (o, r) = (self.offset, self.r);
+        let nq = phiq.len() / 3;
+        let (th, w) = (q[o + 2], qd[o + 2]);
+        let (p, v) = self.node_frame(n, q, qd);
+        for d in 0..3 {
+            phi[d] = q[col + d] - p[d];
+            phid[d] = qd[col + d] - v[d];
+            phiq[d * nq + col + d] += 1.0;
+            phiq[d * nq + o + d] -= 1.0;
+        }
+        let (u, _) = self.node_local(n, &q[o + 3..o + 3 + r]);
+        let (ud, _) = self.node_local_rate(n, &qd[o + 3..o + 3 + r]);
+        let au = rot(th, u);
+        let g = -w * w * au + 2.0 * w * perp(rot(th, ud));
+        gamma[0] = g.x;
+        gamma[1] = g.y;
+        gamma[2] = 0.0;
+        let pa = perp(au);
+        phiq[o + 2] -= pa.x;
+        phiq[nq + o + 2] -= pa.y;
+        for k in 0..r {
+            let phik = rot(
+                th,
+                Vector2::new(self.t[3 * n * r + k], self.t[(3 * n + 1) * r + k]),
+            );
+            phiq[o + 3 + k] -= phik.x;
+            phiq[nq + o + 3 + k] -= phik.y;
+            phiq[2 * nq + o + 3 + k] -= self.t[(3 * n + 2) * r + k];
+        }
+    }
+
     /// World position of node `n` (m): R + A(ū₀ + Φ q_f).
     pub(crate) fn node_position(&self, n: usize, q: &[f64]) -> Vector2<f64> {
         let (o, r) = (self.offset, self.r);
@@ -447,8 +532,48 @@ mod tests {
         );
     }
 
+    /// A rigid bob pinned at the deforming tip node of the arm (a node tie): T + V + U is
+    /// conserved, and with a stiff arm the bob follows the rigid double pendulum (an independent
+    /// model of rigid bodies, same masses and inertias) to 1e-4 of L after 0.3 s.
     #[test]
-    fn free_free_reduction_and_deforming_node_are_rejected() {
+    fn joint_at_a_deforming_node_conserves_energy_and_tends_to_rigid() {
+        let run = |flexible: bool| {
+            let (beam, red) = arm(2e13);
+            let m = red.invariants.mass;
+            let mut b = ModelBuilder::new();
+            b.gravity(0.0, -9.81);
+            if flexible {
+                b.floating_beam("arm", beam, red, [0.0; 3], [0.0; 3])
+                    .revolute("pin", ("ground", [0.0, 0.0]), ("arm", 0usize))
+                    .revolute("tip", ("arm", 4usize), ("bob", [-0.25, 0.0]));
+            } else {
+                b.body("arm", crate::RigidBody::new(m, m / 12.0).at(0.5, 0.0, 0.0))
+                    .revolute("pin", ("ground", [0.0, 0.0]), ("arm", [-0.5, 0.0]))
+                    .revolute("tip", ("arm", [0.5, 0.0]), ("bob", [-0.25, 0.0]));
+            }
+            b.body(
+                "bob",
+                crate::RigidBody::new(0.5, 0.5 * 0.25 / 12.0).at(1.25, 0.0, 0.0),
+            );
+            let mut model = b.build().unwrap();
+            let res = model
+                .simulate(&SimOptions::span(0.0, 0.3, 3).tolerances(1e-9, 1e-12))
+                .unwrap();
+            let e = res.column("energy.total").unwrap();
+            let row = res.row(3);
+            let xy = [res.index("bob.x").unwrap(), res.index("bob.y").unwrap()];
+            (e[3] - e[0], [row[xy[0]], row[xy[1]]], m)
+        };
+        let (drift, pf, m) = run(true);
+        let (_, pr, _) = run(false);
+        assert!(drift.abs() < 1e-8 * (m + 0.5) * 9.81, "drift {drift}");
+        let d = ((pf[0] - pr[0]).powi(2) + (pf[1] - pr[1]).powi(2)).sqrt();
+        assert!(d < 1e-4, "bob distance to the rigid double pendulum {d}");
+        assert!(pr[1] < -0.2, "the bob falls: {}", pr[1]);
+    }
+
+    #[test]
+    fn free_free_reduction_and_unknown_node_are_rejected() {
         let mat = Material::steel();
         let sec = Section::rectangular(0.01, 0.01).unwrap();
         let beam = BeamModel::straight([0.0, 0.0], [1.0, 0.0], 4, mat, sec).unwrap();
@@ -465,7 +590,7 @@ mod tests {
         let (beam, red) = arm(2e11);
         let mut b = ModelBuilder::new();
         b.floating_beam("arm", beam, red, [0.0; 3], [0.0; 3])
-            .revolute("pin", ("ground", [1.0, 0.0]), ("arm", 4usize));
+            .revolute("pin", ("ground", [1.0, 0.0]), ("arm", 5usize));
         assert!(matches!(
             b.build(),
             Err(MbdError::InvalidParameter {

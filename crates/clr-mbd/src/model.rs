@@ -15,7 +15,7 @@ use crate::clearance::{Clearance, ClearanceKind, FlexGuide};
 use crate::error::MbdError;
 use crate::flexible::{FlexBeam, NodalLoadFn};
 use crate::floating::FloatingBody;
-use crate::system::{Con, ForceEl, Frame, Model, Motion};
+use crate::system::{Con, ConKind, ForceEl, Frame, Model, Motion};
 
 /// Name of the ground body (fixed at the origin, angle 0). It is always defined.
 pub const GROUND: &str = "ground";
@@ -620,8 +620,8 @@ impl ModelBuilder {
     /// at node 0) and its reduction `reduced` (from `model.modal_truncation(n)` or
     /// `model.craig_bampton(..)`), the initial frame pose `pose` = (R_x m, R_y m, θ rad) and
     /// velocity (Ṙ_x, Ṙ_y m/s, θ̇ rad/s); elastic coordinates start at rest and undeformed.
-    /// Attach joints at its reference nodes with `(name, node)` anchors or body-local
-    /// `(name, [x, y])` anchors. Its coordinates `name.x`, `name.y`, `name.theta`, `name.q<k>`
+    /// Attach joints with `(name, node)` anchors (a deforming node gets a node-frame tie, see
+    /// [`crate::floating`]) or body-local `(name, [x, y])` anchors (rigid with the frame). Its coordinates `name.x`, `name.y`, `name.theta`, `name.q<k>`
     /// come after the rigid bodies' in q.
     pub fn floating_beam(
         &mut self,
@@ -863,6 +863,7 @@ impl ModelBuilder {
         }));
         let mut float_nodes: HashMap<(String, usize), (usize, Vector2<f64>)> = HashMap::new();
         let mut float_points: HashMap<String, (usize, Vector2<f64>)> = HashMap::new();
+        let mut ties: Vec<(usize, usize, usize)> = Vec::new();
         let mut node_points: HashMap<String, usize> = HashMap::new();
         let mut node_frames: HashMap<(String, usize), usize> = HashMap::new();
         let mut wanted: Vec<(String, String, usize, Option<String>)> = Vec::new();
@@ -878,16 +879,41 @@ impl ModelBuilder {
         }
         for (name, beam, node, point) in &wanted {
             if let Some(f) = floating.iter().position(|f| &f.name == beam) {
-                if !floating[f].is_reference_node(*node) {
+                if *node >= floating[f].nodes.len() {
                     return Err(MbdError::InvalidParameter {
                         item: name.clone(),
                         what: "floating-body node index",
                         value: *node as f64,
-                        requirement: "must be a reference node of the floating body (all three DOF constrained in its beam model, e.g. the clamped node 0)",
+                        requirement: "must be a node of the floating body's beam model",
                     });
                 }
-                let p = floating[f].nodes[*node];
-                let a = (nb + f, Vector2::new(p[0], p[1]));
+                let a = if let Some(&a) = float_nodes.get(&(beam.clone(), *node)) {
+                    a
+                } else if floating[f].is_reference_node(*node) {
+                    let p = floating[f].nodes[*node];
+                    (nb + f, Vector2::new(p[0], p[1]))
+                } else {
+                    // a deforming node: its own frame coordinates tied to the body (3 rows)
+                    frames.push(Frame {
+                        cols: [Some(offset), Some(offset + 1), Some(offset + 2)],
+                        base: Vector2::zeros(),
+                    });
+                    let j = frames.len() - 1;
+                    cons.push(Con {
+                        name: format!("{beam}.node{node}"),
+                        kind: ConKind::FloatNode {
+                            f,
+                            node: *node,
+                            col: offset,
+                            i: nb + f,
+                            j,
+                        },
+                        row: 0,
+                    });
+                    ties.push((f, *node, offset));
+                    offset += 3;
+                    (j, Vector2::zeros())
+                };
                 float_nodes.insert((beam.clone(), *node), a);
                 if let Some(p) = point {
                     float_points.insert(p.clone(), a);
@@ -1237,6 +1263,9 @@ impl ModelBuilder {
                 value: f64::NAN,
                 requirement: "both components must be finite",
             });
+        }
+        for (f, node, col) in ties {
+            floating[f].ties.push((node, col));
         }
         Model::assemble(
             self.bodies,

@@ -90,6 +90,16 @@ pub(crate) enum ConKind {
         w: Vector2<f64>,
         motion: Option<usize>,
     },
+    /// Node tie of floating body `f`: the node-frame coordinates (p, ψ) at columns
+    /// `col..col + 3` equal R + A(ū₀ + Φ_N q_f) and θ + φ_θN·q_f (3 rows); `i` is the body's
+    /// frame, `j` the node frame.
+    FloatNode {
+        f: usize,
+        node: usize,
+        col: usize,
+        i: usize,
+        j: usize,
+    },
 }
 
 /// One primitive constraint (rows of Φ) belonging to a named joint or driver.
@@ -157,6 +167,7 @@ impl Con {
     fn rows(&self) -> usize {
         match self.kind {
             ConKind::Coincide { .. } => 2,
+            ConKind::FloatNode { .. } => 3,
             _ => 1,
         }
     }
@@ -164,7 +175,8 @@ impl Con {
         match self.kind {
             ConKind::Coincide { i, j, .. }
             | ConKind::Angle { i, j, .. }
-            | ConKind::Project { i, j, .. } => (i, j),
+            | ConKind::Project { i, j, .. }
+            | ConKind::FloatNode { i, j, .. } => (i, j),
         }
     }
     pub(crate) fn label(&self, r: usize) -> String {
@@ -175,6 +187,9 @@ impl Con {
             (ConKind::Angle { .. }, _) => "driven angle",
             (ConKind::Project { motion: None, .. }, _) => "normal offset",
             (ConKind::Project { .. }, _) => "driven displacement",
+            (ConKind::FloatNode { .. }, 0) => "node x",
+            (ConKind::FloatNode { .. }, 1) => "node y",
+            (ConKind::FloatNode { .. }, _) => "node angle",
         };
         format!("{} ({eq})", self.name)
     }
@@ -360,7 +375,10 @@ impl Model {
         }
         let n = 3 * bodies.len()
             + beams.iter().map(FlexBeam::n_free).sum::<usize>()
-            + floating.iter().map(FloatingBody::n_coords).sum::<usize>();
+            + floating
+                .iter()
+                .map(|f| f.n_coords() + 3 * f.ties.len())
+                .sum::<usize>();
         if n == 0 {
             return Err(MbdError::InvalidParameter {
                 item: "model".into(),
@@ -488,6 +506,11 @@ impl Model {
         for f in &self.floating {
             y[f.offset..f.offset + 3].copy_from_slice(&f.pose);
             y[n + f.offset..n + f.offset + 3].copy_from_slice(&f.velocity);
+            for &(node, col) in &f.ties {
+                let (p, v) = f.node_frame(node, &y[..n], &y[n..2 * n]);
+                y[col..col + 3].copy_from_slice(&p);
+                y[n + col..n + col + 3].copy_from_slice(&v);
+            }
         }
         y
     }
@@ -525,6 +548,21 @@ impl Model {
                         r + 1,
                         j,
                         [0.0, -1.0, -pj.y],
+                    );
+                }
+                ConKind::FloatNode { f, node, col, .. } => {
+                    let rows = r..r + 3;
+                    self.floating[f].tie(
+                        node,
+                        col,
+                        q,
+                        qd,
+                        [
+                            &mut self.phi[rows.clone()],
+                            &mut self.phid[rows.clone()],
+                            &mut self.gamma[rows],
+                        ],
+                        &mut self.phiq[r * n..(r + 3) * n],
                     );
                 }
                 ConKind::Angle {
