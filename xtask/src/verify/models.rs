@@ -561,6 +561,7 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
 /// Figures of docs/models: runs the studies (outputs under target/models/) and copies the
 /// figures the docs embed into `dir` as `models-<system>-<name>.{svg,png}`.
 pub fn figures(dir: &Path) -> Result<(), String> {
+    guide_figures(dir)?;
     let mdir = manipulator_dir();
     manipulator::study(&mdir, None)?;
     std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
@@ -694,4 +695,23 @@ fn guide_cases(filter: &Filter, out: &mut Vec<Case>) {
             ),
         }
     }
+}
+
+/// Figures of docs/models/guide.md: the two guide studies, copied as
+/// `models-guide-<study>-<name>.{svg,png}`.
+fn guide_figures(dir: &Path) -> Result<(), String> {
+    use clr_models::guide;
+    guide::elastic_vs_rigid(&guide_dir("elastic_vs_rigid"))?;
+    guide::clearance_study(&guide_dir("clearance"), &[0.25e-3, 0.5e-3, 1.0e-3])?;
+    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+    for study in ["elastic_vs_rigid", "clearance"] {
+        for name in ["lateral", "tip"] {
+            for ext in ["svg", "png"] {
+                let from = guide_dir(study).join(format!("{name}.{ext}"));
+                let to = dir.join(format!("models-guide-{study}-{name}.{ext}"));
+                std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
+            }
+        }
+    }
+    Ok(())
 }
