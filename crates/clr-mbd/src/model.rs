@@ -621,7 +621,8 @@ impl ModelBuilder {
     /// `model.craig_bampton(..)`), the initial frame pose `pose` = (R_x m, R_y m, θ rad) and
     /// velocity (Ṙ_x, Ṙ_y m/s, θ̇ rad/s); elastic coordinates start at rest and undeformed.
     /// Attach joints with `(name, node)` anchors (a deforming node gets a node-frame tie, see
-    /// [`crate::floating`]) or body-local `(name, [x, y])` anchors (rigid with the frame). Its coordinates `name.x`, `name.y`, `name.theta`, `name.q<k>`
+    /// [`crate::floating`]) or body-local `(name, [x, y])` anchors (rigid with the frame).
+    /// Its coordinates `name.x`, `name.y`, `name.theta`, `name.q<k>`
     /// come after the rigid bodies' in q.
     pub fn floating_beam(
         &mut self,
