@@ -131,8 +131,9 @@ fn manipulator_cases(filter: &Filter, out: &mut Vec<Case>) {
                 )
                 .at_most(c.metric(name), 1e-8)
                 .note(format!(
-                    "drift {:.3e} of scale {:.4e}; {} steps; case wall time {:.2} s (a non-zero \
-                     angular drift is explained by the .friction_offset case of this case)",
+                    "drift {:.3e} of scale {:.4e}; {} steps; case wall time {:.2} s (force pair \
+                     at a common point; see the .contact_points_offset cases for the published \
+                     form)",
                     c.metric(name),
                     c.metric(scale),
                     c.metric("steps"),
