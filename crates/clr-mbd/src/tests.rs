@@ -610,3 +610,72 @@ fn slider_on_flexible_guide_conserves_energy() {
     assert!(tip.iter().any(|v| v.abs() > 1e-6), "beam did not deflect");
     assert!(drift < 1e-6 * kmax, "drift {drift}, max E_kin {kmax}");
 }
+
+/// The area law of a flexible guide (`FlexibleGuideSpec::area_normal`, used while a whole slider
+/// face lies on the guide) with c_e = 1 (χ = 0): a slider dropped flat on a cantilever reaches
+/// area contact (all 5 bottom-face points active). Each law alone is conservative, but the
+/// switch line ↔ area law at the class change (and the tributary lengths changing as points
+/// enter) makes the contact force path dependent, so the energy balance holds only up to the
+/// switching jumps: measured 8.9e-6 J of 4.0e-3 J (0.22 %); the bound 1 % of the largest kinetic
+/// energy is a sanity bound on the element's force/energy consistency, not a closed form.
+#[test]
+fn slider_on_flexible_guide_area_law_conserves_energy() {
+    use clr_beam::{BeamModel, Face, Material, Section, Support};
+    use clr_contact::{FrictionLaw, GuideFace, NormalLaw};
+    let depth = 0.03;
+    let sec = Section::rectangular(0.02, depth).unwrap();
+    let mut beam = BeamModel::straight([0.0, 0.0], [0.5, 0.0], 4, Material::steel(), sec).unwrap();
+    beam.support(0, Support::Clamped).unwrap();
+    let steel = clr_contact::Material::new(207e9, 0.3).unwrap();
+    let face = GuideFace {
+        slider: steel,
+        guide: steel,
+        edge_radius: 1e-3,
+        width: 0.02,
+        layer_depth: 0.05,
+    };
+    let line = NormalLaw::flores_line(&face, 1.0).unwrap();
+    let area = NormalLaw::area(&face, 1.0, 0.0).unwrap();
+    let (sl, sh) = (0.04, 0.02);
+    let mut b = ModelBuilder::new();
+    b.flexible_beam("beam", beam)
+        .body(
+            "slider",
+            RigidBody::new(0.2, 0.2 * (sl * sl + sh * sh) / 12.0)
+                .at(0.25, depth / 2.0 + sh / 2.0 + 1e-5, 0.0)
+                .moving(0.0, -0.2, 0.0),
+        )
+        .slider_on_beam(
+            "contact",
+            "beam",
+            ("slider", [0.0, 0.0]),
+            crate::FlexibleGuideSpec {
+                face: Face::Upper,
+                slider_length: sl,
+                slider_height: sh,
+                slider_angle: 0.0,
+                face_points: 3,
+                guide_samples: 0,
+                normal: line,
+                area_normal: Some(area),
+                friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+            },
+        );
+    let mut model = b.build().unwrap();
+    let mut opts = SimOptions::span(0.0, 2e-3, 50)
+        .tolerances(1e-9, 1e-12)
+        .solver(SolverKind::Dopri5);
+    opts.every_step = true;
+    let res = model.simulate(&opts).unwrap();
+    let e = res.column("energy.total").unwrap();
+    let k = res.column("energy.kinetic").unwrap();
+    let kmax = k.iter().fold(0.0f64, |a, &v| a.max(v));
+    let drift = e.iter().map(|v| (v - e[0]).abs()).fold(0.0f64, f64::max);
+    let active = res
+        .column("contact.contact")
+        .unwrap()
+        .iter()
+        .fold(0.0f64, |a, &v| a.max(v));
+    assert!(active >= 5.0, "no area contact: {active} points at most");
+    assert!(drift < 1e-2 * kmax, "drift {drift}, max E_kin {kmax}");
+}
