@@ -409,13 +409,26 @@ pub fn thin(x: &[f64], y: &[f64], max: usize) -> Vec<(f64, f64)> {
     v
 }
 
-/// The RunOutput of a finished simulation.
+/// The RunOutput of a finished simulation; appends the solver metrics every model reports
+/// (`steps`, `contact_onsets`).
 pub(crate) fn output(
     model: &str,
     results: Results,
-    metrics: Vec<crate::Metric>,
+    mut metrics: Vec<crate::Metric>,
     parameters: serde_json::Value,
 ) -> RunOutput {
+    metrics.push(crate::Metric::new(
+        "steps",
+        results.stats.accepted as f64,
+        "-",
+        "accepted integrator steps",
+    ));
+    metrics.push(crate::Metric::new(
+        "contact_onsets",
+        results.onsets as f64,
+        "-",
+        "contact onsets located as events",
+    ));
     RunOutput {
         model: model.to_string(),
         units: units(&results),

@@ -810,19 +810,7 @@ pub fn run(model: &str, p: &FlapParams, settings: &RunSettings) -> Result<RunOut
     if let Some(cb) = &settings.progress {
         cb(settings.t_end.unwrap_or(p.duration));
     }
-    let mut metrics = compare(p, &mut res, &ideal);
-    metrics.push(Metric::new(
-        "steps",
-        res.stats.accepted as f64,
-        "-",
-        "accepted integrator steps",
-    ));
-    metrics.push(Metric::new(
-        "contact_onsets",
-        res.onsets as f64,
-        "-",
-        "contact onsets located as events",
-    ));
+    let metrics = compare(p, &mut res, &ideal);
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }

@@ -421,12 +421,6 @@ fn metrics(p: &GuideParams, res: &Results) -> Vec<Metric> {
             "-",
             "∫|F_T| dt / ∫F_N dt over the run (friction along the guide over normal load)",
         ),
-        Metric::new(
-            "steps",
-            res.stats.accepted as f64,
-            "-",
-            "accepted integrator steps",
-        ),
     ]
 }
 

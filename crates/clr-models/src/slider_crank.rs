@@ -305,18 +305,6 @@ pub fn run(
             "m",
             "largest |x − x_ideal| of the slider over the run (bounded by clearance + penetration)",
         ),
-        Metric::new(
-            "contact_onsets",
-            res.onsets as f64,
-            "-",
-            "contact onsets located as events",
-        ),
-        Metric::new(
-            "steps",
-            res.stats.accepted as f64,
-            "-",
-            "accepted integrator steps",
-        ),
     ];
     common::append_columns(&mut res, vec![("slider.error".into(), dev)]);
     let params = serde_json::to_value(p).unwrap_or_default();
