@@ -49,6 +49,10 @@ pub struct Case {
     pub comparison: Comparison,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub note: Option<String>,
+    /// A published finding the current reconstruction does not reproduce, known and documented:
+    /// still `pass: false` in the report, but listed apart and not a regression (exit code 0).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub known_gap: bool,
 }
 
 /// A case under construction: what is measured and where the reference comes from.
@@ -83,6 +87,17 @@ impl Case {
         self.note = Some(note.into());
         self
     }
+
+    /// Mark a failing case as a known, documented gap (`doc`: where it is explained). A case
+    /// that passes is unaffected, so a gap that closes shows up as a pass.
+    pub fn known_gap(mut self, doc: &str) -> Self {
+        if !self.pass {
+            self.known_gap = true;
+            let note = self.note.take().unwrap_or_default();
+            self.note = Some(format!("known gap, see {doc}; {note}"));
+        }
+        self
+    }
 }
 
 impl CaseSpec {
@@ -105,6 +120,7 @@ impl CaseSpec {
             pass,
             comparison,
             note: None,
+            known_gap: false,
         }
     }
 
@@ -156,7 +172,13 @@ fn fmt_num(x: f64) -> String {
 pub fn print_case(c: &Case) {
     println!(
         "{:4} {:40} {:>14} {:>3} {:>14} (tol {}) {}",
-        if c.pass { "ok" } else { "FAIL" },
+        if c.pass {
+            "ok"
+        } else if c.known_gap {
+            "GAP"
+        } else {
+            "FAIL"
+        },
         c.id,
         fmt_num(c.value),
         c.comparison.symbol(),
@@ -178,8 +200,10 @@ pub fn write(dir: &Path, cases: &[Case], wall_s: f64) -> std::io::Result<()> {
         .map_err(std::io::Error::other)?;
     std::fs::write(dir.join("report.json"), json)?;
     let passed = cases.iter().filter(|c| c.pass).count();
+    let gaps = cases.iter().filter(|c| c.known_gap).count();
     let mut md = format!(
-        "# clr verification report\n\n{passed} of {} cases pass; wall time {wall_s:.1} s.\n\n\
+        "# clr verification report\n\n{passed} of {} cases pass, {gaps} known gaps (published \
+         findings the reconstruction does not reproduce, documented); wall time {wall_s:.1} s.\n\n\
          | id | quantity | value | cmp | reference | tolerance | unit | pass | source | note |\n\
          |---|---|---|---|---|---|---|---|---|---|\n",
         cases.len()
@@ -194,7 +218,13 @@ pub fn write(dir: &Path, cases: &[Case], wall_s: f64) -> std::io::Result<()> {
             fmt_num(c.reference),
             fmt_num(c.tolerance),
             c.unit,
-            if c.pass { "yes" } else { "**no**" },
+            if c.pass {
+                "yes"
+            } else if c.known_gap {
+                "**no** (known gap)"
+            } else {
+                "**no**"
+            },
             c.source,
             c.note.as_deref().unwrap_or("").replace('|', "/")
         ));

@@ -870,7 +870,7 @@ fn floating_pendulum_cases(out: &mut Vec<Case>) {
     );
     for (e, r) in es.iter().zip(&runs) {
         let case = Case::new(
-            &format!("mbd.flexible.floating_pendulum.energy.E{e:.0e}"),
+            format!("mbd.flexible.floating_pendulum.energy.E{e:.0e}"),
             "max |E(t) − E(0)| / (m g L/2), kinetic + potential + elastic, no damping",
             "1",
             "conservation of energy (closed form); rtol 1e-9, tolerance 1e-6",

@@ -682,7 +682,8 @@ fn guide_cases(filter: &Filter, out: &mut Vec<Case>) {
                         .note(format!(
                             "c = 0.25/0.5/1.0 mm: {:.4e}, {:.4e}, {:.4e} {unit}",
                             x[0], x[1], x[2]
-                        )),
+                        ))
+                        .known_gap("docs/models/guide.md (clearance findings)"),
                     );
                 }
                 println!(
