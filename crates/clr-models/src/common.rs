@@ -409,6 +409,46 @@ pub fn thin(x: &[f64], y: &[f64], max: usize) -> Vec<(f64, f64)> {
     v
 }
 
+/// Write `dir/summary.csv` of a study: the key columns of each run (`key_header`, then
+/// `wall_s`), then one column per metric name in first-seen order over all runs (NaN where a run
+/// lacks a metric).
+///
+/// # Errors
+/// The I/O message.
+pub(crate) fn write_study_summary(
+    dir: &Path,
+    key_header: &[&str],
+    runs: &[(Vec<String>, f64, &[crate::Metric])],
+) -> Result<(), String> {
+    let mut names: Vec<&str> = Vec::new();
+    for (_, _, metrics) in runs {
+        for m in metrics.iter() {
+            if !names.contains(&m.name.as_str()) {
+                names.push(&m.name);
+            }
+        }
+    }
+    let mut header = key_header.to_vec();
+    header.push("wall_s");
+    header.extend(names.iter().copied());
+    let rows: Vec<Vec<String>> = runs
+        .iter()
+        .map(|(keys, wall_s, metrics)| {
+            let mut r = keys.clone();
+            r.push(format!("{wall_s:.3}"));
+            r.extend(names.iter().map(|n| {
+                let v = metrics
+                    .iter()
+                    .find(|m| m.name == *n)
+                    .map_or(f64::NAN, |m| m.value);
+                format!("{v:e}")
+            }));
+            r
+        })
+        .collect();
+    write_table_csv(&dir.join("summary.csv"), &header, &rows)
+}
+
 /// The RunOutput of a finished simulation; appends the solver metrics every model reports
 /// (`steps`, `contact_onsets`).
 pub(crate) fn output(

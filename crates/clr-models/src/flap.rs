@@ -935,27 +935,15 @@ pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<StudyCase>, String> {
 }
 
 fn write_summary(dir: &Path, cases: &[StudyCase]) -> Result<(), String> {
-    let mut names: Vec<String> = Vec::new();
-    for c in cases {
-        for m in &c.metrics {
-            if !names.contains(&m.name) {
-                names.push(m.name.clone());
-            }
-        }
-    }
-    let mut header = vec!["study", "case", "x", "c1", "c2", "c3", "c4", "wall_s"];
-    header.extend(names.iter().map(|s| s.as_str()));
-    let rows: Vec<Vec<String>> = cases
+    let runs: Vec<_> = cases
         .iter()
         .map(|c| {
-            let mut r = vec![c.study.clone(), c.label.clone(), format!("{}", c.x)];
-            r.extend(c.clearances.iter().map(|v| format!("{v:e}")));
-            r.push(format!("{:.3}", c.wall_s));
-            r.extend(names.iter().map(|n| format!("{:e}", c.metric(n))));
-            r
+            let mut keys = vec![c.study.clone(), c.label.clone(), format!("{}", c.x)];
+            keys.extend(c.clearances.iter().map(|v| format!("{v:e}")));
+            (keys, c.wall_s, c.metrics.as_slice())
         })
         .collect();
-    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
+    common::write_study_summary(dir, &["study", "case", "x", "c1", "c2", "c3", "c4"], &runs)
 }
 
 fn study_figures(

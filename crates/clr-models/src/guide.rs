@@ -517,21 +517,11 @@ pub fn clearance_study(dir: &Path, clearances: &[f64]) -> Result<Vec<StudyRun>, 
 }
 
 fn write_summary(dir: &Path, runs: &[StudyRun]) -> Result<(), String> {
-    let names: Vec<String> = runs
-        .first()
-        .map(|r| r.metrics.iter().map(|m| m.name.clone()).collect())
-        .unwrap_or_default();
-    let mut header = vec!["run", "wall_s"];
-    header.extend(names.iter().map(|s| s.as_str()));
-    let rows: Vec<Vec<String>> = runs
+    let rows: Vec<_> = runs
         .iter()
-        .map(|r| {
-            let mut row = vec![r.name.clone(), format!("{:.3}", r.wall_s)];
-            row.extend(names.iter().map(|n| format!("{:e}", r.metric(n))));
-            row
-        })
+        .map(|r| (vec![r.name.clone()], r.wall_s, r.metrics.as_slice()))
         .collect();
-    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
+    common::write_study_summary(dir, &["run"], &rows)
 }
 
 fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), String> {

@@ -606,25 +606,11 @@ pub fn study(dir: &Path, duration: Option<f64>) -> Result<Vec<CaseResult>, Strin
 }
 
 fn write_summary(dir: &Path, cases: &[CaseResult]) -> Result<(), String> {
-    let mut names: Vec<String> = Vec::new();
-    for c in cases {
-        for m in &c.metrics {
-            if !names.contains(&m.name) {
-                names.push(m.name.clone());
-            }
-        }
-    }
-    let mut header = vec!["case", "wall_s"];
-    header.extend(names.iter().map(|s| s.as_str()));
-    let rows: Vec<Vec<String>> = cases
+    let runs: Vec<_> = cases
         .iter()
-        .map(|c| {
-            let mut r = vec![c.name.clone(), format!("{:.3}", c.wall_s)];
-            r.extend(names.iter().map(|n| format!("{:e}", c.metric(n))));
-            r
-        })
+        .map(|c| (vec![c.name.clone()], c.wall_s, c.metrics.as_slice()))
         .collect();
-    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
+    common::write_study_summary(dir, &["case"], &runs)
 }
 
 fn figures(dir: &Path, cases: &[CaseResult], results: &[Results]) -> Result<(), String> {
