@@ -5,6 +5,8 @@ pub mod contact;
 mod contact_geometry;
 mod mbd;
 pub mod models;
+pub mod models_dual_guide;
+pub mod models_flap_flex;
 pub mod ode;
 
 use std::process::ExitCode;
@@ -59,6 +61,14 @@ const GROUPS: &[Group] = &[
     Group {
         name: "models",
         run: models::cases,
+    },
+    Group {
+        name: "models",
+        run: models_flap_flex::cases,
+    },
+    Group {
+        name: "models",
+        run: models_dual_guide::cases,
     },
 ];
 
