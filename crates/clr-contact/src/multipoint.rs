@@ -293,8 +293,10 @@ pub struct ContactPoint {
     /// Penetration, normal **n** = −**n**_g, tangent, contact points (r(s) on the guide) and
     /// relative velocities.
     pub contact: PointContact,
-    /// Half the arc distance to each neighbouring active point of the same contact region, m
-    /// (0 for an isolated point): the length a distributed (per unit length) law should multiply.
+    /// Wetted (tributary) length of the point, m: its lumped share of the penetration profile
+    /// interpolated linearly between neighbouring candidates (0 when the point only just
+    /// touches, the half spacings to both neighbours when they penetrate too); the length a
+    /// distributed (per unit length) law should multiply. Continuous in the configuration.
     pub tributary_length: f64,
 }
 
@@ -590,11 +592,70 @@ impl MultipointDetector {
         });
     }
 
-    /// Neighbouring active points (sorted by arc) belong to one region when they are at most one
-    /// candidate spacing apart; each gets half the distance to each neighbour of its region.
+    /// Tributary (wetted) length of every active point, m: the integral of the penetration
+    /// profile linearly interpolated between consecutive candidates of each slider face, lumped
+    /// on the candidates. A segment of arc length Δ between two active candidates gives Δ/2 to
+    /// each; a segment with one active end a (δ_a > 0) and one separated end b (δ_b ≤ 0) is
+    /// wetted over Δ·δ_a/(δ_a − δ_b) and gives a the half of that (the wedge's centroid rule,
+    /// so that Σ l_i δ_i is the exact integral ∫δ ds of the interpolant). The lengths are
+    /// therefore continuous in the configuration: they grow from 0 as an edge starts to
+    /// penetrate and reach the face's tributary lengths when the whole face touches, so a
+    /// per-unit-length law switches smoothly between line and area contact. When guide samples
+    /// of the reverse check are active, every point gets the neighbour rule instead
+    /// ([`Self::neighbour_lengths`]).
     fn assign_tributary_lengths(&mut self, guide_samples: usize) {
-        let n = self.face_points as f64 + 1.0;
-        let mut spacing = self.shape.length.max(self.shape.height) / n;
+        if self
+            .points
+            .iter()
+            .any(|p| matches!(p.source, PointSource::GuideSample(_)))
+        {
+            self.neighbour_lengths(guide_samples);
+            return;
+        }
+        let n = self.face_points;
+        let index_of = |points: &[ContactPoint], id: usize| points.iter().position(|p| p.id == id);
+        for face in 0..4 {
+            let chain = core::iter::once(face)
+                .chain((0..n).map(|i| 4 + face * n + i))
+                .chain(core::iter::once((face + 1) % 4));
+            let mut previous: Option<usize> = None;
+            for id in chain {
+                if let Some(a) = previous {
+                    let (sa, ga, act_a) = self.projected[a];
+                    let (sb, gb, act_b) = self.projected[id];
+                    let d = (sb - sa).abs();
+                    // an inactive candidate beyond the guide end counts as separated
+                    let (da, db) = (
+                        if act_a { -ga } else { (-ga).min(0.0) },
+                        if act_b { -gb } else { (-gb).min(0.0) },
+                    );
+                    for (me, mine, other) in [(a, (act_a, da), db), (id, (act_b, db), da)] {
+                        let (active, delta) = mine;
+                        if !active || !d.is_finite() {
+                            continue;
+                        }
+                        let share = if other > 0.0 {
+                            0.5 * d
+                        } else {
+                            0.5 * d * delta / (delta - other)
+                        };
+                        if let Some(k) = index_of(&self.points, me) {
+                            self.points[k].tributary_length += share;
+                        }
+                    }
+                }
+                previous = Some(id);
+            }
+        }
+    }
+
+    /// Old neighbour rule, used when guide samples of the reverse check are active (a guide
+    /// bulging between the candidates, where the candidates' interpolation does not describe
+    /// the profile): half the arc distance to each neighbouring active point within one
+    /// candidate spacing.
+    fn neighbour_lengths(&mut self, guide_samples: usize) {
+        let n = self.face_points;
+        let mut spacing = self.shape.length.max(self.shape.height) / (n as f64 + 1.0);
         if guide_samples > 1 {
             let (lo, hi) = self.projected[..4]
                 .iter()

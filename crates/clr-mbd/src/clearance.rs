@@ -4,8 +4,8 @@
 use clr_beam::{Face, Path};
 use clr_contact::translational::TranslationalClearance;
 use clr_contact::{
-    BodyState, ContactClass, ContactMemory, ForceApplication, FrictionLaw, GuideSurface,
-    MultipointDetector, NormalLaw, RevoluteClearance,
+    BodyState, ContactMemory, ForceApplication, FrictionLaw, GuideSurface, MultipointDetector,
+    NormalLaw, RevoluteClearance,
 };
 use nalgebra::Vector2;
 
@@ -18,7 +18,7 @@ pub(crate) struct FlexGuide {
     pub(crate) beam: usize,
     pub(crate) path: Path,
     pub(crate) face: Face,
-    /// Law used while the contact is an area contact (see `FlexibleGuideSpec::area_normal`).
+    /// Area law applied with each point's wetted length (see `FlexibleGuideSpec::area_normal`).
     pub(crate) area_normal: Option<NormalLaw>,
     pub(crate) detector: MultipointDetector,
     /// Full-DOF displacement and velocity buffers of the beam (scattered from q, q̇).
@@ -305,12 +305,10 @@ impl Clearance {
             penetration: f64::NEG_INFINITY,
             ..Default::default()
         };
-        // area contact: the area law with each point's tributary length (NormalLaw is Copy, so
-        // this allocates nothing); line contact or no area law: the line law
-        let area = match (g.detector.class(), g.area_normal) {
-            (ContactClass::Area { .. }, Some(law)) => Some(law),
-            _ => None,
-        };
+        // with an area law: every point gets it with its wetted length (continuous in the
+        // configuration, so the law passes from line to area contact without a jump; NormalLaw
+        // is Copy, so this allocates nothing); without one: the line law
+        let area = g.area_normal;
         let gf = g.detector.apply_forces(|p| {
             let pc = &p.contact;
             let vm = memory.impact_velocity(mem + p.id, pc.penetration, pc.normal_velocity);
@@ -378,10 +376,7 @@ impl Clearance {
     /// Elastic energy ∫F_e dδ summed over the contact points, J.
     pub(crate) fn elastic_energy(&self, bi: &BodyState, bj: &BodyState) -> f64 {
         if let ClearanceKind::FlexGuide(g) = &self.kind {
-            let area = match (g.detector.class(), g.area_normal) {
-                (ContactClass::Area { .. }, Some(law)) => Some(law),
-                _ => None,
-            };
+            let area = g.area_normal;
             return g
                 .detector
                 .points()

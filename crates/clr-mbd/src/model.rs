@@ -162,11 +162,12 @@ pub struct FlexibleGuideSpec {
     pub guide_samples: usize,
     /// Normal-force law of each contact point (the line law, e.g. [`NormalLaw::flores_line`]).
     pub normal: NormalLaw,
-    /// Optional area law (e.g. [`NormalLaw::area`]) used instead of `normal` while the detector
-    /// classifies the contact as area contact (`clr_contact::ContactClass::Area`, a whole slider
-    /// face on the guide): each active point then gets this law with its contact length set to
-    /// the point's tributary length, so the Winkler term integrates the pressure over the face.
-    /// `None` keeps `normal` for every contact (the previous behaviour).
+    /// Optional area law (e.g. [`NormalLaw::area`], a line term plus a term growing with the
+    /// contact length) used instead of `normal` at every contact point, with the contact length
+    /// set to the point's wetted length (`clr_contact::ContactPoint::tributary_length`, continuous
+    /// in the configuration): an isolated edge (length → 0) gets the line law, a face lying on
+    /// the guide the area law integrated over the face, with no force jump at the line → area
+    /// class change. `None` keeps `normal` for every contact.
     pub area_normal: Option<NormalLaw>,
     /// Friction law of each contact point.
     pub friction: FrictionLaw,

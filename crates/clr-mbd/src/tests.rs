@@ -611,13 +611,13 @@ fn slider_on_flexible_guide_conserves_energy() {
     assert!(drift < 1e-6 * kmax, "drift {drift}, max E_kin {kmax}");
 }
 
-/// The area law of a flexible guide (`FlexibleGuideSpec::area_normal`, used while a whole slider
-/// face lies on the guide) with c_e = 1 (χ = 0): a slider dropped flat on a cantilever reaches
-/// area contact (all 5 bottom-face points active). Each law alone is conservative, but the
-/// switch line ↔ area law at the class change (and the tributary lengths changing as points
-/// enter) makes the contact force path dependent, so the energy balance holds only up to the
-/// switching jumps: measured 8.9e-6 J of 4.0e-3 J (0.22 %); the bound 1 % of the largest kinetic
-/// energy is a sanity bound on the element's force/energy consistency, not a closed form.
+/// The area law of a flexible guide (`FlexibleGuideSpec::area_normal`, applied at every point
+/// with its wetted length) with c_e = 1 (χ = 0): a slider dropped flat on a cantilever reaches
+/// area contact (all 5 bottom-face points active). The lumped wetted lengths are continuous but
+/// not the exact gradient of one potential, so energy is conserved only approximately: measured
+/// 1.6e-6 J of 4.0e-3 J (0.041 %). With the earlier switch line → area law at the class change
+/// the force jumped and the drift was 8.9e-6 J (0.22 %): the bound 0.1 % of the largest kinetic
+/// energy separates the two (a regression check on the continuity, not a closed form).
 #[test]
 fn slider_on_flexible_guide_area_law_conserves_energy() {
     use clr_beam::{BeamModel, Face, Material, Section, Support};
@@ -677,5 +677,5 @@ fn slider_on_flexible_guide_area_law_conserves_energy() {
         .iter()
         .fold(0.0f64, |a, &v| a.max(v));
     assert!(active >= 5.0, "no area contact: {active} points at most");
-    assert!(drift < 1e-2 * kmax, "drift {drift}, max E_kin {kmax}");
+    assert!(drift < 1e-3 * kmax, "drift {drift}, max E_kin {kmax}");
 }
