@@ -10,12 +10,30 @@ use clr_contact::{
 use nalgebra::Vector2;
 
 use crate::flexible::FlexBeam;
+use crate::floating::FloatingBody;
+use crate::system::{perp, rot};
+
+/// Which flexible body carries a guide face.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum GuideBeam {
+    /// Index in the model's ground-fixed beams.
+    Fixed(usize),
+    /// Index in the model's floating-frame bodies.
+    Floating(usize),
+}
+
+/// The flexible body of a guide, resolved from the model.
+#[derive(Clone, Copy)]
+pub(crate) enum GuideRef<'a> {
+    Fixed(&'a FlexBeam),
+    Floating(&'a FloatingBody),
+}
 
 /// A slider on a face of a flexible beam (clr-contact multipoint detection over the clr-beam
-/// deformed-shape queries).
+/// deformed-shape queries), the beam ground-fixed or a floating-frame body.
 pub(crate) struct FlexGuide {
-    /// Index of the beam in the model's beams.
-    pub(crate) beam: usize,
+    /// The beam carrying the face.
+    pub(crate) beam: GuideBeam,
     pub(crate) path: Path,
     pub(crate) face: Face,
     /// Area law applied with each point's wetted length (see `FlexibleGuideSpec::area_normal`).
@@ -73,6 +91,40 @@ impl GuideSurface for BeamFace<'_> {
     }
 }
 
+/// The face of a floating-frame beam in world coordinates: the body-frame face point p̄(s),
+/// tangent, normal and elastic velocity from the beam interpolation at u = T q_f ([`BeamFace`]),
+/// then r = R + A p̄, t = A t̄, n = A n̄, ṙ = Ṙ + θ̇ Ĩ A p̄ + A p̄̇ (Shabana 2020, eq. 5.4 and its
+/// time derivative).
+struct FloatFace<'a> {
+    local: BeamFace<'a>,
+    origin: Vector2<f64>,
+    angle: f64,
+    velocity: Vector2<f64>,
+    omega: f64,
+}
+
+impl GuideSurface for FloatFace<'_> {
+    fn arc_range(&self) -> (f64, f64) {
+        self.local.arc_range()
+    }
+    fn point(&self, s: f64) -> Vector2<f64> {
+        self.origin + rot(self.angle, self.local.point(s))
+    }
+    fn tangent(&self, s: f64) -> Vector2<f64> {
+        rot(self.angle, self.local.tangent(s))
+    }
+    fn normal(&self, s: f64) -> Vector2<f64> {
+        rot(self.angle, self.local.normal(s))
+    }
+    fn velocity(&self, s: f64) -> Vector2<f64> {
+        let p = self.local.at(s);
+        let arm = rot(self.angle, Vector2::new(p.position[0], p.position[1]));
+        self.velocity
+            + self.omega * perp(arm)
+            + rot(self.angle, Vector2::new(p.velocity[0], p.velocity[1]))
+    }
+}
+
 /// Geometry of a contact element.
 pub(crate) enum ClearanceKind {
     /// Journal (body j) in bearing (body i), with where its force pair acts.
@@ -85,7 +137,8 @@ pub(crate) enum ClearanceKind {
         angle: f64,
         width: f64,
     },
-    /// Slider (body j) on a flexible beam face; `i` is unused (the ground).
+    /// Slider (body j) on a flexible beam face; `i` is the ground (ground-fixed beam) or the
+    /// floating body's frame.
     FlexGuide(Box<FlexGuide>),
 }
 
@@ -254,8 +307,8 @@ impl Clearance {
         rep
     }
 
-    /// Index of the beam of a flexible-guide element.
-    pub(crate) fn flex_beam(&self) -> Option<usize> {
+    /// The beam of a flexible-guide element.
+    pub(crate) fn flex_beam(&self) -> Option<GuideBeam> {
         match &self.kind {
             ClearanceKind::FlexGuide(g) => Some(g.beam),
             _ => None,
@@ -263,32 +316,55 @@ impl Clearance {
     }
 
     /// Detect the slider (state `bj`) against the deformed beam at (q, q̇).
-    fn detect_flex(&mut self, fb: &FlexBeam, q: &[f64], qd: &[f64], bj: &BodyState) {
+    fn detect_flex(&mut self, guide: GuideRef, q: &[f64], qd: &[f64], bj: &BodyState) {
         let ClearanceKind::FlexGuide(g) = &mut self.kind else {
             return;
         };
-        g.qfull.fill(0.0);
-        g.qdfull.fill(0.0);
-        for (a, &d) in fb.free.iter().enumerate() {
-            g.qfull[d] = q[fb.offset + a];
-            g.qdfull[d] = qd[fb.offset + a];
+        match guide {
+            GuideRef::Fixed(fb) => {
+                g.qfull.fill(0.0);
+                g.qdfull.fill(0.0);
+                for (a, &d) in fb.free.iter().enumerate() {
+                    g.qfull[d] = q[fb.offset + a];
+                    g.qdfull[d] = qd[fb.offset + a];
+                }
+                let surface = BeamFace {
+                    path: &g.path,
+                    face: g.face,
+                    q: &g.qfull,
+                    qd: &g.qdfull,
+                };
+                g.detector.detect(&surface, bj);
+            }
+            GuideRef::Floating(fl) => {
+                fl.full_displacements(q, qd, &mut g.qfull, &mut g.qdfull);
+                let o = fl.offset;
+                let surface = FloatFace {
+                    local: BeamFace {
+                        path: &g.path,
+                        face: g.face,
+                        q: &g.qfull,
+                        qd: &g.qdfull,
+                    },
+                    origin: Vector2::new(q[o], q[o + 1]),
+                    angle: q[o + 2],
+                    velocity: Vector2::new(qd[o], qd[o + 1]),
+                    omega: qd[o + 2],
+                };
+                g.detector.detect(&surface, bj);
+            }
         }
-        let surface = BeamFace {
-            path: &g.path,
-            face: g.face,
-            q: &g.qfull,
-            qd: &g.qdfull,
-        };
-        g.detector.detect(&surface, bj);
     }
 
     /// Forces of a slider on a flexible guide: on the slider through `add_slider(qf, [f_x, f_y,
     /// m])`, on the beam as work-equivalent nodal loads of each point load at its arc coordinate
-    /// (clr-beam `surface_load_row`), added to the beam's free DOF in `qf`.
+    /// (clr-beam `surface_load_row`), added to the beam's free DOF in `qf`; for a floating beam
+    /// the same rows in the body frame, mapped to (R, θ, q_f) by
+    /// `FloatingBody::add_point_force`.
     #[allow(clippy::too_many_arguments)]
     pub(crate) fn apply_flex(
         &mut self,
-        fb: &FlexBeam,
+        guide: GuideRef,
         q: &[f64],
         qd: &[f64],
         bj: &BodyState,
@@ -296,7 +372,7 @@ impl Clearance {
         qf: &mut [f64],
         mut add_slider: impl FnMut(&mut [f64], [f64; 3]),
     ) -> ContactReport {
-        self.detect_flex(fb, q, qd, bj);
+        self.detect_flex(guide, q, qd, bj);
         let (normal, friction, mem) = (&self.normal, &self.friction, self.mem);
         let ClearanceKind::FlexGuide(g) = &mut self.kind else {
             return ContactReport::default();
@@ -334,16 +410,30 @@ impl Clearance {
         }
         add_slider(qf, gf.as_array());
         for load in g.detector.loads() {
-            if let Ok(row) = g.path.surface_load_row(load.arc, g.face, &g.qfull) {
-                for k in 0..6 {
-                    if let Some(fi) = fb.free_index[row.dofs[k]] {
-                        qf[fb.offset + fi] += row.fx[k] * load.force.x + row.fy[k] * load.force.y;
+            let Ok(row) = g.path.surface_load_row(load.arc, g.face, &g.qfull) else {
+                continue;
+            };
+            match guide {
+                GuideRef::Fixed(fb) => {
+                    for k in 0..6 {
+                        if let Some(fi) = fb.free_index[row.dofs[k]] {
+                            qf[fb.offset + fi] +=
+                                row.fx[k] * load.force.x + row.fy[k] * load.force.y;
+                        }
                     }
                 }
+                GuideRef::Floating(fl) => fl.add_point_force(q, load.point, &row, load.force, qf),
             }
         }
-        let slider_on_beam = bj.position;
-        rep.eccentricity = [slider_on_beam.x, slider_on_beam.y];
+        // slider reference point in the guide body's frame (the world frame for a fixed beam)
+        let local = match guide {
+            GuideRef::Fixed(_) => bj.position,
+            GuideRef::Floating(fl) => {
+                let o = fl.offset;
+                rot(-q[o + 2], bj.position - Vector2::new(q[o], q[o + 1]))
+            }
+        };
+        rep.eccentricity = [local.x, local.y];
         rep
     }
 
@@ -352,13 +442,13 @@ impl Clearance {
     /// then takes the current δ̇ as impact velocity).
     pub(crate) fn commit_flex(
         &mut self,
-        fb: &FlexBeam,
+        guide: GuideRef,
         q: &[f64],
         qd: &[f64],
         bj: &BodyState,
         memory: &mut ContactMemory,
     ) {
-        self.detect_flex(fb, q, qd, bj);
+        self.detect_flex(guide, q, qd, bj);
         let mem = self.mem;
         let ClearanceKind::FlexGuide(g) = &self.kind else {
             return;

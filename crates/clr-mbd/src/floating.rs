@@ -85,7 +85,10 @@ pub(crate) struct FloatingBody {
     /// Undeformed node positions in the body frame, m.
     pub(crate) nodes: Vec<[f64; 2]>,
     /// T rows, row-major (3 · nodes) × r.
-    t: Vec<f64>,
+    pub(crate) t: Vec<f64>,
+    /// The path through all elements in the body frame (for a slider on this body's face), when
+    /// the beam model's elements form one chain.
+    pub(crate) path: Option<clr_beam::Path>,
     /// Deforming nodes with joints: (node, first column of its node-frame coordinates in q).
     pub(crate) ties: Vec<(usize, usize)>,
 }
@@ -197,8 +200,57 @@ impl FloatingBody {
             d: flat(&red.damping),
             nodes,
             t,
+            path: model.path().ok(),
             ties: Vec::new(),
         })
+    }
+
+    /// Full nodal displacements and velocities in the body frame, u = T q_f and u̇ = T q̇_f
+    /// (3 per node), written into `u`, `ud` (length 3 · nodes; no allocation).
+    pub(crate) fn full_displacements(&self, q: &[f64], qd: &[f64], u: &mut [f64], ud: &mut [f64]) {
+        let (o, r) = (self.offset + 3, self.r);
+        let (qf, qfd) = (&q[o..o + r], &qd[o..o + r]);
+        for (a, (ua, uda)) in u.iter_mut().zip(ud.iter_mut()).enumerate() {
+            let row = &self.t[a * r..(a + 1) * r];
+            let (mut x, mut v) = (0.0, 0.0);
+            for k in 0..r {
+                x += row[k] * qf[k];
+                v += row[k] * qfd[k];
+            }
+            *ua = x;
+            *uda = v;
+        }
+    }
+
+    /// Add the generalized forces of a world force `f` (N) applied at the material point with
+    /// world position `point` (m) whose body-frame displacement rows are `row` (a clr-beam
+    /// `LoadRow` of full body-frame DOF, linearized at the current deformation): by virtual work
+    /// with δr = δR + δθ Ĩ(r − R) + A δū, δū = row·T δq_f (Shabana 2020, eq. 5.4 varied),
+    /// Q_R += f, Q_θ += (r − R) × f, Q_f += Tᵀ rowᵀ Aᵀ f.
+    pub(crate) fn add_point_force(
+        &self,
+        q: &[f64],
+        point: Vector2<f64>,
+        row: &clr_beam::LoadRow,
+        f: Vector2<f64>,
+        out: &mut [f64],
+    ) {
+        let (o, r) = (self.offset, self.r);
+        let arm = point - Vector2::new(q[o], q[o + 1]);
+        out[o] += f.x;
+        out[o + 1] += f.y;
+        out[o + 2] += arm.x * f.y - arm.y * f.x;
+        let fl = rot(-q[o + 2], f);
+        for k in 0..6 {
+            let g = row.fx[k] * fl.x + row.fy[k] * fl.y;
+            if g == 0.0 {
+                continue;
+            }
+            let trow = &self.t[row.dofs[k] * r..(row.dofs[k] + 1) * r];
+            for (c, tc) in trow.iter().enumerate() {
+                out[o + 3 + c] += tc * g;
+            }
+        }
     }
 
     /// Number of coordinates 3 + r.
@@ -456,6 +508,52 @@ impl crate::Model {
         }
         let p = fb.node_position(node, q);
         Ok([p.x, p.y])
+    }
+}
+
+impl crate::Model {
+    /// The coordinates q (length [`crate::Model::n_coordinates`]) of output row `row` of
+    /// [`crate::Results`] from this model: rigid-body poses, floating-body coordinates, beam
+    /// DOF; the node-frame coordinates of node ties are set from their tie (p = R + A ū,
+    /// ψ = θ + φ_θ·q_f), which the constraints enforce. Use it with
+    /// [`crate::Model::floating_node_position`] on recorded results.
+    ///
+    /// # Errors
+    /// [`MbdError::InvalidParameter`] when `row` does not have one entry per output column.
+    pub fn coordinates_from_row(&self, row: &[f64]) -> Result<Vec<f64>, MbdError> {
+        let width = self.columns().len();
+        if row.len() != width {
+            return Err(MbdError::InvalidParameter {
+                item: "coordinates_from_row".into(),
+                what: "row length",
+                value: row.len() as f64,
+                requirement: "a row of Results from this model (one entry per output column)",
+            });
+        }
+        let mut q = vec![0.0; self.n];
+        let mut c = 1;
+        for k in 0..self.bodies.len() {
+            q[3 * k..3 * k + 3].copy_from_slice(&row[c..c + 3]);
+            c += 9;
+        }
+        for b in &self.beams {
+            let nf = b.n_free();
+            q[b.offset..b.offset + nf].copy_from_slice(&row[c..c + nf]);
+            c += nf;
+        }
+        for f in &self.floating {
+            let nc = f.n_coords();
+            q[f.offset..f.offset + nc].copy_from_slice(&row[c..c + nc]);
+            c += nc;
+        }
+        let zeros = vec![0.0; self.n];
+        for f in &self.floating {
+            for &(node, col) in &f.ties {
+                let (p, _) = f.node_frame(node, &q, &zeros);
+                q[col..col + 3].copy_from_slice(&p);
+            }
+        }
+        Ok(q)
     }
 }
 

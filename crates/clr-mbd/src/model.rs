@@ -11,7 +11,7 @@ use clr_contact::{
 };
 use nalgebra::Vector2;
 
-use crate::clearance::{Clearance, ClearanceKind, FlexGuide};
+use crate::clearance::{Clearance, ClearanceKind, FlexGuide, GuideBeam};
 use crate::error::MbdError;
 use crate::flexible::{FlexBeam, NodalLoadFn};
 use crate::floating::FloatingBody;
@@ -143,10 +143,11 @@ pub struct TranslationalClearanceSpec {
     pub friction: FrictionLaw,
 }
 
-/// A rigid rectangular slider on a face of a ground-fixed flexible beam: clr-contact's
+/// A rigid rectangular slider on a face of a flexible beam, ground-fixed
+/// ([`ModelBuilder::flexible_beam`]) or moving ([`ModelBuilder::floating_beam`]): clr-contact's
 /// multipoint detection (corners, face points, optional reverse check with guide samples)
 /// against the deformed beam surface from clr-beam; the guide reactions become work-equivalent
-/// nodal loads of the beam.
+/// nodal loads of the beam (and, on a floating beam, forces on its frame).
 pub struct FlexibleGuideSpec {
     /// Beam face the slider runs on (`Upper`: the +h/2 face on the left of the beam axis).
     pub face: clr_beam::Face,
@@ -656,7 +657,10 @@ impl ModelBuilder {
     }
 
     /// A slider on a flexible guide: the slider centre is anchor `slider` (a rigid body), the
-    /// guide is a face of flexible beam `beam` (see [`FlexibleGuideSpec`]). Onsets are not
+    /// guide is a face of flexible beam `beam` (see [`FlexibleGuideSpec`]): a ground-fixed
+    /// [`ModelBuilder::flexible_beam`] or a moving [`ModelBuilder::floating_beam`] (then the face
+    /// is r = R + A(θ)(ū₀ + Φ q_f) with the beam's cubic interpolation and offset ±h/2, and the
+    /// guide reactions act on (R, θ, q_f) by virtual work; see `docs/mbd.md`). Onsets are not
     /// located as events for this element.
     pub fn slider_on_beam(
         &mut self,
@@ -999,14 +1003,31 @@ impl ModelBuilder {
                                 "the slider must be a rigid body (not the ground or a beam node)",
                         });
                     }
-                    let Some(b) = beams.iter().position(|fb| fb.name == beam) else {
+                    // a ground-fixed beam, or a floating-frame body (its face moves with it)
+                    let found = match beams.iter().position(|fb| fb.name == beam) {
+                        Some(b) => Some((
+                            GuideBeam::Fixed(b),
+                            GROUND_ID,
+                            beams[b].path.clone(),
+                            beams[b].n_dof_full,
+                        )),
+                        None => floating.iter().position(|f| f.name == beam).map(|f| {
+                            (
+                                GuideBeam::Floating(f),
+                                nb + f,
+                                floating[f].path.clone(),
+                                3 * floating[f].nodes.len(),
+                            )
+                        }),
+                    };
+                    let Some((guide_beam, guide_frame, path, nfull)) = found else {
                         return Err(MbdError::UnknownBody {
                             item: name,
                             body: beam,
                             known: "(beams) ".to_string() + &known,
                         });
                     };
-                    let Some(path) = beams[b].path.clone() else {
+                    let Some(path) = path else {
                         return Err(MbdError::InvalidParameter {
                             item: name,
                             what: "beam path",
@@ -1030,13 +1051,12 @@ impl ModelBuilder {
                         spec.guide_samples,
                     )
                     .map_err(contact)?;
-                    let nfull = beams[b].n_dof_full;
                     clearances.push(Clearance {
                         name,
-                        i: GROUND_ID,
+                        i: guide_frame,
                         j,
                         kind: ClearanceKind::FlexGuide(Box::new(FlexGuide {
-                            beam: b,
+                            beam: guide_beam,
                             path,
                             face: spec.face,
                             area_normal: spec.area_normal,

@@ -16,8 +16,8 @@
 
 use clr_contact::{BodyState, ContactMemory};
 
-use crate::clearance::Clearance;
 pub use crate::clearance::ContactReport;
+use crate::clearance::{Clearance, GuideBeam, GuideRef};
 use crate::flexible::FlexBeam;
 use crate::floating::FloatingBody;
 use clr_ode::linalg::DenseLu;
@@ -700,7 +700,8 @@ impl Model {
             let frames = &self.frames;
             self.contacts[k] = if let Some(b) = cl.flex_beam() {
                 let j = cl.j;
-                cl.apply_flex(&self.beams[b], q, qd, &bj, &mut self.memory, qf, |qf, g| {
+                let guide = guide_ref(&self.beams, &self.floating, b);
+                cl.apply_flex(guide, q, qd, &bj, &mut self.memory, qf, |qf, g| {
                     add_gen(frames, qf, j, g)
                 })
             } else {
@@ -922,7 +923,8 @@ impl Model {
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
             if let Some(b) = cl.flex_beam() {
-                cl.commit_flex(&self.beams[b], q, qd, &bj, &mut self.memory);
+                let guide = guide_ref(&self.beams, &self.floating, b);
+                cl.commit_flex(guide, q, qd, &bj, &mut self.memory);
                 continue;
             }
             for p in 0..cl.points() {
@@ -930,6 +932,18 @@ impl Model {
                 self.memory.commit(cl.mem + p, d, r);
             }
         }
+    }
+}
+
+#[inline]
+fn guide_ref<'a>(
+    beams: &'a [FlexBeam],
+    floating: &'a [FloatingBody],
+    b: GuideBeam,
+) -> GuideRef<'a> {
+    match b {
+        GuideBeam::Fixed(k) => GuideRef::Fixed(&beams[k]),
+        GuideBeam::Floating(k) => GuideRef::Floating(&floating[k]),
     }
 }
 
