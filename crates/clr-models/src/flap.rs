@@ -24,7 +24,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 
 use clr_beam::{BeamModel, Material, Section, Support};
-use clr_mbd::{Model, ModelBuilder, Motion, Results, RevoluteClearanceSpec, RigidBody};
+use clr_mbd::{Anchor, Model, ModelBuilder, Motion, Results, RevoluteClearanceSpec, RigidBody};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -241,6 +241,22 @@ pub struct FlapParams {
     pub solver: Solver,
     /// Output interval of the ideal reference run, s.
     pub reference_interval: f64,
+    /// Flexible parts: [lever arm, auxiliary rod, auxiliary lever arm]; a flexible part is a
+    /// floating-frame beam body of the calibrated section ([`FlexiblePart::calibrate`]) and its
+    /// mass is ρ·A·L of that section (the `*_mass` field of the part is then unused). Default:
+    /// all rigid. Model in docs/models/flap.md and [`crate::flap_flex`].
+    pub flexible: [bool; 3],
+    /// Fixed-interface normal modes kept per flexible part in its Craig–Bampton reduction
+    /// (reconstruction: 2).
+    pub flexible_modes: usize,
+    /// Damping ratio ζ of the flexible parts (Rayleigh α M + β K of each part, ζ at
+    /// `flexible_damping_low_hz` and at the part's calibrated first frequency; reconstruction:
+    /// 0.02).
+    pub flexible_damping_ratio: f64,
+    /// Lower anchor frequency of the Rayleigh damping, Hz (reconstruction: 100 Hz, below the
+    /// lowest coupled mode of the flexible linkage, the flap rocking on the bending auxiliary
+    /// lever arm, ≈ 180 Hz).
+    pub flexible_damping_low_hz: f64,
 }
 
 impl Default for FlapParams {
@@ -285,12 +301,16 @@ impl Default for FlapParams {
             rtol: 1e-8,
             solver: Solver::Ndf,
             reference_interval: 1e-4,
+            flexible: [false; 3],
+            flexible_modes: 2,
+            flexible_damping_ratio: 0.02,
+            flexible_damping_low_hz: 100.0,
         }
     }
 }
 
-/// A joint of the linkage: (name, bearing body, bearing point, journal body, journal point).
-type JointSpec<'a> = (&'a str, &'a str, [f64; 2], &'a str, [f64; 2]);
+/// A joint of the linkage: (name, bearing anchor, journal anchor).
+type JointSpec<'a> = (&'a str, Anchor, Anchor);
 
 /// Smooth step r(t) = 3s² − 2s³, s = t/T (clamped), with r′ and r″.
 fn smoothstep(t: f64, ramp: f64) -> [f64; 3] {
@@ -429,6 +449,7 @@ impl FlapParams {
             ("duration", self.duration),
             ("rtol", self.rtol),
             ("reference_interval", self.reference_interval),
+            ("flexible_damping_low_hz", self.flexible_damping_low_hz),
         ] {
             positive(f, v)?;
         }
@@ -466,6 +487,27 @@ impl FlapParams {
                 return Err(format!(
                     "`clearances[{k}]` = {c} m must be below a tenth of `bearing_radius` = {} m",
                     self.bearing_radius
+                ));
+            }
+        }
+        if !(self.flexible_damping_ratio.is_finite()
+            && (0.0..1.0).contains(&self.flexible_damping_ratio))
+        {
+            return Err(format!(
+                "`flexible_damping_ratio` = {} must be in [0, 1)",
+                self.flexible_damping_ratio
+            ));
+        }
+        if self.flexible[0] {
+            let n = self.lever_arm_actuator_distance / self.lever_arm_length
+                * crate::flap_flex::ELEMENTS as f64;
+            if (n - n.round()).abs() > 1e-9 || n.round() < 1.0 {
+                return Err(format!(
+                    "a flexible lever arm needs `lever_arm_actuator_distance` = {} m at a beam \
+                     node: a multiple of `lever_arm_length`/{} = {} m",
+                    self.lever_arm_actuator_distance,
+                    crate::flap_flex::ELEMENTS,
+                    self.lever_arm_length / crate::flap_flex::ELEMENTS as f64
                 ));
             }
         }
@@ -513,30 +555,93 @@ impl FlapParams {
             m.gravity(0.0, -9.81);
         }
         let bar = |mass: f64, len: f64| RigidBody::new(mass, mass * len * len / 12.0);
-        let (mal, ial, rc) = self.aux_lever_with_flap();
         m.body(
             "cylinder",
             bar(self.cylinder_mass, lc).at(c0[0] + 0.5 * lc, c0[1], 0.0),
         )
-        .body("piston", bar(self.piston_mass, lp).at(-0.5 * lp, a, 0.0))
-        .body(
-            "lever_arm",
-            bar(self.lever_arm_mass, b).at(0.0, 0.5 * b, FRAC_PI_2),
-        )
-        .body("aux_rod", bar(self.aux_rod_mass, lr).at(0.5 * lr, b, 0.0))
-        .body(
-            "aux_lever_arm",
-            // lever frame rotated by π/2: local (u, v) → world (−v, u)
-            RigidBody::new(mal, ial).at(o2[0] - rc[1], o2[1] + rc[0], FRAC_PI_2),
-        )
-        .revolute("C0", ("ground", c0), ("cylinder", [-0.5 * lc, 0.0]))
-        .translational(
-            "actuator",
-            ("cylinder", [-0.5 * lc, 0.0]),
-            ("piston", [0.0, 0.0]),
-            [1.0, 0.0],
-        )
-        .revolute("O2", ("ground", o2), ("aux_lever_arm", [-rc[0], -rc[1]]));
+        .body("piston", bar(self.piston_mass, lp).at(-0.5 * lp, a, 0.0));
+        let c = self.aux_lever_arm_length;
+        let local = |body: &str, x: f64, y: f64| Anchor::Local(body.to_string(), [x, y]);
+        let node = |body: &str, n: usize| Anchor::BeamNode(body.to_string(), n);
+        let last = crate::flap_flex::ELEMENTS;
+        // lever arm: anchors of J1, O1 (J2) and J3
+        let lever = if self.flexible[0] {
+            crate::flap_flex::add_part(&mut m, self, 0, o1, FRAC_PI_2)
+                .map_err(|e| common::invalid(model, e))?;
+            let n1 = (a / b * last as f64).round() as usize;
+            [
+                node("lever_arm", n1),
+                node("lever_arm", 0),
+                node("lever_arm", last),
+            ]
+        } else {
+            m.body(
+                "lever_arm",
+                bar(self.lever_arm_mass, b).at(0.0, 0.5 * b, FRAC_PI_2),
+            );
+            [
+                local("lever_arm", a - 0.5 * b, 0.0),
+                local("lever_arm", -0.5 * b, 0.0),
+                local("lever_arm", 0.5 * b, 0.0),
+            ]
+        };
+        // auxiliary rod: anchors of J3 and J4
+        let rod = if self.flexible[1] {
+            crate::flap_flex::add_part(&mut m, self, 1, [o1[0], o1[1] + b], 0.0)
+                .map_err(|e| common::invalid(model, e))?;
+            [node("aux_rod", 0), node("aux_rod", last)]
+        } else {
+            m.body("aux_rod", bar(self.aux_rod_mass, lr).at(0.5 * lr, b, 0.0));
+            [
+                local("aux_rod", -0.5 * lr, 0.0),
+                local("aux_rod", 0.5 * lr, 0.0),
+            ]
+        };
+        // auxiliary lever arm: anchors of O2 and J4; the body carrying the hinge moment and
+        // its angle at t = 0
+        let (aux, hinge_body, th0) = if self.flexible[2] {
+            crate::flap_flex::add_part(&mut m, self, 2, o2, FRAC_PI_2)
+                .map_err(|e| common::invalid(model, e))?;
+            // the flap: a rigid body fixed to the arm's reference (pivot) node, chord along +x
+            let d = self.flap_cg_distance;
+            m.body(
+                "flap",
+                RigidBody::new(self.flap_mass, self.flap_inertia).at(o2[0] + d, o2[1], 0.0),
+            )
+            .fixed("flap_mount", node("aux_lever_arm", 0), ("flap", [-d, 0.0]));
+            (
+                [node("aux_lever_arm", 0), node("aux_lever_arm", last)],
+                "flap",
+                0.0,
+            )
+        } else {
+            let (mal, ial, rc) = self.aux_lever_with_flap();
+            m.body(
+                "aux_lever_arm",
+                // lever frame rotated by π/2: local (u, v) → world (−v, u)
+                RigidBody::new(mal, ial).at(o2[0] - rc[1], o2[1] + rc[0], FRAC_PI_2),
+            );
+            (
+                [
+                    local("aux_lever_arm", -rc[0], -rc[1]),
+                    local("aux_lever_arm", c - rc[0], -rc[1]),
+                ],
+                "aux_lever_arm",
+                FRAC_PI_2,
+            )
+        };
+        let [l_j1, l_o1, l_j3] = lever;
+        let [r_j3, r_j4] = rod;
+        let [a_o2, a_j4] = aux;
+        // same item order as before the flexible parts existed (identical rigid model)
+        m.revolute("C0", ("ground", c0), ("cylinder", [-0.5 * lc, 0.0]))
+            .translational(
+                "actuator",
+                ("cylinder", [-0.5 * lc, 0.0]),
+                ("piston", [0.0, 0.0]),
+                [1.0, 0.0],
+            )
+            .revolute("O2", ("ground", o2), a_o2);
         let p = self.clone();
         let s0 = self.actuator_length;
         m.drive_displacement(
@@ -549,33 +654,14 @@ impl FlapParams {
                 [s0 + x, v, acc]
             }),
         );
-        let c = self.aux_lever_arm_length;
-        // (name, bearing body, bearing point, journal body, journal point)
+        // (name, bearing anchor, journal anchor)
         let joints: [JointSpec; 4] = [
-            (
-                "J1",
-                "lever_arm",
-                [a - 0.5 * b, 0.0],
-                "piston",
-                [0.5 * lp, 0.0],
-            ),
-            ("J2", "ground", o1, "lever_arm", [-0.5 * b, 0.0]),
-            (
-                "J3",
-                "aux_rod",
-                [-0.5 * lr, 0.0],
-                "lever_arm",
-                [0.5 * b, 0.0],
-            ),
-            (
-                "J4",
-                "aux_rod",
-                [0.5 * lr, 0.0],
-                "aux_lever_arm",
-                [c - rc[0], -rc[1]],
-            ),
+            ("J1", l_j1, local("piston", 0.5 * lp, 0.0)),
+            ("J2", Anchor::Local("ground".into(), o1), l_o1),
+            ("J3", r_j3, l_j3),
+            ("J4", r_j4, a_j4),
         ];
-        for (k, (name, bi, si, bj, sj)) in joints.into_iter().enumerate() {
+        for (k, (name, bi, bj)) in joints.into_iter().enumerate() {
             let cl = self.clearances[k];
             if cl > 0.0 {
                 let normal = common::preset_law(
@@ -590,8 +676,8 @@ impl FlapParams {
                 .map_err(|m| common::invalid(model, m))?;
                 m.revolute_clearance(
                     name,
-                    (bi, si),
-                    (bj, sj),
+                    bi,
+                    bj,
                     RevoluteClearanceSpec {
                         bearing_radius: self.bearing_radius,
                         journal_radius: self.bearing_radius - cl,
@@ -600,20 +686,18 @@ impl FlapParams {
                     },
                 );
             } else {
-                m.revolute(name, (bi, si), (bj, sj));
+                m.revolute(name, bi, bj);
             }
         }
-        let (m0, k, th0) = (self.hinge_moment, self.hinge_stiffness, FRAC_PI_2);
-        m.applied_torque("hinge", "aux_lever_arm", move |_, s| {
-            -(m0 + k * (s.angle - th0))
-        });
+        let (m0, k) = (self.hinge_moment, self.hinge_stiffness);
+        m.applied_torque("hinge", hinge_body, move |_, s| -(m0 + k * (s.angle - th0)));
         m.build().map_err(|e| common::build_error(model, e))
     }
 }
 
 /// Simulate one configuration; appends `flap.angle` (rad, from the initial position) and
 /// `flap.alpha` (rad/s²). `uniform` records every `reference_interval` instead of every step.
-fn simulate(
+pub(crate) fn simulate(
     model: &str,
     p: &FlapParams,
     settings: &RunSettings,
@@ -624,11 +708,18 @@ fn simulate(
     let n_out = ((t_end / p.reference_interval).round() as usize).max(1);
     let opts = common::options(p.duration, p.rtol, p.solver, settings, !uniform, n_out);
     let mut res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
-    let angle: Vec<f64> = col(&res, "aux_lever_arm.theta")
+    // the flap angle: the rigid auxiliary lever arm's, or the flap body's when that arm is
+    // flexible (the flap is then a rigid body fixed to the arm's pivot node, starting at 0)
+    let (body, th0) = if p.flexible[2] {
+        ("flap", 0.0)
+    } else {
+        ("aux_lever_arm", FRAC_PI_2)
+    };
+    let angle: Vec<f64> = col(&res, &format!("{body}.theta"))
         .iter()
-        .map(|th| th - FRAC_PI_2)
+        .map(|th| th - th0)
         .collect();
-    let alpha = col(&res, "aux_lever_arm.alpha");
+    let alpha = col(&res, &format!("{body}.alpha"));
     common::append_columns(
         &mut res,
         vec![("flap.angle".into(), angle), ("flap.alpha".into(), alpha)],

@@ -11,6 +11,7 @@ pub mod catalog;
 pub mod common;
 pub mod error;
 pub mod flap;
+pub mod flap_flex;
 pub mod guide;
 pub mod manipulator;
 pub mod output;
