@@ -9,6 +9,7 @@
 
 pub mod catalog;
 pub mod common;
+pub mod dual_guide;
 pub mod error;
 pub mod flap;
 pub mod flap_flex;

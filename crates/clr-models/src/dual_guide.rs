@@ -1,0 +1,885 @@
+//! Dual-stage dual guide of a telescopic mechanism (morphing aircraft; seed 000,
+//! paper-systems.md §3, issue 6 §1): two parallel stage-1 cantilever guides at spacing d carry a
+//! stage-1 carriage with one slider (two pads with clearance) on each; two stage-2 guides are
+//! clamped to that carriage and carry the stage-2 carriage with one slider on each; both stages
+//! are driven axially, the stage-2 carriage carries a lateral load.
+//!
+//! The stage-1 guides are ground-fixed Euler–Bernoulli beams (`ModelBuilder::flexible_beam`),
+//! the stage-2 guides moving floating-frame beams (`ModelBuilder::floating_beam`, cantilever
+//! modes) clamped to the carriage by fixed joints; every slider pad is a
+//! `ModelBuilder::slider_on_beam` contact element with the same laws as the single guide
+//! ([`crate::guide`]): Flores line law, restitution-corrected area law, Ambrósio friction.
+//! With `dual = false` the model is the **single guide of the same parameters**: one stage-1
+//! guide on the axis, one carriage (of the stage-2 carriage's mass, carrying the load), one
+//! actuator — the reference of the dual-vs-single comparison.
+//!
+//! Every dimension, material, load and speed is a **reconstruction** (the paper's abstract gives
+//! none); values and reasons are in docs/models/dual_guide.md.
+
+use std::path::Path;
+
+use clr_beam::{BeamModel, Face, Material, ReducedModel, Section, Support};
+use clr_contact::{GuideFace, NormalLaw};
+use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Motion, Results, RigidBody};
+use nalgebra::Vector2;
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::common::{self, col, FrictionParams, Solver};
+use crate::guide::oscillation_amplitude;
+use crate::{Metric, ModelsError, RunOutput, RunSettings};
+
+/// Parameters of the dual-stage dual guide (SI units). Defaults: [`DualGuideParams::default`];
+/// every value is a reconstruction documented in docs/models/dual_guide.md. Fields that mean the
+/// same as in [`crate::guide::GuideParams`] have the same default there (guide section and
+/// material, pad geometry, clearance, contact and friction laws, load, rtol, solver).
+#[derive(Debug, Clone, Serialize, Deserialize, PartialEq)]
+#[serde(default, deny_unknown_fields)]
+pub struct DualGuideParams {
+    /// `true`: dual-stage dual guide; `false`: the single guide of the same parameters (one
+    /// stage-1 guide, one carriage of mass `carriage2_mass` with the load, one actuator).
+    pub dual: bool,
+    /// Interguide spacing d (y distance between the two guides of a stage), m.
+    pub spacing: f64,
+    /// Stage-1 guide (cantilever) length, m.
+    pub guide1_length: f64,
+    /// Stage-2 guide length (root at the stage-1 carriage centre), m.
+    pub guide2_length: f64,
+    /// Guide section width b (out of plane), both stages, m.
+    pub guide_width: f64,
+    /// Stage-1 guide section depth h₁ (in the bending plane), m.
+    pub guide1_depth: f64,
+    /// Stage-2 guide section depth h₂, m.
+    pub guide2_depth: f64,
+    /// Guide Young's modulus, Pa.
+    pub youngs_modulus: f64,
+    /// Guide density, kg/m³.
+    pub density: f64,
+    /// Poisson ratio of guides and pads, –.
+    pub poisson_ratio: f64,
+    /// Euler–Bernoulli elements of each stage-1 guide.
+    pub elements1: usize,
+    /// Euler–Bernoulli elements of each stage-2 guide (before the modal reduction).
+    pub elements2: usize,
+    /// Cantilever modes kept for each stage-2 (floating) guide.
+    pub modes2: usize,
+    /// Mass-proportional Rayleigh coefficient α of every guide, 1/s.
+    pub rayleigh_alpha: f64,
+    /// Stage-1 carriage mass, kg.
+    pub carriage1_mass: f64,
+    /// Stage-2 carriage mass (the single guide's carriage in `dual = false`), kg.
+    pub carriage2_mass: f64,
+    /// Slider pad length L along the guide, m.
+    pub slider_length: f64,
+    /// Height of each pad (above and below its guide), m.
+    pub pad_height: f64,
+    /// Clearance between each pad and its guide face (nominal, centred), m.
+    pub clearance: f64,
+    /// Rounding radius of the pad edges (line-contact Hertz law), m.
+    pub edge_radius: f64,
+    /// Depth of the elastic layer of the area law's Winkler term, m.
+    pub layer_depth: f64,
+    /// Restitution coefficient c_e of both laws, –.
+    pub restitution: f64,
+    /// Friction law of every contact point.
+    pub friction: FrictionParams,
+    /// Candidate points per pad face besides the corners.
+    pub face_points: usize,
+    /// Lateral load on the loaded carriage (−y), N.
+    pub lateral_load: f64,
+    /// Axial offset of the load point from the loaded carriage's centre (+x), m.
+    pub load_offset: f64,
+    /// Lateral offset of the load point from the carriage centre (+y, towards guide a), m;
+    /// with the axial actuator reactions it loads the two guides unequally.
+    pub load_lateral_offset: f64,
+    /// Stage-1 carriage start position along the stage-1 guides, m.
+    pub start1: f64,
+    /// Stage-2 carriage start position along the stage-2 guides (from their root), m.
+    pub start2: f64,
+    /// Stage-1 actuator speed (constant), m/s.
+    pub speed1: f64,
+    /// Stage-2 actuator speed relative to the stage-1 carriage, m/s.
+    pub speed2: f64,
+    /// Stage-1 actuator acceleration (x₁ = start1 + v₁t + ½a₁t²), m/s²; 0 by default.
+    pub accel1: f64,
+    /// Stage-2 actuator acceleration (relative), m/s²; 0 by default.
+    pub accel2: f64,
+    /// Simulated time, s.
+    pub duration: f64,
+    /// Relative tolerance of the integrator.
+    pub rtol: f64,
+    /// Integrator.
+    pub solver: Solver,
+}
+
+impl Default for DualGuideParams {
+    fn default() -> Self {
+        Self {
+            dual: true,
+            spacing: 0.1,
+            guide1_length: 1.0,
+            guide2_length: 0.6,
+            guide_width: 0.02,
+            guide1_depth: 0.03,
+            guide2_depth: 0.02,
+            youngs_modulus: 70e9,
+            density: 2700.0,
+            poisson_ratio: 0.33,
+            elements1: 4,
+            elements2: 4,
+            modes2: 3,
+            rayleigh_alpha: 6.0,
+            carriage1_mass: 1.0,
+            carriage2_mass: 0.5,
+            slider_length: 0.06,
+            pad_height: 0.01,
+            clearance: 0.5e-3,
+            edge_radius: 1e-3,
+            layer_depth: 5e-3,
+            restitution: 0.8,
+            friction: FrictionParams::Ambrosio {
+                mu: 0.1,
+                v0: 1e-4,
+                v1: 1e-3,
+            },
+            face_points: 3,
+            lateral_load: 50.0,
+            load_offset: 0.01,
+            load_lateral_offset: 0.02,
+            start1: 0.5,
+            start2: 0.3,
+            speed1: 0.5,
+            speed2: 0.5,
+            accel1: 0.0,
+            accel2: 0.0,
+            duration: 0.1,
+            rtol: 1e-4,
+            solver: Solver::Dopri5,
+        }
+    }
+}
+
+/// First bending frequency of a clamped-free Euler–Bernoulli beam, Hz:
+/// f₁ = (β₁L)²/(2π)·√(EI/(ρAL⁴)), β₁L = 1.875104 (Rao, *Vibration of Continuous Systems*, 2007,
+/// §11.5), for length `l`, section b × h, modulus `e` and density `rho` (SI).
+pub fn cantilever_frequency(l: f64, b: f64, h: f64, e: f64, rho: f64) -> f64 {
+    let ei = e * b * h.powi(3) / 12.0;
+    1.875_104_f64.powi(2) / (2.0 * std::f64::consts::PI) * (ei / (rho * b * h * l.powi(4))).sqrt()
+}
+
+impl DualGuideParams {
+    /// Check every field; the message names the field to change.
+    ///
+    /// # Errors
+    /// A description of the first invalid field.
+    pub fn validate(&self) -> Result<(), String> {
+        for (f, v) in [
+            ("spacing", self.spacing),
+            ("guide1_length", self.guide1_length),
+            ("guide2_length", self.guide2_length),
+            ("guide_width", self.guide_width),
+            ("guide1_depth", self.guide1_depth),
+            ("guide2_depth", self.guide2_depth),
+            ("youngs_modulus", self.youngs_modulus),
+            ("density", self.density),
+            ("carriage1_mass", self.carriage1_mass),
+            ("carriage2_mass", self.carriage2_mass),
+            ("slider_length", self.slider_length),
+            ("pad_height", self.pad_height),
+            ("clearance", self.clearance),
+            ("edge_radius", self.edge_radius),
+            ("layer_depth", self.layer_depth),
+            ("restitution", self.restitution),
+            ("duration", self.duration),
+            ("rtol", self.rtol),
+        ] {
+            common::positive(f, v)?;
+        }
+        common::non_negative("rayleigh_alpha", self.rayleigh_alpha)?;
+        common::non_negative("lateral_load", self.lateral_load)?;
+        for (f, n) in [
+            ("elements1", self.elements1),
+            ("elements2", self.elements2),
+            ("modes2", self.modes2),
+        ] {
+            if n == 0 {
+                return Err(format!("`{f}` must be at least 1"));
+            }
+        }
+        if self.modes2 > 3 * self.elements2 {
+            return Err(format!(
+                "`modes2` = {} exceeds the {} free DOF of a stage-2 guide; lower it or raise \
+                 `elements2`",
+                self.modes2,
+                3 * self.elements2
+            ));
+        }
+        let t = self.duration;
+        let half = 0.5 * self.slider_length;
+        for (what, x0, v, a, len) in [
+            (
+                "start1/speed1/accel1",
+                self.start1,
+                self.speed1,
+                self.accel1,
+                self.guide1_length,
+            ),
+            (
+                "start2/speed2/accel2",
+                self.start2,
+                self.speed2,
+                self.accel2,
+                self.guide2_length,
+            ),
+        ] {
+            let x1 = x0 + v * t + 0.5 * a * t * t;
+            let (lo, hi) = (x0.min(x1), x0.max(x1));
+            if !(lo.is_finite() && hi.is_finite() && lo - half >= 0.0 && hi + half <= len) {
+                return Err(format!(
+                    "`{what}`: the carriage runs over [{lo}, {hi}] m in `duration` = {t} s, \
+                     so its pads (half length {half} m) leave the guide [0, {len}] m"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The independent Newton's-law check: no lateral load, both stages starting at rest with
+    /// constant accelerations a₁ = 2 m/s², a₂ = 3 m/s² for 0.02 s, DOPRI5 at rtol 1e-8. The
+    /// carriages stay centred (no contact) and the actuator reactions are F₂ = m₂ (a₁ + a₂) and
+    /// F₁ = (m₁ + 2 m_g2) a₁ + m₂ (a₁ + a₂) = [`Self::newton_stage1_force`].
+    pub fn newton_check() -> Self {
+        Self {
+            lateral_load: 0.0,
+            speed1: 0.0,
+            speed2: 0.0,
+            accel1: 2.0,
+            accel2: 3.0,
+            duration: 0.02,
+            rtol: 1e-8,
+            solver: Solver::Dopri5,
+            ..Self::default()
+        }
+    }
+
+    /// Closed-form stage-1 actuator force of the dual guide with no contact, N (Newton's
+    /// second law): F₁ = [`Self::stage1_moving_mass`] a₁ + m₂ a₂.
+    pub fn newton_stage1_force(&self) -> f64 {
+        self.stage1_moving_mass() * self.accel1 + self.carriage2_mass * self.accel2
+    }
+
+    /// Total mass carried by the stage-1 actuator in the dual guide: stage-1 carriage, both
+    /// stage-2 guides (ρ b h₂ L₂ each) and the stage-2 carriage, kg.
+    pub fn stage1_moving_mass(&self) -> f64 {
+        self.carriage1_mass
+            + 2.0 * self.density * self.guide_width * self.guide2_depth * self.guide2_length
+            + self.carriage2_mass
+    }
+
+    fn material(&self, model: &str) -> Result<Material, ModelsError> {
+        Material::new(self.youngs_modulus, self.density, self.poisson_ratio)
+            .map_err(|e| common::invalid(model, e.to_string()))
+    }
+
+    /// A clamped-free straight guide from `a` to `b` of depth `h` and `elements` elements.
+    fn guide_beam(
+        &self,
+        model: &str,
+        a: [f64; 2],
+        b: [f64; 2],
+        h: f64,
+        elements: usize,
+    ) -> Result<BeamModel, ModelsError> {
+        let inv = |e: clr_beam::BeamError| common::invalid(model, e.to_string());
+        let sec = Section::rectangular(self.guide_width, h).map_err(inv)?;
+        let mut beam =
+            BeamModel::straight(a, b, elements, self.material(model)?, sec).map_err(inv)?;
+        beam.support(0, Support::Clamped).map_err(inv)?;
+        beam.set_rayleigh(self.rayleigh_alpha, 0.0);
+        Ok(beam)
+    }
+
+    /// The stage-2 guide in its own frame (root at the origin, along +x) and its cantilever
+    /// modal reduction.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn stage2_guide(&self, model: &str) -> Result<(BeamModel, ReducedModel), ModelsError> {
+        let beam = self.guide_beam(
+            model,
+            [0.0, 0.0],
+            [self.guide2_length, 0.0],
+            self.guide2_depth,
+            self.elements2,
+        )?;
+        let red = beam
+            .modal_truncation(self.modes2)
+            .map_err(|e| common::invalid(model, e.to_string()))?;
+        Ok((beam, red))
+    }
+
+    /// y of each guide of a stage: ±d/2 (dual) or 0 (single), with its name suffix.
+    fn guide_rows(&self) -> Vec<(&'static str, f64)> {
+        if self.dual {
+            vec![("a", 0.5 * self.spacing), ("b", -0.5 * self.spacing)]
+        } else {
+            vec![("a", 0.0)]
+        }
+    }
+
+    /// Name of the carriage carrying the load and of its actuator.
+    pub fn loaded(&self) -> (&'static str, &'static str) {
+        if self.dual {
+            ("carriage2", "act2")
+        } else {
+            ("carriage1", "act1")
+        }
+    }
+
+    /// The multibody model. Bodies: stage-1 guides `g1a`, `g1b` (flexible beams, x from 0 at
+    /// the clamped roots, y = ±d/2), carriage `carriage1` with pads `s1a_up`, `s1a_lo`,
+    /// `s1b_up`, `s1b_lo`, actuator `act1` (ground → carriage1, axial); dual only: stage-2
+    /// guides `g2a`, `g2b` (floating beams clamped to carriage1 at (0, ±d/2) by `root_a`,
+    /// `root_b`), carriage `carriage2` with pads `s2a_up` … `s2b_lo`, actuator `act2`
+    /// (carriage1 → carriage2, axial); lateral load `load` on the loaded carriage.
+    ///
+    /// # Errors
+    /// Invalid parameters or a clr-mbd build error.
+    pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        self.validate().map_err(|m| common::invalid(model, m))?;
+        let inv = |m: String| common::invalid(model, m);
+        let cm = clr_contact::Material::new(self.youngs_modulus, self.poisson_ratio)
+            .map_err(|e| inv(e.to_string()))?;
+        let face = GuideFace {
+            slider: cm,
+            guide: cm,
+            edge_radius: self.edge_radius,
+            width: self.guide_width,
+            layer_depth: self.layer_depth,
+        };
+        let line =
+            NormalLaw::flores_line(&face, self.restitution).map_err(|e| inv(e.to_string()))?;
+        let area = NormalLaw::area(&face, self.restitution, 0.0).map_err(|e| inv(e.to_string()))?;
+        let friction = self.friction.law().map_err(inv)?;
+        let spec = |f: Face| FlexibleGuideSpec {
+            face: f,
+            slider_length: self.slider_length,
+            slider_height: self.pad_height,
+            slider_angle: 0.0,
+            face_points: self.face_points,
+            guide_samples: 0,
+            normal: line,
+            area_normal: Some(area),
+            friction,
+        };
+        let (c, hp, l) = (self.clearance, self.pad_height, self.slider_length);
+        let rows = self.guide_rows();
+        let carriage = |mass: f64, h: f64, x: f64, v: f64| {
+            let off = 0.5 * h + c + 0.5 * hp;
+            let height = if self.dual { self.spacing } else { 0.0 } + 2.0 * off + hp;
+            RigidBody::new(mass, mass * (l * l + height * height) / 12.0)
+                .at(x, 0.0, 0.0)
+                .moving(v, 0.0, 0.0)
+        };
+        let motion = |x0: f64, v: f64, a: f64| {
+            Motion::new(move |t| [x0 + v * t + 0.5 * a * t * t, v + a * t, a])
+        };
+        let pads = |b: &mut ModelBuilder, stage: u8, guide: &str, y: f64, h: f64| {
+            let off = 0.5 * h + c + 0.5 * hp;
+            let body = format!("carriage{stage}");
+            let g = format!("g{stage}{guide}");
+            b.slider_on_beam(
+                &format!("s{stage}{guide}_up"),
+                &g,
+                (body.as_str(), [0.0, y + off]),
+                spec(Face::Upper),
+            )
+            .slider_on_beam(
+                &format!("s{stage}{guide}_lo"),
+                &g,
+                (body.as_str(), [0.0, y - off]),
+                spec(Face::Lower),
+            );
+        };
+        let mut b = ModelBuilder::new();
+        let (m1, v1) = if self.dual {
+            (self.carriage1_mass, self.speed1)
+        } else {
+            (self.carriage2_mass, self.speed1)
+        };
+        b.body(
+            "carriage1",
+            carriage(m1, self.guide1_depth, self.start1, v1),
+        );
+        for &(s, y) in &rows {
+            let beam = self.guide_beam(
+                model,
+                [0.0, y],
+                [self.guide1_length, y],
+                self.guide1_depth,
+                self.elements1,
+            )?;
+            b.flexible_beam(&format!("g1{s}"), beam);
+            pads(&mut b, 1, s, y, self.guide1_depth);
+        }
+        b.drive_displacement(
+            "act1",
+            ("ground", [0.0, 0.0]),
+            ("carriage1", [0.0, 0.0]),
+            [1.0, 0.0],
+            motion(self.start1, self.speed1, self.accel1),
+        );
+        if self.dual {
+            b.body(
+                "carriage2",
+                carriage(
+                    self.carriage2_mass,
+                    self.guide2_depth,
+                    self.start1 + self.start2,
+                    self.speed1 + self.speed2,
+                ),
+            );
+            for &(s, y) in &rows {
+                let (beam, red) = self.stage2_guide(model)?;
+                let g = format!("g2{s}");
+                b.floating_beam(
+                    &g,
+                    beam,
+                    red,
+                    [self.start1, y, 0.0],
+                    [self.speed1, 0.0, 0.0],
+                )
+                .fixed(
+                    &format!("root_{s}"),
+                    ("carriage1", [0.0, y]),
+                    (g.as_str(), 0usize),
+                );
+                pads(&mut b, 2, s, y, self.guide2_depth);
+            }
+            b.drive_displacement(
+                "act2",
+                ("carriage1", [0.0, 0.0]),
+                ("carriage2", [0.0, 0.0]),
+                [1.0, 0.0],
+                motion(self.start2, self.speed2, self.accel2),
+            );
+        }
+        let load = self.lateral_load;
+        b.applied_force(
+            "load",
+            (
+                self.loaded().0,
+                [self.load_offset, self.load_lateral_offset],
+            ),
+            move |_, _| Vector2::new(0.0, -load),
+        );
+        b.build().map_err(|e| common::build_error(model, e))
+    }
+}
+
+/// Number of contact onsets (0 → 1 transitions of a `*.contact` column over the rows).
+fn onsets(contact: &[f64]) -> usize {
+    contact
+        .windows(2)
+        .filter(|w| w[0] < 0.5 && w[1] >= 0.5)
+        .count()
+}
+
+/// Simulate and compute the metrics (docs/models/dual_guide.md): lateral displacement of the
+/// loaded carriage (max, RMS), peak contact force, guide-tip oscillation, mean friction and
+/// normal force, impacts over all pads, actuator forces and the jamming indicators.
+///
+/// # Errors
+/// Invalid parameters, build or simulation errors.
+pub fn run(
+    model: &str,
+    p: &DualGuideParams,
+    settings: &RunSettings,
+) -> Result<RunOutput, ModelsError> {
+    common::check_settings(model, settings)?;
+    let mut m = p.build(model)?;
+    let opts = common::options(p.duration, p.rtol, p.solver, settings, true, 0);
+    let res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
+    if let Some(cb) = &settings.progress {
+        cb(opts.t_end);
+    }
+    let metrics = metrics(p, &res, model)?;
+    let params = serde_json::to_value(p).unwrap_or_default();
+    Ok(common::output(model, res, metrics, params))
+}
+
+/// Tip deflections (m) of every guide over the rows, with each guide's first-mode period (s):
+/// stage-1 guides from their nodal column `g1<s>.n<E>.v`, stage-2 guides in their own frame
+/// from the modal coordinates, v_tip = Σ_k T[tip v, k] q_k.
+fn tip_series(
+    p: &DualGuideParams,
+    res: &Results,
+    model: &str,
+) -> Result<Vec<(Vec<f64>, f64)>, ModelsError> {
+    let n = res.len();
+    let f1 = cantilever_frequency(
+        p.guide1_length,
+        p.guide_width,
+        p.guide1_depth,
+        p.youngs_modulus,
+        p.density,
+    );
+    let mut out = Vec::new();
+    for (s, _) in p.guide_rows() {
+        let tip = res
+            .column(&format!("g1{s}.n{}.v", p.elements1))
+            .unwrap_or_else(|| vec![0.0; n]);
+        out.push((tip, 1.0 / f1));
+    }
+    if p.dual {
+        let f2 = cantilever_frequency(
+            p.guide2_length,
+            p.guide_width,
+            p.guide2_depth,
+            p.youngs_modulus,
+            p.density,
+        );
+        let (_, red) = p.stage2_guide(model)?;
+        let row = 3 * p.elements2 + 1;
+        for (s, _) in p.guide_rows() {
+            let mut tip = vec![0.0; n];
+            for k in 0..p.modes2 {
+                let q = col(res, &format!("g2{s}.q{k}"));
+                let t = red.transformation[(row, k)];
+                for (v, qk) in tip.iter_mut().zip(q) {
+                    *v += t * qk;
+                }
+            }
+            out.push((tip, 1.0 / f2));
+        }
+    }
+    Ok(out)
+}
+
+fn metrics(p: &DualGuideParams, res: &Results, model: &str) -> Result<Vec<Metric>, ModelsError> {
+    let t = col(res, "t");
+    let n = t.len();
+    let (body, act) = p.loaded();
+    let y = col(res, &format!("{body}.y"));
+    let pads: Vec<String> = res
+        .columns
+        .iter()
+        .filter_map(|c| c.strip_suffix(".normal_force").map(str::to_string))
+        .collect();
+    let (mut fn_total, mut ft_abs) = (vec![0.0; n], vec![0.0; n]);
+    let (mut peak_fn, mut impacts) = (0.0f64, 0usize);
+    for pad in &pads {
+        let f = col(res, &format!("{pad}.normal_force"));
+        peak_fn = peak_fn.max(common::peak_abs(&t, &f, 0.0));
+        for (a, v) in fn_total.iter_mut().zip(&f) {
+            *a += v;
+        }
+        for (a, v) in ft_abs
+            .iter_mut()
+            .zip(col(res, &format!("{pad}.friction_force")))
+        {
+            *a += v.abs();
+        }
+        impacts += onsets(&col(res, &format!("{pad}.contact")));
+    }
+    let (mut tip_osc, mut tip_max) = (0.0f64, 0.0f64);
+    for (tip, period) in tip_series(p, res, model)? {
+        tip_osc = tip_osc.max(oscillation_amplitude(&t, &tip, period, 0.0));
+        tip_max = tip_max.max(common::peak_abs(&t, &tip, 0.0));
+    }
+    let f_act = col(res, &format!("{act}.Fx"));
+    // Σ|F_act| over the stages: the stage-1 actuator overcomes the stage-1 friction, the
+    // stage-2 actuator the stage-2 friction, so the sum is the total friction of the mechanism
+    let mut act_sum: Vec<f64> = col(res, "act1.Fx").iter().map(|v| v.abs()).collect();
+    if p.dual {
+        for (a, v) in act_sum.iter_mut().zip(&f_act) {
+            *a += v.abs();
+        }
+    }
+    let mut peak_act = common::peak_abs(&t, &col(res, "act1.Fx"), 0.0);
+    if p.dual {
+        peak_act = peak_act.max(common::peak_abs(&t, &f_act, 0.0));
+    }
+    let abs_act: Vec<f64> = f_act.iter().map(|v| v.abs()).collect();
+    let mean_loaded = common::time_mean(&t, &abs_act, 0.0);
+    let mean_sum = common::time_mean(&t, &act_sum, 0.0);
+    let sliding = p.friction.law().map_or(f64::NAN, |l| l.mu_max()) * p.lateral_load;
+    Ok(vec![
+        Metric::new(
+            "max_lateral_displacement",
+            common::peak_abs(&t, &y, 0.0),
+            "m",
+            "largest |y| of the loaded carriage's centre (0 = centred on undeformed guides)",
+        ),
+        Metric::new(
+            "rms_lateral_displacement",
+            common::time_rms(&t, &y, 0.0),
+            "m",
+            "time RMS of the loaded carriage's y",
+        ),
+        Metric::new(
+            "peak_contact_force",
+            peak_fn,
+            "N",
+            "largest normal force of any pad (sum over that pad's points)",
+        ),
+        Metric::new(
+            "tip_oscillation_amplitude",
+            tip_osc,
+            "m",
+            "largest |tip deflection − its running mean over one first-mode period| of any \
+             guide (stage-2 tips in their own frame)",
+        ),
+        Metric::new(
+            "max_tip_deflection",
+            tip_max,
+            "m",
+            "largest |tip deflection| of any guide",
+        ),
+        Metric::new(
+            "mean_friction_force",
+            common::time_mean(&t, &ft_abs, 0.0),
+            "N",
+            "time average of |friction| summed over all pads",
+        ),
+        Metric::new(
+            "mean_normal_force",
+            common::time_mean(&t, &fn_total, 0.0),
+            "N",
+            "time average of the normal force summed over all pads",
+        ),
+        Metric::new(
+            "impacts",
+            impacts as f64,
+            "-",
+            "contact onsets of all pads (0→1 transitions over the accepted steps)",
+        ),
+        Metric::new(
+            "peak_actuator_force",
+            peak_act,
+            "N",
+            "largest |axial actuator reaction| of any stage",
+        ),
+        Metric::new(
+            "mean_loaded_actuator_force",
+            mean_loaded,
+            "N",
+            "time average of |axial reaction| of the actuator driving the loaded carriage",
+        ),
+        Metric::new(
+            "mean_actuator_force_sum",
+            mean_sum,
+            "N",
+            "time average of Σ|axial actuator reaction| over the stages",
+        ),
+        Metric::new(
+            "jamming_indicator",
+            mean_sum / sliding,
+            "-",
+            "time average of Σ|actuator force| over the stages / (μ_max × lateral load): ≈ 1 \
+             for a carriage sliding steadily on one face under the load; > 1 when pinching \
+             (the slider tilted between both faces, or between guides deforming differently) \
+             raises the normal and friction forces",
+        ),
+        Metric::new(
+            "peak_jamming_ratio",
+            common::peak_abs(&t, &act_sum, 0.0) / sliding,
+            "-",
+            "peak of Σ|actuator force| / (μ_max × lateral load) (dominated by impacts)",
+        ),
+        Metric::new(
+            "impacts_per_pad",
+            impacts as f64 / pads.len().max(1) as f64,
+            "-",
+            "contact onsets per pad (the dual guide has 8 pads, the single 2)",
+        ),
+    ])
+}
+
+/// One run of a study.
+#[derive(Debug, Clone)]
+pub struct StudyRun {
+    /// Run name (e.g. `single`, `dual`, `d0.05m`).
+    pub name: String,
+    /// The parameters.
+    pub params: DualGuideParams,
+    /// Metrics of [`run`].
+    pub metrics: Vec<Metric>,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+impl StudyRun {
+    /// A metric by name (NaN when absent).
+    pub fn metric(&self, name: &str) -> f64 {
+        self.metrics
+            .iter()
+            .find(|m| m.name == name)
+            .map_or(f64::NAN, |m| m.value)
+    }
+}
+
+/// Run named parameter sets in parallel, writing `<name>.csv` and `summary.csv` under `dir`
+/// and figures `lateral` (loaded carriage y) and `actuator` (stage-1 actuator force).
+///
+/// # Errors
+/// The first failing run, or an output error.
+pub fn study(dir: &Path, runs: Vec<(String, DualGuideParams)>) -> Result<Vec<StudyRun>, String> {
+    let out: Vec<Result<(StudyRun, Results), String>> = runs
+        .into_par_iter()
+        .map(|(name, params)| {
+            let start = std::time::Instant::now();
+            let o = run("dual_guide", &params, &RunSettings::default())
+                .map_err(|e| format!("{name}: {e}"))?;
+            Ok((
+                StudyRun {
+                    name,
+                    params,
+                    metrics: o.metrics,
+                    wall_s: start.elapsed().as_secs_f64(),
+                },
+                o.results,
+            ))
+        })
+        .collect();
+    let mut done = Vec::new();
+    let mut results = Vec::new();
+    for r in out {
+        let (s, res) = r?;
+        common::write_results_csv(&res, dir, &s.name)?;
+        done.push(s);
+        results.push(res);
+    }
+    let rows: Vec<_> = done
+        .iter()
+        .map(|r| (vec![r.name.clone()], r.wall_s, r.metrics.as_slice()))
+        .collect();
+    common::write_study_summary(dir, &["run"], &rows)?;
+    figures(dir, &done, &results)?;
+    Ok(done)
+}
+
+/// Single guide against the dual-stage dual guide (default parameters otherwise), under `dir`.
+///
+/// # Errors
+/// See [`study`].
+pub fn single_vs_dual(dir: &Path) -> Result<Vec<StudyRun>, String> {
+    let dual = DualGuideParams::default();
+    let single = DualGuideParams {
+        dual: false,
+        ..DualGuideParams::default()
+    };
+    study(dir, vec![("single".into(), single), ("dual".into(), dual)])
+}
+
+/// Spacing study: the default dual guide at each interguide spacing d (m), under `dir`.
+///
+/// # Errors
+/// See [`study`].
+pub fn spacing_study(dir: &Path, spacings: &[f64]) -> Result<Vec<StudyRun>, String> {
+    let runs = spacings
+        .iter()
+        .map(|&d| {
+            (
+                format!("d{:.0}mm", d * 1e3),
+                DualGuideParams {
+                    spacing: d,
+                    ..DualGuideParams::default()
+                },
+            )
+        })
+        .collect();
+    study(dir, runs)
+}
+
+fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), String> {
+    use clr_plot::Figure;
+    const MAX: usize = 3000;
+    let mut fy = Figure::new("Loaded carriage lateral displacement")
+        .x_label("time (s)")
+        .y_label("carriage y (mm)");
+    let mut fa = Figure::new("Stage-1 actuator force")
+        .x_label("time (s)")
+        .y_label("axial force (N)");
+    for (r, res) in runs.iter().zip(results) {
+        let t = col(res, "t");
+        let (body, _) = r.params.loaded();
+        let y: Vec<f64> = col(res, &format!("{body}.y"))
+            .iter()
+            .map(|v| v * 1e3)
+            .collect();
+        fy = fy.line(r.name.clone(), common::thin(&t, &y, MAX));
+        fa = fa.line(r.name.clone(), common::thin(&t, &col(res, "act1.Fx"), MAX));
+    }
+    for (f, name) in [(fy, "lateral"), (fa, "actuator")] {
+        f.save(dir.join(name)).map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cantilever_frequency_matches_the_fe_stage2_guide() {
+        // independent formulation: clr-beam's modal analysis of the 4-element stage-2 guide
+        // (the reduction's first ω); 4 cubic elements give the first mode to < 1e-4
+        let p = DualGuideParams::default();
+        let (_, red) = p.stage2_guide("t").unwrap();
+        let f_fe = red.mode_omega[0] / (2.0 * std::f64::consts::PI);
+        let f = cantilever_frequency(
+            p.guide2_length,
+            p.guide_width,
+            p.guide2_depth,
+            p.youngs_modulus,
+            p.density,
+        );
+        assert!((f_fe - f).abs() < 1e-4 * f, "{f_fe} vs {f}");
+    }
+
+    #[test]
+    fn invalid_travel_names_the_field() {
+        let p = DualGuideParams {
+            speed2: 5.0,
+            ..DualGuideParams::default()
+        };
+        let e = run("dual_guide", &p, &RunSettings::default()).unwrap_err();
+        assert!(e.to_string().contains("start2/speed2/accel2"), "{e}");
+    }
+
+    /// Independent check (closed form, Newton's second law): with no lateral load the
+    /// carriages stay centred between the pads (no contact), and under constant actuator
+    /// accelerations a₁, a₂ the actuator reactions are F₂ = m₂ (a₁ + a₂) on the stage-2
+    /// carriage and F₁ = (m₁ + 2 m_g2) a₁ + m₂ (a₁ + a₂) on the stage-1 carriage (it
+    /// accelerates itself, the two stage-2 guides through their roots and the stage-2 carriage
+    /// through act2). The stage-2 guides only stretch axially (their modes here are bending
+    /// modes, so they stay rigid in x), hence a tight relative tolerance 1e-6 (rtol 1e-8).
+    #[test]
+    fn unloaded_accelerated_stages_follow_newton() {
+        let p = DualGuideParams::newton_check();
+        let mut m = p.build("t").unwrap();
+        let res = m
+            .simulate(&common::options(
+                p.duration,
+                p.rtol,
+                p.solver,
+                &RunSettings::default(),
+                false,
+                4,
+            ))
+            .unwrap();
+        for pad in ["s1a_up", "s1b_lo", "s2a_up", "s2b_lo"] {
+            let n = col(&res, &format!("{pad}.contact"));
+            assert!(n.iter().all(|&v| v == 0.0), "{pad} touched");
+        }
+        let f2 = col(&res, "act2.Fx");
+        let f1 = col(&res, "act1.Fx");
+        let e2 = p.carriage2_mass * (p.accel1 + p.accel2);
+        let e1 = p.newton_stage1_force();
+        for k in 1..f2.len() {
+            assert!((f2[k] - e2).abs() < 1e-6 * e2, "act2 {} vs {e2}", f2[k]);
+            assert!((f1[k] - e1).abs() < 1e-6 * e1, "act1 {} vs {e1}", f1[k]);
+        }
+    }
+}
