@@ -12,8 +12,14 @@ const MAKERS: &[(&str, Maker)] = &[
     ("contact", crate::verify::contact::figures),
     ("beam", crate::verify::beam::figures),
     ("models", crate::verify::models::figures),
-    ("models.flap flexible", crate::verify::models_flap_flex::figures),
-    ("models.guide dual", crate::verify::models_dual_guide::figures),
+    (
+        "models.flap flexible",
+        crate::verify::models_flap_flex::figures,
+    ),
+    (
+        "models.guide dual",
+        crate::verify::models_dual_guide::figures,
+    ),
 ];
 
 pub fn run(_args: &[String]) -> ExitCode {

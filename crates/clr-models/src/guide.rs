@@ -356,6 +356,10 @@ fn metrics(p: &GuideParams, res: &Results) -> Vec<Metric> {
     let impacts = onsets(&col(res, "upper.contact")) + onsets(&col(res, "lower.contact"));
     let mean_fn = common::time_mean(&t, &fn_total, 0.0);
     let mean_ft = common::time_mean(&t, &ft_abs, 0.0);
+    // the actuator's reaction opposes the motion: its mean along the direction of motion is
+    // the drive force a test rig measures at constant speed
+    let dir = (p.end - p.start).signum();
+    let mean_drive = dir * common::time_mean(&t, &col(res, "actuator.Fx"), 0.0);
     vec![
         Metric::new(
             "max_lateral_displacement",
@@ -412,14 +416,30 @@ fn metrics(p: &GuideParams, res: &Results) -> Vec<Metric> {
             "largest |axial actuator reaction| (jamming indicator)",
         ),
         Metric::new(
+            "mean_drive_force",
+            mean_drive,
+            "N",
+            "time average of the actuator force along the direction of motion",
+        ),
+        Metric::new(
             "equivalent_friction_coefficient",
+            if p.lateral_load > 0.0 {
+                mean_drive / p.lateral_load
+            } else {
+                0.0
+            },
+            "-",
+            "mean drive force over the lateral load (what a test rig measures; 0 without load)",
+        ),
+        Metric::new(
+            "contact_friction_ratio",
             if mean_fn > 0.0 {
                 mean_ft / mean_fn
             } else {
                 0.0
             },
             "-",
-            "∫|F_T| dt / ∫F_N dt over the run (friction along the guide over normal load)",
+            "∫Σ|F_T| dt / ∫ΣF_N dt over both faces (the friction law's own ratio)",
         ),
     ]
 }
@@ -453,6 +473,16 @@ impl StudyRun {
 /// # Errors
 /// The first failing run, or an output error.
 pub fn study(dir: &Path, runs: Vec<(String, GuideParams)>) -> Result<Vec<StudyRun>, String> {
+    let (done, results) = run_all(dir, runs)?;
+    figures(dir, &done, &results)?;
+    Ok(done)
+}
+
+/// Run in parallel, write every run's CSV and `summary.csv`; the runs and their results.
+fn run_all(
+    dir: &Path,
+    runs: Vec<(String, GuideParams)>,
+) -> Result<(Vec<StudyRun>, Vec<Results>), String> {
     let out: Vec<Result<(StudyRun, Results), String>> = runs
         .into_par_iter()
         .map(|(name, params)| {
@@ -479,8 +509,7 @@ pub fn study(dir: &Path, runs: Vec<(String, GuideParams)>) -> Result<Vec<StudyRu
         results.push(res);
     }
     write_summary(dir, &done)?;
-    figures(dir, &done, &results)?;
-    Ok(done)
+    Ok((done, results))
 }
 
 /// Elastic against rigid guide (default parameters otherwise), under `dir`.
@@ -514,6 +543,106 @@ pub fn clearance_study(dir: &Path, clearances: &[f64]) -> Result<Vec<StudyRun>, 
         })
         .collect();
     study(dir, runs)
+}
+
+/// Direction of the actuator stroke.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Stroke {
+    /// Towards the guide tip (`end > start`).
+    Deployment,
+    /// Towards the root (`end < start`).
+    Retraction,
+}
+
+impl Stroke {
+    /// Lower-case name used in run names.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stroke::Deployment => "deploy",
+            Stroke::Retraction => "retract",
+        }
+    }
+}
+
+/// Name of a friction-study run: `<deploy|retract>_v<speed m/s>_c<clearance mm>mm`.
+pub fn friction_run_name(stroke: Stroke, speed: f64, clearance: f64) -> String {
+    format!("{}_v{speed:.2}_c{:.2}mm", stroke.name(), clearance * 1e3)
+}
+
+/// Parameters of one friction-study run: the default guide with clearance `clearance` (m),
+/// driven at `speed` (m/s) for `duration` (s) over the stroke between `GuideParams::default().start`
+/// and that position plus `speed·duration`, outwards (deployment) or back (retraction), so every
+/// run covers the same time and, per speed, the same stretch of guide in both directions.
+pub fn friction_run(stroke: Stroke, speed: f64, clearance: f64, duration: f64) -> GuideParams {
+    let d = GuideParams::default();
+    let (a, b) = (d.start, d.start + speed * duration);
+    let (start, end) = match stroke {
+        Stroke::Deployment => (a, b),
+        Stroke::Retraction => (b, a),
+    };
+    GuideParams {
+        clearance,
+        speed,
+        start,
+        end,
+        ..d
+    }
+}
+
+/// Friction study (the paper's experiment, reconstructed; docs/models/guide.md): every
+/// `(stroke, speed, clearances)` series at each clearance (m), runs of `duration` s, under `dir`:
+/// CSV per run, `summary.csv`, the figure `friction` (equivalent friction coefficient against
+/// clearance, one line per series) and the line figures of the first series.
+///
+/// # Errors
+/// See [`study`].
+pub fn friction_study(
+    dir: &Path,
+    series: &[(Stroke, f64, Vec<f64>)],
+    duration: f64,
+) -> Result<Vec<StudyRun>, String> {
+    let runs = series
+        .iter()
+        .flat_map(|(stroke, v, cs)| {
+            cs.iter().map(move |&c| {
+                (
+                    friction_run_name(*stroke, *v, c),
+                    friction_run(*stroke, *v, c, duration),
+                )
+            })
+        })
+        .collect();
+    let (done, results) = run_all(dir, runs)?;
+    let mut fig = clr_plot::Figure::new("Equivalent friction coefficient")
+        .x_label("clearance (mm)")
+        .y_label("mean drive force / lateral load (-)");
+    for (stroke, v, cs) in series {
+        let pts: Vec<(f64, f64)> = cs
+            .iter()
+            .filter_map(|&c| {
+                let name = friction_run_name(*stroke, *v, c);
+                done.iter()
+                    .find(|r| r.name == name)
+                    .map(|r| (c * 1e3, r.metric("equivalent_friction_coefficient")))
+            })
+            .collect();
+        fig = fig.line(format!("{} {v} m/s", stroke.name()), pts);
+    }
+    fig.save(dir.join("friction")).map_err(|e| e.to_string())?;
+    if let Some((stroke, v, cs)) = series.first() {
+        let names: Vec<String> = cs
+            .iter()
+            .map(|&c| friction_run_name(*stroke, *v, c))
+            .collect();
+        let (r, res): (Vec<StudyRun>, Vec<Results>) = done
+            .iter()
+            .zip(results)
+            .filter(|(r, _)| names.contains(&r.name))
+            .map(|(r, res)| (r.clone(), res))
+            .unzip();
+        figures(dir, &r, &res)?;
+    }
+    Ok(done)
 }
 
 fn write_summary(dir: &Path, runs: &[StudyRun]) -> Result<(), String> {
