@@ -1,6 +1,7 @@
 //! The built-in models, by name.
 
 use crate::common::parse;
+use crate::dual_guide::{self, DualGuideParams};
 use crate::flap::{self, FlapParams};
 use crate::guide::{self, GuideParams};
 use crate::manipulator::{self, ManipulatorParams};
@@ -42,6 +43,13 @@ pub fn entries() -> Vec<Entry> {
                           Flores line / area law, Ambrosio friction, deployment at 1 m/s",
         },
         Entry {
+            name: "dual_guide",
+            description: "dual-stage dual guide of a telescopic mechanism (seed 000), \
+                          reconstructed: stage-1 guides 100 mm apart carrying a carriage with \
+                          two flexible (floating-frame) stage-2 guides, 8 pads with 0.5 mm \
+                          clearance, both stages deploying at 0.5 m/s, 0.1 s",
+        },
+        Entry {
             name: "manipulator",
             description: "dual two-link manipulator on a free-floating spacecraft (Kuang, Bai, \
                           Wei 2026), case 3: 0.5 mm clearance in both elbows, 2 s",
@@ -68,6 +76,7 @@ pub fn default_parameters(name: &str) -> Result<serde_json::Value, ModelsError> 
         "manipulator" => serde_json::to_value(ManipulatorParams::default()),
         "flap" => serde_json::to_value(FlapParams::default()),
         "guide" => serde_json::to_value(GuideParams::default()),
+        "dual_guide" => serde_json::to_value(DualGuideParams::default()),
         _ => return Err(unknown(name)),
     };
     v.map_err(|e| crate::common::invalid(name, e.to_string()))
@@ -100,6 +109,10 @@ pub fn run(
         "guide" => {
             let p: GuideParams = parse(name, &with_defaults(name, parameters)?)?;
             guide::run(name, &p, settings)
+        }
+        "dual_guide" => {
+            let p: DualGuideParams = parse(name, &with_defaults(name, parameters)?)?;
+            dual_guide::run(name, &p, settings)
         }
         "manipulator" => {
             let p: ManipulatorParams = parse(name, &with_defaults(name, parameters)?)?;
