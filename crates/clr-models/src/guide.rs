@@ -68,6 +68,11 @@ pub struct GuideParams {
     pub lateral_load: f64,
     /// Axial offset of the lateral load's point from the slider centre (+ towards the tip), m.
     pub load_offset: f64,
+    /// Lateral stiffness of a second load path from the slider centre to the guide axis, N/m
+    /// (e.g. an actuator rod or wing skin carrying part of the lateral load): a force
+    /// −k·y on the slider. **Not in the paper**: 0 by default; a what-if for the friction
+    /// findings (docs/models/guide.md#friction-findings).
+    pub lateral_support_stiffness: f64,
     /// Slider start position along the guide (from the root), m.
     pub start: f64,
     /// Slider end position along the guide, m (> start: deployment; < start: retraction).
@@ -108,6 +113,7 @@ impl Default for GuideParams {
             guide_samples: 0,
             lateral_load: 50.0,
             load_offset: 0.01,
+            lateral_support_stiffness: 0.0,
             start: 0.6,
             end: 0.8,
             speed: 1.0,
@@ -143,6 +149,7 @@ impl GuideParams {
         }
         common::non_negative("rayleigh_alpha", self.rayleigh_alpha)?;
         common::non_negative("lateral_load", self.lateral_load)?;
+        common::non_negative("lateral_support_stiffness", self.lateral_support_stiffness)?;
         if self.elements == 0 {
             return Err("`elements` must be at least 1".into());
         }
@@ -273,6 +280,12 @@ impl GuideParams {
             .applied_force("load", ("slider", [self.load_offset, 0.0]), move |_, _| {
                 Vector2::new(0.0, -load)
             });
+        let k = self.lateral_support_stiffness;
+        if k > 0.0 {
+            b.applied_force("support", ("slider", [0.0, 0.0]), move |_, s| {
+                Vector2::new(0.0, -k * s.position.y)
+            });
+        }
         b.build().map_err(|e| common::build_error(model, e))
     }
 }
@@ -569,12 +582,18 @@ pub fn friction_run_name(stroke: Stroke, speed: f64, clearance: f64) -> String {
     format!("{}_v{speed:.2}_c{:.2}mm", stroke.name(), clearance * 1e3)
 }
 
-/// Parameters of one friction-study run: the default guide with clearance `clearance` (m),
-/// driven at `speed` (m/s) for `duration` (s) over the stroke between `GuideParams::default().start`
-/// and that position plus `speed·duration`, outwards (deployment) or back (retraction), so every
-/// run covers the same time and, per speed, the same stretch of guide in both directions.
-pub fn friction_run(stroke: Stroke, speed: f64, clearance: f64, duration: f64) -> GuideParams {
-    let d = GuideParams::default();
+/// Parameters of one friction-study run: `base` with clearance `clearance` (m), driven at
+/// `speed` (m/s) for `duration` (s) over the stroke between `base.start` and that position plus
+/// `speed·duration`, outwards (deployment) or back (retraction), so every run covers the same
+/// time and, per speed, the same stretch of guide in both directions.
+pub fn friction_run(
+    base: &GuideParams,
+    stroke: Stroke,
+    speed: f64,
+    clearance: f64,
+    duration: f64,
+) -> GuideParams {
+    let d = base.clone();
     let (a, b) = (d.start, d.start + speed * duration);
     let (start, end) = match stroke {
         Stroke::Deployment => (a, b),
@@ -589,7 +608,7 @@ pub fn friction_run(stroke: Stroke, speed: f64, clearance: f64, duration: f64) -
     }
 }
 
-/// Friction study (the paper's experiment, reconstructed; docs/models/guide.md): every
+/// Friction study (the paper's experiment, reconstructed; docs/models/guide.md): `base` in every
 /// `(stroke, speed, clearances)` series at each clearance (m), runs of `duration` s, under `dir`:
 /// CSV per run, `summary.csv`, the figure `friction` (equivalent friction coefficient against
 /// clearance, one line per series) and the line figures of the first series.
@@ -598,6 +617,7 @@ pub fn friction_run(stroke: Stroke, speed: f64, clearance: f64, duration: f64) -
 /// See [`study`].
 pub fn friction_study(
     dir: &Path,
+    base: &GuideParams,
     series: &[(Stroke, f64, Vec<f64>)],
     duration: f64,
 ) -> Result<Vec<StudyRun>, String> {
@@ -607,7 +627,7 @@ pub fn friction_study(
             cs.iter().map(move |&c| {
                 (
                     friction_run_name(*stroke, *v, c),
-                    friction_run(*stroke, *v, c, duration),
+                    friction_run(base, *stroke, *v, c, duration),
                 )
             })
         })

@@ -655,6 +655,149 @@ fn guide_cases(filter: &Filter, out: &mut Vec<Case>) {
     if filter.wants("models.guide.clearance") || filter.wants("models.guide.friction") {
         guide_friction_cases(src, out);
     }
+    if filter.wants("models.guide.support") {
+        guide_support_cases(out);
+    }
+}
+
+/// Lateral stiffness of the what-if second load path, N/m: W/k = 2.5 mm, the span of the
+/// clearances studied (chosen once, not iterated; docs/models/guide.md#friction-findings).
+const GUIDE_SUPPORT_STIFFNESS: f64 = 2e4;
+
+fn guide_support_base() -> clr_models::guide::GuideParams {
+    clr_models::guide::GuideParams {
+        lateral_support_stiffness: GUIDE_SUPPORT_STIFFNESS,
+        ..Default::default()
+    }
+}
+
+fn guide_support_series() -> Vec<(clr_models::guide::Stroke, f64, Vec<f64>)> {
+    use clr_models::guide::Stroke;
+    vec![
+        (Stroke::Deployment, 1.0, GUIDE_CLEARANCES.to_vec()),
+        (Stroke::Retraction, 1.0, vec![0.25e-3, 2.0e-3]),
+        (Stroke::Deployment, 0.25, GUIDE_SLOW_CLEARANCES.to_vec()),
+    ]
+}
+
+/// Relative decrease (x₀ − x_last)/x₀ of a series.
+fn relative_drop(x: &[f64]) -> f64 {
+    (x[0] - x[x.len() - 1]) / x[0]
+}
+
+/// Comma-separated values of a series.
+fn list_values(x: &[f64]) -> String {
+    x.iter()
+        .map(|v| format!("{v:.4e}"))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// What-if of this project (not the paper): the experiment's friction trends with a second
+/// lateral load path (`lateral_support_stiffness`), the hypothesis of docs/models/guide.md.
+fn guide_support_cases(out: &mut Vec<Case>) {
+    use clr_models::guide::{self, friction_run_name, Stroke};
+    let src = "hypothesis of this project, not the paper: the sliding-guide experiment's μ_eq \
+               trends (seed 000 abstract) with a second lateral load path k = 2e4 N/m \
+               (docs/models/guide.md#friction-findings); thresholds: differences of relative \
+               decreases ≥ 0.01 and flattening ≥ 1 % of μ_eq per 0.25 mm (3× the integration \
+               sensitivity of μ_eq, 0.3 %)";
+    let start = std::time::Instant::now();
+    let runs = match guide::friction_study(
+        &guide_dir("friction_support"),
+        &guide_support_base(),
+        &guide_support_series(),
+        GUIDE_FRICTION_DURATION,
+    ) {
+        Ok(r) => r,
+        Err(e) => {
+            out.push(
+                Case::new("models.guide.support.study", "support what-if", "-", src).failed(0.0, e),
+            );
+            return;
+        }
+    };
+    let mu = |stroke: Stroke, v: f64, cs: &[f64]| -> Vec<f64> {
+        cs.iter()
+            .map(|&c| {
+                let name = friction_run_name(stroke, v, c);
+                runs.iter()
+                    .find(|r| r.name == name)
+                    .map_or(f64::NAN, |r| r.metric("equivalent_friction_coefficient"))
+            })
+            .collect()
+    };
+    let dep = mu(Stroke::Deployment, 1.0, &GUIDE_CLEARANCES);
+    let ret = mu(Stroke::Retraction, 1.0, &[0.25e-3, 2.0e-3]);
+    let slow = mu(Stroke::Deployment, 0.25, &GUIDE_SLOW_CLEARANCES);
+    let fast = [dep[0], dep[2]];
+    let step = dep
+        .windows(2)
+        .map(|w| w[0] - w[1])
+        .fold(f64::INFINITY, f64::min);
+    out.push(
+        Case::new(
+            "models.guide.support.clearance",
+            "μ_eq decreases at every clearance step (deployment 1 m/s; smallest step)",
+            "-",
+            src,
+        )
+        .at_least(step, 0.0)
+        .note(format!(
+            "μ_eq at c = 0.25/0.5/1.0/2.0 mm: {}",
+            list_values(&dep)
+        )),
+    );
+    out.push(
+        Case::new(
+            "models.guide.support.direction",
+            "relative decrease 0.25 → 2.0 mm at 1 m/s: deployment − retraction",
+            "-",
+            src,
+        )
+        .at_least(relative_drop(&dep) - relative_drop(&ret), 0.01)
+        .note(format!(
+            "deployment {:.4} ({}), retraction {:.4} ({})",
+            relative_drop(&dep),
+            list_values(&dep),
+            relative_drop(&ret),
+            list_values(&ret)
+        )),
+    );
+    out.push(
+        Case::new(
+            "models.guide.support.speed",
+            "relative decrease 0.25 → 1.0 mm (deployment): 0.25 m/s − 1 m/s",
+            "-",
+            src,
+        )
+        .at_least(relative_drop(&slow) - relative_drop(&fast), 0.01)
+        .note(format!(
+            "0.25 m/s {:.4} ({}), 1 m/s {:.4} ({})",
+            relative_drop(&slow),
+            list_values(&slow),
+            relative_drop(&fast),
+            list_values(&fast)
+        )),
+    );
+    let (first, last) = ((dep[0] - dep[1]) / 0.25, (dep[2] - dep[3]) / 1.0);
+    out.push(
+        Case::new(
+            "models.guide.support.flattening",
+            "decrease of μ_eq per mm: first step (0.25 → 0.5 mm) − last step (1 → 2 mm)",
+            "1/mm",
+            src,
+        )
+        .at_least(first.min(first - last), 0.01 * dep[0] / 0.25)
+        .note(format!(
+            "{first:.4e} /mm over 0.25–0.5 mm, {last:.4e} /mm over 1–2 mm"
+        )),
+    );
+    println!(
+        "models.guide support what-if: {:.1} s wall ({} runs in parallel on the rayon pool)",
+        start.elapsed().as_secs_f64(),
+        runs.len()
+    );
 }
 
 /// Clearances (m) of the friction study's 1 m/s series and of its 0.25 m/s series.
@@ -679,6 +822,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
     let start = std::time::Instant::now();
     let runs = match guide::friction_study(
         &guide_dir("friction"),
+        &guide::GuideParams::default(),
         &guide_friction_series(),
         GUIDE_FRICTION_DURATION,
     ) {
@@ -699,14 +843,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
     let series = |stroke: Stroke, v: f64, cs: &[f64], m: &str| -> Vec<f64> {
         cs.iter().map(|&c| get(stroke, v, c, m)).collect()
     };
-    let list = |x: &[f64], unit: &str| -> String {
-        x.iter()
-            .map(|v| format!("{v:.4e}"))
-            .collect::<Vec<_>>()
-            .join(", ")
-            + " "
-            + unit
-    };
+    let list = |x: &[f64], unit: &str| -> String { list_values(x) + " " + unit };
     let cs_text = "c = 0.25/0.5/1.0/2.0 mm (deployment, 1 m/s)";
     for (id, m, unit, larger, gap) in [
         ("peak_force", "peak_contact_force", "N", true, false),
@@ -750,7 +887,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
     let dep = series(Stroke::Deployment, 1.0, &GUIDE_CLEARANCES, mu);
     let ret = series(Stroke::Retraction, 1.0, &GUIDE_CLEARANCES, mu);
     let slow = series(Stroke::Deployment, 0.25, &GUIDE_SLOW_CLEARANCES, mu);
-    let drop = |x: &[f64]| (x[0] - x[x.len() - 1]) / x[0];
+    let drop = relative_drop;
     out.push(
         Case::new(
             "models.guide.friction.clearance",
@@ -829,7 +966,14 @@ fn guide_figures(dir: &Path) -> Result<(), String> {
     guide::elastic_vs_rigid(&guide_dir("elastic_vs_rigid"))?;
     guide::friction_study(
         &guide_dir("friction"),
+        &guide::GuideParams::default(),
         &guide_friction_series(),
+        GUIDE_FRICTION_DURATION,
+    )?;
+    guide::friction_study(
+        &guide_dir("friction_support"),
+        &guide_support_base(),
+        &guide_support_series(),
         GUIDE_FRICTION_DURATION,
     )?;
     std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
@@ -839,6 +983,7 @@ fn guide_figures(dir: &Path) -> Result<(), String> {
             "friction",
             &["lateral", "tip", "contact_force", "friction"][..],
         ),
+        ("friction_support", &["friction"][..]),
     ] {
         for name in names {
             for ext in ["svg", "png"] {
