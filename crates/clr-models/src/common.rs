@@ -255,7 +255,16 @@ pub fn unit_of(column: &str) -> &'static str {
         "violation.velocity" => return "m/s or rad/s",
         _ => {}
     }
-    let suffix = column.rsplit('.').next().unwrap_or(column);
+    let mut parts = column.rsplit('.');
+    let suffix = parts.next().unwrap_or(column);
+    // beam nodal coordinates `<beam>.n<k>.u|v|theta` (clr-mbd flexible beams)
+    let node = parts
+        .next()
+        .and_then(|p| p.strip_prefix('n'))
+        .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()));
+    if node && (suffix == "u" || suffix == "v") {
+        return "m";
+    }
     match suffix {
         "x" | "y" | "ex" | "ey" | "penetration" | "error" => "m",
         "theta" | "angle" => "rad",
@@ -506,5 +515,9 @@ mod tests {
         assert_eq!(unit_of("O.M"), "N*m");
         assert_eq!(unit_of("energy.total"), "J");
         assert_eq!(unit_of("crank.theta"), "rad");
+        assert_eq!(unit_of("guide.n6.v"), "m");
+        assert_eq!(unit_of("guide.n12.u"), "m");
+        assert_eq!(unit_of("guide.n6.theta"), "rad");
+        assert_eq!(unit_of("guide.q1"), "-");
     }
 }
