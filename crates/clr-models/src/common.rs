@@ -7,7 +7,7 @@ use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Materi
 use clr_mbd::{MbdError, Results, SimOptions, SolverKind};
 use serde::{Deserialize, Serialize};
 
-use crate::{ModelsError, RunOutput, RunSettings};
+use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// Where the force pair of a revolute clearance joint acts (serialized `"common_point"`,
 /// `"contact_points"`); see `clr_contact::ForceApplication`.
@@ -520,4 +520,71 @@ mod tests {
         assert_eq!(unit_of("guide.n6.theta"), "rad");
         assert_eq!(unit_of("guide.q1"), "-");
     }
+}
+
+/// One run of a parameter study: its name, parameters, metrics and wall time.
+#[derive(Debug, Clone)]
+pub struct StudyRun<P> {
+    /// Run name (e.g. `elastic`, `c0.50mm`).
+    pub name: String,
+    /// The parameters.
+    pub params: P,
+    /// Metrics of the model's `run`.
+    pub metrics: Vec<Metric>,
+    /// Wall time, s.
+    pub wall_s: f64,
+}
+
+impl<P> StudyRun<P> {
+    /// A metric by name (NaN when absent).
+    pub fn metric(&self, name: &str) -> f64 {
+        self.metrics
+            .iter()
+            .find(|m| m.name == name)
+            .map_or(f64::NAN, |m| m.value)
+    }
+}
+
+/// Run named parameter sets in parallel (rayon) with `run`, write every run's CSV
+/// (`<name>.csv`) and `summary.csv` (metrics and wall time) under `dir`; the runs in input order
+/// and their results.
+///
+/// # Errors
+/// The first failing run (message prefixed with its name), or an output error.
+pub fn run_study<P: Send + Sync>(
+    dir: &Path,
+    runs: Vec<(String, P)>,
+    run: impl Fn(&P) -> Result<RunOutput, ModelsError> + Sync,
+) -> Result<(Vec<StudyRun<P>>, Vec<Results>), String> {
+    use rayon::prelude::*;
+    let out: Vec<Result<(StudyRun<P>, Results), String>> = runs
+        .into_par_iter()
+        .map(|(name, params)| {
+            let start = std::time::Instant::now();
+            let o = run(&params).map_err(|e| format!("{name}: {e}"))?;
+            Ok((
+                StudyRun {
+                    name,
+                    params,
+                    metrics: o.metrics,
+                    wall_s: start.elapsed().as_secs_f64(),
+                },
+                o.results,
+            ))
+        })
+        .collect();
+    let mut done = Vec::new();
+    let mut results = Vec::new();
+    for r in out {
+        let (s, res) = r?;
+        write_results_csv(&res, dir, &s.name)?;
+        done.push(s);
+        results.push(res);
+    }
+    let rows: Vec<_> = done
+        .iter()
+        .map(|r| (vec![r.name.clone()], r.wall_s, r.metrics.as_slice()))
+        .collect();
+    write_study_summary(dir, &["run"], &rows)?;
+    Ok((done, results))
 }

@@ -22,7 +22,6 @@ use clr_beam::{BeamModel, Face, Material, ReducedModel, Section, Support};
 use clr_contact::{GuideFace, NormalLaw};
 use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Motion, Results, RigidBody};
 use nalgebra::Vector2;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, FrictionParams, Solver};
@@ -696,28 +695,8 @@ fn metrics(p: &DualGuideParams, res: &Results, model: &str) -> Result<Vec<Metric
     ])
 }
 
-/// One run of a study.
-#[derive(Debug, Clone)]
-pub struct StudyRun {
-    /// Run name (e.g. `single`, `dual`, `d0.05m`).
-    pub name: String,
-    /// The parameters.
-    pub params: DualGuideParams,
-    /// Metrics of [`run`].
-    pub metrics: Vec<Metric>,
-    /// Wall time, s.
-    pub wall_s: f64,
-}
-
-impl StudyRun {
-    /// A metric by name (NaN when absent).
-    pub fn metric(&self, name: &str) -> f64 {
-        self.metrics
-            .iter()
-            .find(|m| m.name == name)
-            .map_or(f64::NAN, |m| m.value)
-    }
-}
+/// One run of a dual-guide study.
+pub type StudyRun = common::StudyRun<DualGuideParams>;
 
 /// Run named parameter sets in parallel, writing `<name>.csv` and `summary.csv` under `dir`
 /// and figures `lateral` (loaded carriage y) and `actuator` (stage-1 actuator force).
@@ -725,36 +704,8 @@ impl StudyRun {
 /// # Errors
 /// The first failing run, or an output error.
 pub fn study(dir: &Path, runs: Vec<(String, DualGuideParams)>) -> Result<Vec<StudyRun>, String> {
-    let out: Vec<Result<(StudyRun, Results), String>> = runs
-        .into_par_iter()
-        .map(|(name, params)| {
-            let start = std::time::Instant::now();
-            let o = run("dual_guide", &params, &RunSettings::default())
-                .map_err(|e| format!("{name}: {e}"))?;
-            Ok((
-                StudyRun {
-                    name,
-                    params,
-                    metrics: o.metrics,
-                    wall_s: start.elapsed().as_secs_f64(),
-                },
-                o.results,
-            ))
-        })
-        .collect();
-    let mut done = Vec::new();
-    let mut results = Vec::new();
-    for r in out {
-        let (s, res) = r?;
-        common::write_results_csv(&res, dir, &s.name)?;
-        done.push(s);
-        results.push(res);
-    }
-    let rows: Vec<_> = done
-        .iter()
-        .map(|r| (vec![r.name.clone()], r.wall_s, r.metrics.as_slice()))
-        .collect();
-    common::write_study_summary(dir, &["run"], &rows)?;
+    let (done, results) =
+        common::run_study(dir, runs, |p| run("dual_guide", p, &RunSettings::default()))?;
     figures(dir, &done, &results)?;
     Ok(done)
 }

@@ -14,7 +14,6 @@ use clr_beam::{BeamModel, Face, Material, Section, Support};
 use clr_contact::{GuideFace, NormalLaw};
 use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Motion, Results, RigidBody};
 use nalgebra::Vector2;
-use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, FrictionParams, Solver};
@@ -457,28 +456,8 @@ fn metrics(p: &GuideParams, res: &Results) -> Vec<Metric> {
     ]
 }
 
-/// One run of a study.
-#[derive(Debug, Clone)]
-pub struct StudyRun {
-    /// Run name (e.g. `elastic`, `rigid`, `c0.5mm`).
-    pub name: String,
-    /// The parameters.
-    pub params: GuideParams,
-    /// Metrics of [`run`].
-    pub metrics: Vec<Metric>,
-    /// Wall time, s.
-    pub wall_s: f64,
-}
-
-impl StudyRun {
-    /// A metric by name (NaN when absent).
-    pub fn metric(&self, name: &str) -> f64 {
-        self.metrics
-            .iter()
-            .find(|m| m.name == name)
-            .map_or(f64::NAN, |m| m.value)
-    }
-}
+/// One run of a guide study.
+pub type StudyRun = common::StudyRun<GuideParams>;
 
 /// Run named parameter sets in parallel, writing `<name>.csv` and `summary.csv` under `dir`
 /// and figures of the slider's y, the tip deflection and the contact force.
@@ -496,33 +475,7 @@ fn run_all(
     dir: &Path,
     runs: Vec<(String, GuideParams)>,
 ) -> Result<(Vec<StudyRun>, Vec<Results>), String> {
-    let out: Vec<Result<(StudyRun, Results), String>> = runs
-        .into_par_iter()
-        .map(|(name, params)| {
-            let start = std::time::Instant::now();
-            let o = run("guide", &params, &RunSettings::default())
-                .map_err(|e| format!("{name}: {e}"))?;
-            Ok((
-                StudyRun {
-                    name,
-                    params,
-                    metrics: o.metrics,
-                    wall_s: start.elapsed().as_secs_f64(),
-                },
-                o.results,
-            ))
-        })
-        .collect();
-    let mut done = Vec::new();
-    let mut results = Vec::new();
-    for r in out {
-        let (s, res) = r?;
-        common::write_results_csv(&res, dir, &s.name)?;
-        done.push(s);
-        results.push(res);
-    }
-    write_summary(dir, &done)?;
-    Ok((done, results))
+    common::run_study(dir, runs, |p| run("guide", p, &RunSettings::default()))
 }
 
 /// Elastic against rigid guide (default parameters otherwise), under `dir`.
@@ -663,14 +616,6 @@ pub fn friction_study(
         figures(dir, &r, &res)?;
     }
     Ok(done)
-}
-
-fn write_summary(dir: &Path, runs: &[StudyRun]) -> Result<(), String> {
-    let rows: Vec<_> = runs
-        .iter()
-        .map(|r| (vec![r.name.clone()], r.wall_s, r.metrics.as_slice()))
-        .collect();
-    common::write_study_summary(dir, &["run"], &rows)
 }
 
 fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), String> {
