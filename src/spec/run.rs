@@ -194,9 +194,11 @@ impl Outcome {
 }
 
 /// Run a job with the end time (s) and relative tolerance of [`resolve`]; `progress` is
-/// called now and then with the simulated time (s) of a built-in model. A simulation failure
-/// still returns an [`Outcome`] (with `error` set and the partial results); only bad input is
-/// an `Err`.
+/// called now and then with the simulated time (s) (about every 1 % of the span, see
+/// `clr_mbd::Model::simulate_with`; built-in models that simulate twice, an ideal reference
+/// then the clearance run, report both passes). A simulation failure still returns an
+/// [`Outcome`] (with `error` set and the rows recorded up to the failure, in every column of a
+/// complete run); only bad input is an `Err`.
 ///
 /// # Errors
 /// [`RunError`] when the model cannot be built from its parameters.
@@ -227,58 +229,27 @@ pub fn execute(
         Job::Generic(s) => {
             let built = s.build()?;
             let mut model = built.model;
-            match model.simulate(&built.options) {
+            let hook = |t: f64| {
+                if let Some(p) = &progress {
+                    p(t);
+                }
+            };
+            match model.simulate_with(&built.options, &hook) {
                 Ok(res) => {
                     let metrics = generic_metrics(&res, s);
                     Ok(Outcome::from_results(s, res, metrics, None))
                 }
-                Err(clr_mbd::MbdError::Solver(e)) => {
+                Err(clr_mbd::MbdError::Failed { source, partial }) => {
                     let msg = format!(
-                        "{e} (in the model file these are [solver] max_steps, rtol, atol, \
+                        "{source} (in the model file these are [solver] max_steps, rtol, atol, \
                          method)"
                     );
-                    let res = partial_results(&model, s, e.solution());
-                    Ok(Outcome::from_results(s, res, Vec::new(), Some(msg)))
+                    let metrics = generic_metrics(&partial, s);
+                    Ok(Outcome::from_results(s, *partial, metrics, Some(msg)))
                 }
                 Err(e) => Err(s.model_error(&e).into()),
             }
         }
-    }
-}
-
-/// The coordinates and velocities the integrator had computed before a failure, as results
-/// (columns `t`, `B.x B.y B.theta B.vx B.vy B.omega` per body).
-fn partial_results(
-    model: &clr_mbd::Model,
-    s: &ModelSpec,
-    sol: &clr_ode::Solution,
-) -> clr_mbd::Results {
-    // rigid-body coordinates come first in q (beam coordinates follow and are not written)
-    let n = model.n_coordinates();
-    let nb = s.body_names().len();
-    let mut columns = vec!["t".to_string()];
-    for b in s.body_names() {
-        for c in ["x", "y", "theta", "vx", "vy", "omega"] {
-            columns.push(format!("{b}.{c}"));
-        }
-    }
-    let mut data = Vec::new();
-    for k in 0..sol.len() {
-        let y = sol.state(k);
-        data.push(sol.t[k]);
-        for b in 0..nb {
-            data.extend_from_slice(&y[3 * b..3 * b + 3]);
-            data.extend_from_slice(&y[n + 3 * b..n + 3 * b + 3]);
-        }
-    }
-    clr_mbd::Results {
-        columns,
-        data,
-        stats: sol.stats,
-        onsets: 0,
-        projections: 0,
-        max_position_violation: f64::NAN,
-        y_final: sol.y_final.clone(),
     }
 }
 

@@ -3,6 +3,8 @@
 use clr_contact::ContactError;
 use clr_ode::OdeError;
 
+use crate::sim::Results;
+
 /// Everything that can go wrong when building or running a multibody model.
 ///
 /// Every message names the offending item and says what to change.
@@ -118,10 +120,47 @@ pub enum MbdError {
     /// Invalid simulation settings.
     #[error("simulation options: {0}")]
     Options(String),
-    /// The integrator failed; the error carries the partial clr-ode solution.
-    #[error("integration failed: {0}")]
-    Solver(#[from] OdeError),
+    /// The integrator failed (step budget, step size underflow, Newton failures, non-finite
+    /// forces). `partial` holds every row recorded up to the failure, in the columns of a
+    /// successful run (see [`Results`]), with the statistics and the last state reached
+    /// (`partial.y_final`); `source` is clr-ode's error with its own partial solution (the
+    /// states at the output times) and says what to change.
+    #[error("integration failed: {source} ({} rows recorded up to t = {} s)", partial.len(), last_time(partial))]
+    Failed {
+        /// The integrator's error.
+        source: OdeError,
+        /// The results recorded up to the failure.
+        partial: Box<Results>,
+    },
     /// Writing output failed.
     #[error("writing output: {0}")]
     Io(#[from] std::io::Error),
+}
+
+/// Time of the last recorded row (s), or NaN without rows.
+fn last_time(r: &Results) -> f64 {
+    if r.is_empty() {
+        f64::NAN
+    } else {
+        r.row(r.len() - 1)[0]
+    }
+}
+
+impl MbdError {
+    /// The results recorded up to an integrator failure ([`MbdError::Failed`]); `None` for
+    /// every other error (nothing was integrated).
+    pub fn partial(&self) -> Option<&Results> {
+        match self {
+            MbdError::Failed { partial, .. } => Some(partial),
+            _ => None,
+        }
+    }
+
+    /// Take the results recorded up to an integrator failure (see [`MbdError::partial`]).
+    pub fn into_partial(self) -> Option<Results> {
+        match self {
+            MbdError::Failed { partial, .. } => Some(*partial),
+            _ => None,
+        }
+    }
 }

@@ -311,10 +311,27 @@ impl Model {
     /// [`SimOptions::t0`, `SimOptions::t_end`] and record the outputs.
     ///
     /// # Errors
-    /// Invalid options, assembly failures, or the integrator's error (with its partial solution).
+    /// Invalid options, assembly failures, or [`MbdError::Failed`] when the integrator fails:
+    /// it carries every row recorded up to the failure ([`MbdError::partial`]).
     pub fn simulate(&mut self, opts: &SimOptions) -> Result<Results, MbdError> {
+        self.simulate_with(opts, &|_| {})
+    }
+
+    /// As [`Model::simulate`], calling `progress` with the simulated time t (s) as the run
+    /// advances: after the first accepted step that reaches 1 % of the span beyond the previous
+    /// call (at most about 100 calls per run, however many steps), and once more with the final
+    /// time (t_end when the run completes). The times passed are strictly increasing. The
+    /// driver itself allocates nothing per call.
+    ///
+    /// # Errors
+    /// As [`Model::simulate`].
+    pub fn simulate_with(
+        &mut self,
+        opts: &SimOptions,
+        progress: &dyn Fn(f64),
+    ) -> Result<Results, MbdError> {
         let y0 = self.initial_state(opts.t0)?;
-        self.simulate_from(opts, &y0)
+        self.simulate_from_with(opts, &y0, progress)
     }
 
     /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d) of length 2n + 1 (not modified;
@@ -323,6 +340,19 @@ impl Model {
     /// # Errors
     /// As [`Model::simulate`].
     pub fn simulate_from(&mut self, opts: &SimOptions, y0: &[f64]) -> Result<Results, MbdError> {
+        self.simulate_from_with(opts, y0, &|_| {})
+    }
+
+    /// As [`Model::simulate_from`] with a progress hook (see [`Model::simulate_with`]).
+    ///
+    /// # Errors
+    /// As [`Model::simulate`].
+    pub fn simulate_from_with(
+        &mut self,
+        opts: &SimOptions,
+        y0: &[f64],
+        progress: &dyn Fn(f64),
+    ) -> Result<Results, MbdError> {
         if opts.t_end <= opts.t0 || !opts.t0.is_finite() || !opts.t_end.is_finite() {
             return Err(MbdError::Options(format!(
                 "t_end = {} must be finite and after t0 = {}",
@@ -355,72 +385,159 @@ impl Model {
             SolverKind::Ndf => AnySolver::Ndf(Box::new(Ndf::new(ode))),
             SolverKind::Dopri5 => AnySolver::Dopri5(Box::new(Dopri5::new(ode))),
         };
-        let columns = self.columns();
-        let mut data = Vec::new();
+        let mut run = Run {
+            data: Vec::new(),
+            y: y0.to_vec(),
+            recorded: 0,
+            onsets: 0,
+            projections: 0,
+            max_viol: 0.0,
+        };
+        match self.integrate(opts, &mut solver, &mut run, progress) {
+            Ok(()) => {
+                let stats = with_solver!(&solver, s => s.stats());
+                Ok(run.results(self.columns(), stats))
+            }
+            Err(Stop::Mbd(e)) => Err(e),
+            Err(Stop::Ode(e)) => {
+                // rows the solver interpolated but the driver has not recorded yet (none in
+                // practice: a failing advance records nothing), then the counters up to the
+                // failure: a failed advance hands its statistics over with the error, a failed
+                // restart leaves them in the solver
+                let sol = e.solution();
+                for k in run.recorded..sol.len() {
+                    self.record(sol.t[k], sol.state(k), &mut run.data);
+                }
+                let stats = if sol.stats == Stats::default() {
+                    with_solver!(&solver, s => s.stats())
+                } else {
+                    sol.stats
+                };
+                if sol.y_final.len() == run.y.len() {
+                    run.y.copy_from_slice(&sol.y_final);
+                }
+                Err(MbdError::Failed {
+                    partial: Box::new(run.results(self.columns(), stats)),
+                    source: e,
+                })
+            }
+        }
+    }
+
+    /// The step loop of [`Model::simulate_from_with`]: records into `run`, which keeps what was
+    /// computed when an error stops it.
+    fn integrate(
+        &mut self,
+        opts: &SimOptions,
+        solver: &mut AnySolver,
+        run: &mut Run,
+        progress: &dyn Fn(f64),
+    ) -> Result<(), Stop> {
         let n2 = 2 * self.n + 1;
-        let mut y = y0.to_vec();
         let mut y_out = vec![0.0; n2];
+        let report_every = 0.01 * (opts.t_end - opts.t0);
+        let mut last_report = opts.t0;
         self.memory.reset();
-        self.commit_contacts(&y);
-        with_solver!(&mut solver, s => s.start(self, opts.t0, &y, opts.t_end))?;
+        self.commit_contacts(&run.y);
+        with_solver!(&mut *solver, s => s.start(self, opts.t0, &run.y, opts.t_end))?;
         // outputs at t0 were recorded by the solver's start
-        let mut recorded = with_solver!(&solver, s => s.solution().t.len());
-        for _ in 0..recorded {
-            self.record(opts.t0, &y, &mut data);
+        run.recorded = with_solver!(&*solver, s => s.solution().t.len());
+        for _ in 0..run.recorded {
+            self.record(opts.t0, &run.y, &mut run.data);
         }
-        if opts.every_step && recorded == 0 {
-            self.record(opts.t0, &y, &mut data);
+        if opts.every_step && run.recorded == 0 {
+            self.record(opts.t0, &run.y, &mut run.data);
         }
-        let (mut onsets, mut projections) = (0, 0);
-        let mut max_viol = 0.0f64;
         loop {
             let reason =
-                with_solver!(&mut solver, s => s.advance_observed(self, &mut StopEachStep))?;
-            let t = with_solver!(&solver, s => s.solution().t_final);
-            y.copy_from_slice(with_solver!(&solver, s => &s.solution().y_final));
+                with_solver!(&mut *solver, s => s.advance_observed(self, &mut StopEachStep))?;
+            let t = with_solver!(&*solver, s => s.solution().t_final);
+            run.y
+                .copy_from_slice(with_solver!(&*solver, s => &s.solution().y_final));
             // outputs inside the step, recorded by the solver from its dense output (before its
             // order/step change invalidates the interpolant), evaluated before the memory commit
-            let n_out = with_solver!(&solver, s => s.solution().t.len());
-            while recorded < n_out {
-                let to = with_solver!(&solver, s => s.solution().t[recorded]);
-                y_out.copy_from_slice(with_solver!(&solver, s => s.solution().state(recorded)));
-                self.record(to, &y_out, &mut data);
-                recorded += 1;
+            let n_out = with_solver!(&*solver, s => s.solution().t.len());
+            while run.recorded < n_out {
+                let to = with_solver!(&*solver, s => s.solution().t[run.recorded]);
+                y_out
+                    .copy_from_slice(with_solver!(&*solver, s => s.solution().state(run.recorded)));
+                self.record(to, &y_out, &mut run.data);
+                run.recorded += 1;
             }
-            self.commit_contacts(&y);
-            let (pv, _) = self.violation(t, &y);
-            max_viol = max_viol.max(pv);
+            self.commit_contacts(&run.y);
+            let (pv, _) = self.violation(t, &run.y);
+            run.max_viol = run.max_viol.max(pv);
             let mut restart = false;
             if let StopReason::TerminalEvent(_) = reason {
-                onsets += 1;
+                run.onsets += 1;
                 restart = true;
             }
             if let Some(tol) = opts.projection {
                 if pv > tol && t < opts.t_end {
-                    self.project(t, &mut y, tol * 1e-3)?;
-                    projections += 1;
+                    self.project(t, &mut run.y, tol * 1e-3)?;
+                    run.projections += 1;
                     restart = true;
                 }
             }
             if opts.every_step {
-                self.record(t, &y, &mut data);
+                self.record(t, &run.y, &mut run.data);
             }
-            if reason == StopReason::EndReached || t >= opts.t_end {
-                break;
+            let done = reason == StopReason::EndReached || t >= opts.t_end;
+            if (done && t > last_report) || t - last_report >= report_every {
+                progress(t);
+                last_report = t;
+            }
+            if done {
+                return Ok(());
             }
             if restart {
-                with_solver!(&mut solver, s => s.restart(self, t, &y))?;
+                with_solver!(&mut *solver, s => s.restart(self, t, &run.y))?;
             }
         }
-        let stats = with_solver!(&solver, s => s.stats());
-        Ok(Results {
+    }
+}
+
+/// What [`Model::simulate_from_with`] has computed so far.
+struct Run {
+    /// Recorded rows, row-major.
+    data: Vec<f64>,
+    /// Current state (q, q̇, E_d).
+    y: Vec<f64>,
+    /// Output times of the solver already recorded.
+    recorded: usize,
+    onsets: usize,
+    projections: usize,
+    max_viol: f64,
+}
+
+impl Run {
+    fn results(self, columns: Vec<String>, stats: Stats) -> Results {
+        Results {
             columns,
-            data,
+            data: self.data,
             stats,
-            onsets,
-            projections,
-            max_position_violation: max_viol,
-            y_final: y,
-        })
+            onsets: self.onsets,
+            projections: self.projections,
+            max_position_violation: self.max_viol,
+            y_final: self.y,
+        }
+    }
+}
+
+/// Why the step loop stopped early: the integrator failed, or a clr-mbd step (projection) did.
+enum Stop {
+    Ode(clr_ode::OdeError),
+    Mbd(MbdError),
+}
+
+impl From<clr_ode::OdeError> for Stop {
+    fn from(e: clr_ode::OdeError) -> Self {
+        Stop::Ode(e)
+    }
+}
+
+impl From<MbdError> for Stop {
+    fn from(e: MbdError) -> Self {
+        Stop::Mbd(e)
     }
 }

@@ -228,6 +228,28 @@ fn slider_crank_outputs_match_closed_form() {
     assert_eq!(lines.count(), 38);
 }
 
+/// A free 1 kg journal at the centre of a ground-fixed bearing of `jb`, moving at 0.5 m/s along
+/// x, held by the revolute clearance joint `gap`.
+fn add_thrown_journal(
+    b: &mut ModelBuilder,
+    jb: &clr_contact::JournalBearing,
+    normal: clr_contact::NormalLaw,
+    friction: clr_contact::FrictionLaw,
+) {
+    b.body("journal", RigidBody::new(1.0, 1e-4).moving(0.5, 0.0, 0.0))
+        .revolute_clearance(
+            "gap",
+            ("ground", [0.0, 0.0]),
+            ("journal", [0.0, 0.0]),
+            crate::RevoluteClearanceSpec {
+                bearing_radius: jb.r_bearing,
+                journal_radius: jb.r_journal,
+                normal,
+                friction,
+            },
+        );
+}
+
 /// A free 1 kg journal moving radially at 0.5 m/s inside a fixed bearing (the flap paper's
 /// journal–bearing test: steel, R_i = 10 mm, R_j = 9.9 mm, L = 15 mm) rebounds with the
 /// restitution the law produces in a free impact, which for F_e(δ)(1 + χδ̇/δ̇⁻) depends on χ only
@@ -242,18 +264,7 @@ fn clearance_joint_free_impact_restitution() {
     assert!((expected - 0.7252).abs() < 5e-4);
     for events in [true, false] {
         let mut b = ModelBuilder::new();
-        b.body("journal", RigidBody::new(1.0, 1e-4).moving(0.5, 0.0, 0.0))
-            .revolute_clearance(
-                "gap",
-                ("ground", [0.0, 0.0]),
-                ("journal", [0.0, 0.0]),
-                crate::RevoluteClearanceSpec {
-                    bearing_radius: jb.r_bearing,
-                    journal_radius: jb.r_journal,
-                    normal: law,
-                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
-                },
-            );
+        add_thrown_journal(&mut b, &jb, law, FrictionLaw::coulomb(0.0, 1.0).unwrap());
         let mut model = b.build().unwrap();
         let mut opts = SimOptions::span(0.0, 4e-4, 4).tolerances(1e-9, 1e-12);
         opts.contact_events = events;
@@ -483,16 +494,13 @@ fn projection_keeps_constraints() {
     assert!(worst(&projected) <= 1e-9, "{}", worst(&projected));
 }
 
-/// A rigid pendulum pinned to the tip node of an undamped steel cantilever (joint on a beam
-/// node): with gravity on the pendulum, the total energy (pendulum kinetic and potential, beam
-/// kinetic and elastic) is conserved, and the tip stays on the pendulum's pin.
-#[test]
-fn pendulum_on_flexible_beam_conserves_energy() {
+/// Gravity, a 0.5 m steel beam (two elements) clamped at the origin, and a 0.5 kg, 0.2 m bob
+/// pinned to its tip.
+fn add_pendulum_on_beam(b: &mut ModelBuilder) {
     use clr_beam::{BeamModel, Material, Section, Support};
     let sec = Section::rectangular(0.03, 0.02).unwrap();
     let mut beam = BeamModel::straight([0.0, 0.0], [0.5, 0.0], 2, Material::steel(), sec).unwrap();
     beam.support(0, Support::Clamped).unwrap();
-    let mut b = ModelBuilder::new();
     b.gravity(0.0, -9.81)
         .flexible_beam("beam", beam)
         .beam_node_point("tip", "beam", 2)
@@ -501,6 +509,15 @@ fn pendulum_on_flexible_beam_conserves_energy() {
             RigidBody::new(0.5, 0.5 * 0.04 / 12.0).at(0.6, 0.0, 0.0),
         )
         .revolute("pin", "tip", ("bob", [-0.1, 0.0]));
+}
+
+/// A rigid pendulum pinned to the tip node of an undamped steel cantilever (joint on a beam
+/// node): with gravity on the pendulum, the total energy (pendulum kinetic and potential, beam
+/// kinetic and elastic) is conserved, and the tip stays on the pendulum's pin.
+#[test]
+fn pendulum_on_flexible_beam_conserves_energy() {
+    let mut b = ModelBuilder::new();
+    add_pendulum_on_beam(&mut b);
     let mut model = b.build().unwrap();
     let res = model
         .simulate(&SimOptions::span(0.0, 0.15, 30).tolerances(1e-9, 1e-12))
@@ -953,4 +970,89 @@ mod floating_guide {
         );
         assert!(drift < 1e-6 * e[0], "drift {drift} J of {} J", e[0]);
     }
+}
+
+/// A model with every kind of output column: a pendulum on a clamped flexible beam (beam nodal
+/// columns, joint reactions) and a journal thrown across a revolute clearance (contact columns,
+/// contact onsets located as events).
+fn every_column_model() -> crate::Model {
+    use clr_contact::{FrictionLaw, JournalBearing, NormalLaw};
+    let jb = JournalBearing::flap_paper_test();
+    let mut b = ModelBuilder::new();
+    add_pendulum_on_beam(&mut b);
+    add_thrown_journal(
+        &mut b,
+        &jb,
+        NormalLaw::preset("LN", &jb, 0.5).unwrap(),
+        FrictionLaw::coulomb(0.1, 1e-3).unwrap(),
+    );
+    b.build().unwrap()
+}
+
+/// A run stopped by its step budget returns, in `MbdError::Failed`, the rows an independent
+/// complete run of the same model and settings records first, bit for bit (same columns,
+/// including the beam, contact, energy and violation columns), with the statistics up to the
+/// failure. Both solvers.
+#[test]
+fn failed_run_keeps_the_rows_of_the_complete_run() {
+    for solver in [SolverKind::Ndf, SolverKind::Dopri5] {
+        let mut opts = SimOptions::span(0.0, 1e-3, 20)
+            .tolerances(1e-8, 1e-11)
+            .solver(solver);
+        opts.every_step = true;
+        let full = every_column_model().simulate(&opts).unwrap();
+        assert!(
+            full.onsets >= 1,
+            "{solver:?}: the journal must hit the bearing"
+        );
+        let budget = full.stats.accepted / 2;
+        opts.max_steps = budget;
+        let err = every_column_model().simulate(&opts).unwrap_err();
+        assert!(err.to_string().contains("step budget"), "{err}");
+        let part = err
+            .partial()
+            .expect("a solver failure carries partial results");
+        assert_eq!(part.columns, full.columns);
+        assert_eq!(part.stats.accepted, budget);
+        assert!(part.len() > 1 && part.len() < full.len(), "{solver:?}");
+        for r in 0..part.len() {
+            assert_eq!(part.row(r), full.row(r), "{solver:?}: row {r}");
+        }
+        // the last state reached is the state of the last recorded row (every step recorded)
+        let t_last = part.row(part.len() - 1)[0];
+        let x = part.column("journal.x").unwrap();
+        assert_eq!(part.y_final[3], x[x.len() - 1]);
+        assert!(
+            err.to_string().contains(&format!("t = {t_last} s")),
+            "{err}"
+        );
+        // options errors carry no partial results
+        opts.t_end = -1.0;
+        assert!(every_column_model()
+            .simulate(&opts)
+            .unwrap_err()
+            .partial()
+            .is_none());
+    }
+}
+
+/// The progress hook sees strictly increasing times, at most about one per 1 % of the span,
+/// ending exactly at t_end; it does not change the results.
+#[test]
+fn progress_hook_reports_increasing_times_up_to_t_end() {
+    let mut opts = SimOptions::span(0.0, 1e-3, 10).tolerances(1e-8, 1e-11);
+    opts.every_step = true;
+    let plain = every_column_model().simulate(&opts).unwrap();
+    let seen = std::cell::RefCell::new(Vec::new());
+    let hooked = every_column_model()
+        .simulate_with(&opts, &|t| seen.borrow_mut().push(t))
+        .unwrap();
+    assert_eq!(hooked, plain);
+    let seen = seen.into_inner();
+    assert!(seen.windows(2).all(|w| w[1] > w[0]), "{seen:?}");
+    assert_eq!(seen.last().copied(), Some(opts.t_end));
+    // one call per 1 % of the span at most, plus the final one
+    assert!(seen.len() >= 2 && seen.len() <= 101, "{} calls", seen.len());
+    assert!(seen.windows(2).rev().skip(1).all(|w| w[1] - w[0] >= 1e-5));
+    assert!(plain.stats.accepted > seen.len(), "fewer steps than calls");
 }

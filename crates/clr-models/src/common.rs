@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
-use clr_mbd::{MbdError, Results, SimOptions, SolverKind};
+use clr_mbd::{MbdError, Model, Results, SimOptions, SolverKind};
 use serde::{Deserialize, Serialize};
 
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
@@ -187,14 +187,36 @@ pub(crate) fn build_error(model: &str, e: MbdError) -> ModelsError {
     }
 }
 
-/// Map a clr-mbd error of a simulation to [`ModelsError::Simulation`]. clr-mbd does not return
-/// the rows recorded before a failure, so `partial` is `None`.
+/// Map a clr-mbd error of a simulation to [`ModelsError::Simulation`]. For an integrator
+/// failure `partial` holds the rows clr-mbd recorded up to it (every column of a complete
+/// simulation, with units), the metrics `steps` and `contact_onsets` up to the failure (the
+/// model's own metrics need the complete run and derived columns, so they are absent) and
+/// `parameters` = null (the caller has them); other errors have no partial results.
 pub(crate) fn sim_error(model: &str, e: MbdError) -> ModelsError {
+    let message = e.to_string();
+    let partial = e
+        .into_partial()
+        .map(|r| Box::new(output(model, r, Vec::new(), serde_json::Value::Null)));
     ModelsError::Simulation {
         model: model.to_string(),
-        message: e.to_string(),
-        partial: None,
+        message,
+        partial,
     }
+}
+
+/// Simulate `m` with `opts`, forwarding the simulated time (s) to `settings.progress` about
+/// every 1 % of the span (`clr_mbd::Model::simulate_with`); errors as [`sim_error`].
+pub(crate) fn simulate(
+    m: &mut Model,
+    opts: &SimOptions,
+    settings: &RunSettings,
+    model: &str,
+) -> Result<Results, ModelsError> {
+    let r = match &settings.progress {
+        Some(p) => m.simulate_with(opts, &|t| p(t)),
+        None => m.simulate(opts),
+    };
+    r.map_err(|e| sim_error(model, e))
 }
 
 /// Simulation options from a model's defaults and the run settings: every accepted step is
@@ -505,6 +527,48 @@ mod tests {
         // linear interpolation is exact on a straight line
         let lin: Vec<f64> = t.iter().map(|&x| 3.0 * x - 1.0).collect();
         assert!((interp(&t, &lin, 1.23456) - (3.0 * 1.23456 - 1.0)).abs() < 1e-12);
+    }
+
+    /// A slider-crank with a clearance joint stopped by a tiny step budget: `sim_error` keeps
+    /// the rows of the complete run (compared against an independent complete run with the same
+    /// settings, bit for bit), their units and the step count; `simulate` forwards the progress
+    /// hook up to the end time.
+    #[test]
+    fn failed_simulation_keeps_partial_results_and_progress_reaches_t_end() {
+        use std::sync::{Arc, Mutex};
+        let p = crate::slider_crank::SliderCrankParams {
+            duration: 0.005,
+            ..Default::default()
+        };
+        let seen = Arc::new(Mutex::new(Vec::new()));
+        let s2 = seen.clone();
+        let settings = RunSettings {
+            progress: Some(Box::new(move |t| s2.lock().unwrap().push(t))),
+            ..Default::default()
+        };
+        let mut opts = options(p.duration, p.rtol, p.solver, &settings, true, 0);
+        let full = simulate(&mut p.build("t").unwrap(), &opts, &settings, "t").unwrap();
+        let seen = seen.lock().unwrap().clone();
+        assert!(seen.windows(2).all(|w| w[1] > w[0]));
+        assert_eq!(seen.last().copied(), Some(opts.t_end));
+        opts.max_steps = full.stats.accepted / 3;
+        let err = simulate(&mut p.build("t").unwrap(), &opts, &settings, "t").unwrap_err();
+        let ModelsError::Simulation {
+            message, partial, ..
+        } = err
+        else {
+            panic!("expected a simulation error, got {err}");
+        };
+        assert!(message.contains("step budget"), "{message}");
+        let o = partial.expect("partial results of a solver failure");
+        assert_eq!(o.results.columns, full.columns);
+        assert_eq!(o.units, units(&full));
+        assert!(o.results.len() > 1 && o.results.len() < full.len());
+        for r in 0..o.results.len() {
+            assert_eq!(o.results.row(r), full.row(r), "row {r}");
+        }
+        let steps = o.metrics.iter().find(|m| m.name == "steps").unwrap();
+        assert_eq!(steps.value, opts.max_steps as f64);
     }
 
     #[test]

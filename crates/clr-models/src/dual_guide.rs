@@ -498,7 +498,7 @@ pub fn run(
     common::check_settings(model, settings)?;
     let mut m = p.build(model)?;
     let opts = common::options(p.duration, p.rtol, p.solver, settings, true, 0);
-    let res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
+    let res = common::simulate(&mut m, &opts, settings, model)?;
     if let Some(cb) = &settings.progress {
         cb(opts.t_end);
     }

@@ -286,7 +286,7 @@ fn simulate(
     let t_end = settings.t_end.unwrap_or(p.duration);
     let n_out = ((t_end / p.reference_interval).round() as usize).max(1);
     let opts = common::options(p.duration, p.rtol, p.solver, settings, !uniform, n_out);
-    let mut res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
+    let mut res = common::simulate(&mut m, &opts, settings, model)?;
     let n = res.len();
     let (mut px, mut py, mut lz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
     // momentum scales: largest Σ m|v| and Σ (|Iω| + m|r × v|) over the run
