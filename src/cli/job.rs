@@ -28,9 +28,9 @@ pub(crate) fn resolve(
     Ok(run::resolve(target, overrides, t_end, rtol)?)
 }
 
-/// Run a job (`clr::spec::run::execute`) with a spinner and its wall time. A simulation
-/// failure still returns a [`Record`] (with `error` set and the partial results); only bad
-/// input is an `Err`.
+/// Run a job (`clr::spec::run::execute`) with a progress bar over simulated time (when
+/// `progress` is given) and its wall time. A simulation failure still returns a [`Record`]
+/// (with `error` set and the partial results); only bad input is an `Err`.
 pub(crate) fn execute(
     job: &Job,
     t_end: Option<f64>,
@@ -38,11 +38,13 @@ pub(crate) fn execute(
     progress: Option<&Progress>,
 ) -> Result<Record, CliError> {
     let start = Instant::now();
-    let callback = match (job, progress) {
-        (Job::Builtin { .. }, Some(p)) => Some(p.callback(t_end)),
-        _ => None,
+    let (callback, guard) = match progress {
+        Some(p) => {
+            let (cb, guard) = p.run(job.time_span(t_end));
+            (Some(cb), Some(guard))
+        }
+        None => (None, None),
     };
-    let guard = progress.map(|p| p.spinner());
     let o = run::execute(job, t_end, rtol, callback);
     drop(guard);
     Ok(Record::new(o?, start.elapsed().as_secs_f64()))

@@ -119,6 +119,32 @@ pub fn resolve(
     Ok(job)
 }
 
+impl Job {
+    /// The simulated span [t0, t_end] (s) of this job run with the `t_end` of [`resolve`]: a
+    /// model file's output span, or for a built-in model [0, t_end] with the override or the
+    /// model's duration (its `duration` parameter, or the guide's stroke over speed); `None`
+    /// when the duration of a built-in model is not known this way.
+    pub fn time_span(&self, t_end: Option<f64>) -> Option<(f64, f64)> {
+        match self {
+            Job::Generic(s) => Some((s.options.t0, s.options.t_end)),
+            Job::Builtin { name, parameters } => {
+                let end = t_end.or_else(|| {
+                    if name == "guide" {
+                        serde_json::from_value::<clr_models::guide::GuideParams>(parameters.clone())
+                            .ok()
+                            .map(|p| p.duration())
+                    } else {
+                        parameters
+                            .get("duration")
+                            .and_then(serde_json::Value::as_f64)
+                    }
+                })?;
+                (end.is_finite() && end > 0.0).then_some((0.0, end))
+            }
+        }
+    }
+}
+
 impl Outcome {
     fn from_output(o: RunOutput, error: Option<String>) -> Self {
         let units = if o.units.len() == o.results.columns.len() {
@@ -220,7 +246,13 @@ pub fn execute(
                 Err(clr_models::ModelsError::Simulation {
                     message, partial, ..
                 }) => match partial {
-                    Some(o) => Ok(Outcome::from_output(*o, Some(message))),
+                    Some(mut o) => {
+                        // clr-models leaves the parameters of partial results to the caller
+                        if o.parameters.is_null() {
+                            o.parameters = parameters.clone();
+                        }
+                        Ok(Outcome::from_output(*o, Some(message)))
+                    }
                     None => Ok(Outcome::empty(name, parameters.clone(), message)),
                 },
                 Err(e) => Err(RunError::Input(e.to_string())),
