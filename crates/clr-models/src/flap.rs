@@ -249,14 +249,12 @@ pub struct FlapParams {
     /// Fixed-interface normal modes kept per flexible part in its Craig–Bampton reduction
     /// (reconstruction: 2).
     pub flexible_modes: usize,
-    /// Damping ratio ζ of the flexible parts (Rayleigh α M + β K of each part, ζ at
-    /// `flexible_damping_low_hz` and at the part's calibrated first frequency; reconstruction:
-    /// 0.02).
-    pub flexible_damping_ratio: f64,
-    /// Lower anchor frequency of the Rayleigh damping, Hz (reconstruction: 100 Hz, below the
-    /// lowest coupled mode of the flexible linkage, the flap rocking on the bending auxiliary
-    /// lever arm, ≈ 180 Hz).
-    pub flexible_damping_low_hz: f64,
+    /// Damping ratio ζ of each flexible part [lever arm, auxiliary rod, auxiliary lever arm] at
+    /// its calibrated first frequency f1, through stiffness-proportional Rayleigh damping
+    /// β = 2ζ/(2πf1) (higher modes more damped). Reconstruction: the default modal damping of
+    /// Adams/Flex flexible bodies for f1 (1 % below 100 Hz, 10 % below 1 kHz, critical above;
+    /// Adams Solver FLEX_BODY CRATIO): [1.0, 0.1, 1.0] for 5839 / 690 / 3716 Hz.
+    pub flexible_damping_ratios: [f64; 3],
 }
 
 impl Default for FlapParams {
@@ -303,8 +301,7 @@ impl Default for FlapParams {
             reference_interval: 1e-4,
             flexible: [false; 3],
             flexible_modes: 2,
-            flexible_damping_ratio: 0.02,
-            flexible_damping_low_hz: 100.0,
+            flexible_damping_ratios: [1.0, 0.1, 1.0],
         }
     }
 }
@@ -449,7 +446,6 @@ impl FlapParams {
             ("duration", self.duration),
             ("rtol", self.rtol),
             ("reference_interval", self.reference_interval),
-            ("flexible_damping_low_hz", self.flexible_damping_low_hz),
         ] {
             positive(f, v)?;
         }
@@ -490,13 +486,12 @@ impl FlapParams {
                 ));
             }
         }
-        if !(self.flexible_damping_ratio.is_finite()
-            && (0.0..1.0).contains(&self.flexible_damping_ratio))
-        {
-            return Err(format!(
-                "`flexible_damping_ratio` = {} must be in [0, 1)",
-                self.flexible_damping_ratio
-            ));
+        for (k, &z) in self.flexible_damping_ratios.iter().enumerate() {
+            if !(z.is_finite() && (0.0..=10.0).contains(&z)) {
+                return Err(format!(
+                    "`flexible_damping_ratios[{k}]` = {z} must be in [0, 10]"
+                ));
+            }
         }
         if self.flexible[0] {
             let n = self.lever_arm_actuator_distance / self.lever_arm_length
@@ -988,15 +983,35 @@ pub fn study_configurations() -> Vec<StudyConfiguration> {
 /// # Errors
 /// The first failing case, or an output error.
 pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<StudyCase>, String> {
-    let runs: Vec<Result<(StudyCase, Results), String>> = study_configurations()
-        .into_par_iter()
+    let configs = study_configurations()
+        .into_iter()
         .map(|(study, label, x, clearances, hinge)| {
-            let start = std::time::Instant::now();
             let p = FlapParams {
                 clearances,
                 hinge_moment: hinge.unwrap_or(base.hinge_moment),
                 ..base.clone()
             };
+            (study, label, x, p)
+        })
+        .collect();
+    let (cases, results) = run_cases(dir, configs, None)?;
+    write_summary(dir, &cases)?;
+    study_figures(dir, base, &cases, &results)?;
+    Ok(cases)
+}
+
+/// Run the study configurations (study, label, abscissa, parameters) in parallel (rayon) with
+/// [`run`], writing `<study>_<label>.csv` under `dir` (every `stride`-th row when
+/// `max_rows` is given, so at most about that many rows); cases and results in the given order.
+pub(crate) fn run_cases(
+    dir: &Path,
+    configs: Vec<(String, String, f64, FlapParams)>,
+    max_rows: Option<usize>,
+) -> Result<(Vec<StudyCase>, Vec<Results>), String> {
+    let runs: Vec<Result<(StudyCase, Results), String>> = configs
+        .into_par_iter()
+        .map(|(study, label, x, p)| {
+            let start = std::time::Instant::now();
             let out = run("flap", &p, &RunSettings::default())
                 .map_err(|e| format!("{study} {label}: {e}"))?;
             Ok((
@@ -1004,7 +1019,7 @@ pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<StudyCase>, String> {
                     study,
                     label,
                     x,
-                    clearances,
+                    clearances: p.clearances,
                     metrics: out.metrics,
                     wall_s: start.elapsed().as_secs_f64(),
                 },
@@ -1016,13 +1031,31 @@ pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<StudyCase>, String> {
     let mut results = Vec::new();
     for r in runs {
         let (c, res) = r?;
-        common::write_results_csv(&res, dir, &format!("{}_{}", c.study, c.label))?;
+        let name = format!("{}_{}", c.study, c.label);
+        match max_rows {
+            Some(n) if res.len() > n => {
+                let w = res.columns.len();
+                let stride = res.len().div_ceil(n.max(1));
+                let mut thin = Results {
+                    columns: res.columns.clone(),
+                    data: Vec::new(),
+                    ..res.clone()
+                };
+                thin.data = res
+                    .data
+                    .chunks_exact(w)
+                    .step_by(stride)
+                    .flatten()
+                    .copied()
+                    .collect();
+                common::write_results_csv(&thin, dir, &name)?;
+            }
+            _ => common::write_results_csv(&res, dir, &name)?,
+        }
         cases.push(c);
         results.push(res);
     }
-    write_summary(dir, &cases)?;
-    study_figures(dir, base, &cases, &results)?;
-    Ok(cases)
+    Ok((cases, results))
 }
 
 fn write_summary(dir: &Path, cases: &[StudyCase]) -> Result<(), String> {

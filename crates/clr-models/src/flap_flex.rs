@@ -14,10 +14,10 @@
 //! auxiliary lever arm: J4 at node 20) plus `flexible_modes` fixed-interface modes: the joint
 //! forces act at those nodes, and the static constraint modes represent the quasi-static
 //! deflection under them exactly (modal truncation of cantilever modes would need many modes
-//! to do so). Light Rayleigh damping ([`rayleigh`]) with ζ = `flexible_damping_ratio` at
-//! `flexible_damping_low_hz` (below the lowest coupled mode of the linkage, the flap rocking on
-//! the bending auxiliary lever arm, ≈ 180 Hz) and at the part's first frequency. The flap rides on the
-//! auxiliary lever arm: when that arm is flexible it is a rigid body fixed to the arm's pivot
+//! to do so). Stiffness-proportional Rayleigh damping β = 2ζ/ω1 with ζ at the part's first
+//! frequency from `flexible_damping_ratios` (default: Adams/Flex's default modal damping for
+//! that frequency, [`adams_default_damping`]). The flap rides on the auxiliary lever arm: when
+//! that arm is flexible it is a rigid body fixed to the arm's pivot
 //! node.
 
 use std::f64::consts::PI;
@@ -26,14 +26,16 @@ use std::path::Path;
 use clr_beam::{BeamModel, ReducedModel, Support};
 use clr_mbd::{ModelBuilder, Results};
 use nalgebra::DMatrix;
-use rayon::prelude::*;
 
 use crate::common::{self, col};
 use crate::flap::{self, Calibration, FlapParams, FlexiblePart, StudyCase, JOINTS};
-use crate::RunSettings;
 
 /// Beam elements per flexible part (the lever arm's actuator joint J1 must fall on a node).
 pub const ELEMENTS: usize = 20;
+
+/// Rows kept in the per-case CSV files of [`study`] (every k-th recorded step; the metrics use
+/// every step). The flexible runs record up to 6e5 steps × 100 columns.
+pub const MAX_CSV_ROWS: usize = 20_000;
 
 /// Body names of the three parts, in the order of [`FlapParams::flexible`].
 pub const PARTS: [&str; 3] = ["lever_arm", "aux_rod", "aux_lever_arm"];
@@ -111,13 +113,17 @@ impl FlexibleBody {
     }
 }
 
-/// Rayleigh coefficients (α 1/s, β s) giving the damping ratio ζ at the frequencies `fa` and
-/// `fb` (Hz): ζ(ω) = α/(2ω) + βω/2 (Géradin & Rixen, *Mechanical Vibrations*, §4.4), so
-/// α = 2ζ ωa ωb/(ωa + ωb), β = 2ζ/(ωa + ωb); between fa and fb the ratio dips to
-/// 2ζ√(fa fb)/(fa + fb).
-pub fn rayleigh(zeta: f64, fa: f64, fb: f64) -> (f64, f64) {
-    let (wa, wb) = (2.0 * PI * fa, 2.0 * PI * fb);
-    (2.0 * zeta * wa * wb / (wa + wb), 2.0 * zeta / (wa + wb))
+/// Adams/Flex default modal damping ratio for a mode at `f_hz` (Hz): 0.01 below 100 Hz, 0.1
+/// below 1 kHz, 1.0 (critical) above (Adams Solver FLEX_BODY statement, CRATIO default) — the
+/// reconstruction behind the default [`FlapParams::flexible_damping_ratios`].
+pub fn adams_default_damping(f_hz: f64) -> f64 {
+    if f_hz < 100.0 {
+        0.01
+    } else if f_hz < 1000.0 {
+        0.1
+    } else {
+        1.0
+    }
 }
 
 /// The flexible part `k` (0 lever arm, 1 auxiliary rod, 2 auxiliary lever arm) of `p`:
@@ -138,12 +144,10 @@ pub fn flexible_body(p: &FlapParams, k: usize) -> Result<FlexibleBody, String> {
     let err = |e: clr_beam::BeamError| format!("{}: {e}", part.name);
     beam.support(0, Support::Clamped).map_err(err)?;
     beam.support(ELEMENTS, Support::Free).map_err(err)?;
-    let (alpha, beta) = rayleigh(
-        p.flexible_damping_ratio,
-        p.flexible_damping_low_hz,
-        part.target_hz,
+    beam.set_rayleigh(
+        0.0,
+        2.0 * p.flexible_damping_ratios[k] / (2.0 * PI * part.target_hz),
     );
-    beam.set_rayleigh(alpha, beta);
     let interface_nodes = if k == 0 {
         let n1 = (p.lever_arm_actuator_distance / p.lever_arm_length * ELEMENTS as f64).round();
         vec![n1 as usize, ELEMENTS]
@@ -248,8 +252,8 @@ pub fn static_deflection_angle(p: &FlapParams) -> Result<f64, String> {
 }
 
 /// One configuration of the flexible-body studies: (study, label, abscissa, flexible parts,
-/// clearances of J1..J4 in m).
-pub type FlexConfiguration = (String, String, f64, [bool; 3], [f64; 4]);
+/// clearances of J1..J4 in m, mean hinge moment in N·m or `None` for the base value).
+pub type FlexConfiguration = (String, String, f64, [bool; 3], [f64; 4], Option<f64>);
 
 /// Flexible parts of the `bodies` study with n = 0..3 flexible bodies: the auxiliary rod (the
 /// softest) first, then the auxiliary lever arm, then the lever arm.
@@ -261,9 +265,12 @@ pub const BODIES_ORDER: [[bool; 3]; 4] = [
 ];
 
 /// The study configurations (0.1 mm clearances): `bodies` — n = 0..3 flexible bodies
-/// ([`BODIES_ORDER`]) with J4 the clearance joint; `joints` — J1..Jn, n = 1..4, with the
-/// auxiliary rod flexible; `joints_rigid` — the same joints, all parts rigid (the reference of
-/// the reduction); `all` — J1..J4 with the three parts flexible.
+/// ([`BODIES_ORDER`]) with J4 the clearance joint; `joints` — J1..Jn, n = 1..4 (the order of
+/// the rigid `number` study), with the auxiliary rod flexible; `joints_j4` — J(5−n)..J4, the
+/// same series started from the `bodies` study's joint J4; `joints_rigid`, `joints_j4_rigid`
+/// — the same joints, all parts rigid (the references of the reduction); `all` — J1..J4 with
+/// the three parts flexible; `reversing` — J1..J4 with 0, 1 (rod) and 3 flexible parts and a
+/// zero mean hinge moment (the load changes sign, the journals cross their clearance: impacts).
 pub fn configurations() -> Vec<FlexConfiguration> {
     let c = 0.1e-3;
     let mut v = Vec::new();
@@ -274,27 +281,48 @@ pub fn configurations() -> Vec<FlexConfiguration> {
             n as f64,
             *f,
             [0.0, 0.0, 0.0, c],
+            None,
         ));
     }
     for n in 1..=4 {
-        let mut cl = [0.0; 4];
-        cl.iter_mut().take(n).for_each(|x| *x = c);
+        let mut up = [0.0; 4];
+        up.iter_mut().take(n).for_each(|x| *x = c);
+        let mut down = [0.0; 4];
+        down.iter_mut().rev().take(n).for_each(|x| *x = c);
+        for (series, cl) in [("joints", up), ("joints_j4", down)] {
+            v.push((
+                series.into(),
+                format!("n{n}"),
+                n as f64,
+                [false, true, false],
+                cl,
+                None,
+            ));
+            v.push((
+                format!("{series}_rigid"),
+                format!("n{n}"),
+                n as f64,
+                [false; 3],
+                cl,
+                None,
+            ));
+        }
+    }
+    v.push(("all".into(), "n4_f3".into(), 4.0, [true; 3], [c; 4], None));
+    for (n, f) in [
+        (0usize, [false; 3]),
+        (1, [false, true, false]),
+        (3, [true; 3]),
+    ] {
         v.push((
-            "joints".into(),
-            format!("n{n}"),
+            "reversing".into(),
+            format!("n4_f{n}"),
             n as f64,
-            [false, true, false],
-            cl,
-        ));
-        v.push((
-            "joints_rigid".into(),
-            format!("n{n}"),
-            n as f64,
-            [false; 3],
-            cl,
+            f,
+            [c; 4],
+            Some(0.0),
         ));
     }
-    v.push(("all".into(), "n4_f3".into(), 4.0, [true; 3], [c; 4]));
     v
 }
 
@@ -310,48 +338,33 @@ pub struct FlexStudyCase {
 
 /// Run the flexible-body studies ([`configurations`]) in parallel (rayon) with `base` (its
 /// rigid masses replaced by [`with_beam_masses`]) for every other parameter, writing under
-/// `dir`: `<study>_<label>.csv`, `summary.csv` and figures (`bodies_oscillation`,
-/// `joints_oscillation`, `joints_reduction`, `poincare_spread`, `orbits_all`, `poincare_all`).
+/// `dir`: `<study>_<label>.csv` (at most about [`MAX_CSV_ROWS`] rows), `summary.csv` and
+/// figures (`bodies_oscillation`, `joints_oscillation`, `joints_reduction`, `poincare_spread`,
+/// `orbits_all`, `poincare_all`).
 ///
 /// # Errors
 /// The first failing case, or an output error.
 pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<FlexStudyCase>, String> {
     let base = with_beam_masses(base)?;
-    let runs: Vec<Result<(FlexStudyCase, Results), String>> = configurations()
-        .into_par_iter()
-        .map(|(study, label, x, flexible, clearances)| {
-            let start = std::time::Instant::now();
+    let configs: Vec<_> = configurations()
+        .into_iter()
+        .map(|(study, label, x, flexible, clearances, hinge)| {
             let p = FlapParams {
                 clearances,
                 flexible,
+                hinge_moment: hinge.unwrap_or(base.hinge_moment),
                 ..base.clone()
             };
-            let out = flap::run("flap", &p, &RunSettings::default())
-                .map_err(|e| format!("{study} {label}: {e}"))?;
-            Ok((
-                FlexStudyCase {
-                    flexible,
-                    case: StudyCase {
-                        study,
-                        label,
-                        x,
-                        clearances,
-                        metrics: out.metrics,
-                        wall_s: start.elapsed().as_secs_f64(),
-                    },
-                },
-                out.results,
-            ))
+            (study, label, x, p)
         })
         .collect();
-    let mut cases = Vec::new();
-    let mut results = Vec::new();
-    for r in runs {
-        let (c, res) = r?;
-        common::write_results_csv(&res, dir, &format!("{}_{}", c.case.study, c.case.label))?;
-        cases.push(c);
-        results.push(res);
-    }
+    let flex: Vec<[bool; 3]> = configs.iter().map(|c| c.3.flexible).collect();
+    let (cases, results) = flap::run_cases(dir, configs, Some(MAX_CSV_ROWS))?;
+    let cases: Vec<FlexStudyCase> = cases
+        .into_iter()
+        .zip(flex)
+        .map(|(case, flexible)| FlexStudyCase { flexible, case })
+        .collect();
     write_summary(dir, &cases)?;
     figures(dir, &base, &cases, &results)?;
     Ok(cases)
@@ -365,14 +378,15 @@ pub fn find<'a>(cases: &'a [FlexStudyCase], study: &str, x: f64) -> Option<&'a F
 }
 
 /// Reduction of the RMS flap acceleration oscillation by the flexible auxiliary rod with n
-/// clearance joints: 1 − RMS(`joints`, n) / RMS(`joints_rigid`, n) (NaN when absent).
-pub fn reduction(cases: &[FlexStudyCase], n: usize) -> f64 {
+/// clearance joints of `series` (`joints` or `joints_j4`): 1 − RMS(series, n) /
+/// RMS(series`_rigid`, n) (NaN when absent).
+pub fn reduction(cases: &[FlexStudyCase], series: &str, n: usize) -> f64 {
     let m = |s: &str| {
         find(cases, s, n as f64).map_or(f64::NAN, |c| {
             c.case.metric("flap_acceleration_oscillation_rms")
         })
     };
-    1.0 - m("joints") / m("joints_rigid")
+    1.0 - m(series) / m(&format!("{series}_rigid"))
 }
 
 fn write_summary(dir: &Path, cases: &[FlexStudyCase]) -> Result<(), String> {
@@ -442,27 +456,29 @@ fn figures(
         .points("RMS ", series("bodies", rms)),
         "bodies_oscillation",
     )?;
-    save(
-        Figure::new(
-            "Number of clearance joints (J1..Jn, 0.1 mm): RMS flap acceleration oscillation",
-        )
-        .x_label("number of clearance joints")
-        .y_label("RMS oscillation vs ideal (rad/s²)")
-        .line("rigid", series("joints_rigid", rms))
-        .points("rigid ", series("joints_rigid", rms))
-        .line("flexible aux rod", series("joints", rms))
-        .points("flexible aux rod ", series("joints", rms)),
-        "joints_oscillation",
-    )?;
-    let red: Vec<(f64, f64)> = (1..=4).map(|n| (n as f64, reduction(cases, n))).collect();
-    save(
-        Figure::new("Reduction of the RMS oscillation by the flexible auxiliary rod")
+    let mut osc =
+        Figure::new("Number of clearance joints (0.1 mm): RMS flap acceleration oscillation")
             .x_label("number of clearance joints")
-            .y_label("1 − RMS(flexible)/RMS(rigid) (–)")
-            .line("reduction", red.clone())
-            .points("", red),
-        "joints_reduction",
-    )?;
+            .y_label("RMS oscillation vs ideal (rad/s²)");
+    let mut red = Figure::new("Reduction of the RMS oscillation by the flexible auxiliary rod")
+        .x_label("number of clearance joints")
+        .y_label("1 − RMS(flexible)/RMS(rigid) (–)");
+    for (s, what) in [("joints", "J1..Jn"), ("joints_j4", "J(5−n)..J4")] {
+        osc = osc
+            .line(format!("rigid, {what}"), series(&format!("{s}_rigid"), rms))
+            .points(
+                format!("rigid, {what} "),
+                series(&format!("{s}_rigid"), rms),
+            )
+            .line(format!("flexible aux rod, {what}"), series(s, rms))
+            .points(format!("flexible aux rod, {what} "), series(s, rms));
+        let r: Vec<(f64, f64)> = (1..=4)
+            .map(|n| (n as f64, reduction(cases, s, n)))
+            .collect();
+        red = red.line(what, r.clone()).points(format!("{what} "), r);
+    }
+    save(osc, "joints_oscillation")?;
+    save(red, "joints_reduction")?;
     let spread: Vec<(f64, f64)> = cases
         .iter()
         .enumerate()
@@ -517,6 +533,7 @@ fn figures(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::RunSettings;
 
     #[test]
     fn reduced_parts_keep_the_calibrated_first_frequency() {
@@ -538,6 +555,11 @@ mod tests {
                 (f / target - 1.0).abs() < 0.01,
                 "{}: reduced {f} Hz vs calibrated {target} Hz",
                 b.part.name
+            );
+            // the default damping is the Adams/Flex band value at the paper's first frequency
+            assert_eq!(
+                p.flexible_damping_ratios[k],
+                adams_default_damping(b.part.target_hz)
             );
             // the beam mass agrees with the rigid default masses (rounded) within 1 %
             let rigid = [p.lever_arm_mass, p.aux_rod_mass, p.aux_lever_arm_mass][k];
