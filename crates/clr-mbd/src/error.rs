@@ -125,7 +125,7 @@ pub enum MbdError {
     /// successful run (see [`Results`]), with the statistics and the last state reached
     /// (`partial.y_final`); `source` is clr-ode's error with its own partial solution (the
     /// states at the output times) and says what to change.
-    #[error("integration failed: {source} ({} rows recorded up to t = {} s)", partial.len(), last_time(partial))]
+    #[error("integration failed: {source}{}", rows_note(partial))]
     Failed {
         /// The integrator's error.
         source: OdeError,
@@ -137,12 +137,16 @@ pub enum MbdError {
     Io(#[from] std::io::Error),
 }
 
-/// Time of the last recorded row (s), or NaN without rows.
-fn last_time(r: &Results) -> f64 {
+/// ` (N rows recorded up to t = T s)`, or nothing without rows.
+fn rows_note(r: &Results) -> String {
     if r.is_empty() {
-        f64::NAN
+        String::new()
     } else {
-        r.row(r.len() - 1)[0]
+        format!(
+            " ({} rows recorded up to t = {} s)",
+            r.len(),
+            r.row(r.len() - 1)[0]
+        )
     }
 }
 

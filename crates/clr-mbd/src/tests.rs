@@ -1026,6 +1026,13 @@ fn failed_run_keeps_the_rows_of_the_complete_run() {
             err.to_string().contains(&format!("t = {t_last} s")),
             "{err}"
         );
+        // an integrator that refuses its settings fails before any row: empty partial
+        // results with the same columns and no row note in the message
+        opts.rtol = -1.0;
+        let err = every_column_model().simulate(&opts).unwrap_err();
+        let part = err.partial().expect("an integrator failure");
+        assert!(part.is_empty() && part.columns == full.columns);
+        assert!(!err.to_string().contains("rows recorded"), "{err}");
         // options errors carry no partial results
         opts.t_end = -1.0;
         assert!(every_column_model()
