@@ -269,7 +269,7 @@ pub const BODIES_ORDER: [[bool; 3]; 4] = [
 /// the rigid `number` study), with the auxiliary rod flexible; `joints_j4` — J(5−n)..J4, the
 /// same series started from the `bodies` study's joint J4; `joints_rigid`, `joints_j4_rigid`
 /// — the same joints, all parts rigid (the references of the reduction); `all` — J1..J4 with
-/// the three parts flexible; `reversing` — J1..J4 with 0, 1 (rod) and 3 flexible parts and a
+/// the three parts flexible; `reversing` — J1..J4 with 0 and 3 flexible parts and a
 /// zero mean hinge moment (the load changes sign, the journals cross their clearance: impacts).
 pub fn configurations() -> Vec<FlexConfiguration> {
     let c = 0.1e-3;
@@ -309,11 +309,8 @@ pub fn configurations() -> Vec<FlexConfiguration> {
         }
     }
     v.push(("all".into(), "n4_f3".into(), 4.0, [true; 3], [c; 4], None));
-    for (n, f) in [
-        (0usize, [false; 3]),
-        (1, [false, true, false]),
-        (3, [true; 3]),
-    ] {
+    // (the rod-only case stops with NDF Newton failures at t = 3.6 ms, rtol 1e-8)
+    for (n, f) in [(0usize, [false; 3]), (3, [true; 3])] {
         v.push((
             "reversing".into(),
             format!("n4_f{n}"),
