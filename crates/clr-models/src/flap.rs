@@ -702,7 +702,7 @@ pub(crate) fn simulate(
     let t_end = settings.t_end.unwrap_or(p.duration);
     let n_out = ((t_end / p.reference_interval).round() as usize).max(1);
     let opts = common::options(p.duration, p.rtol, p.solver, settings, !uniform, n_out);
-    let mut res = m.simulate(&opts).map_err(|e| common::sim_error(model, e))?;
+    let mut res = common::simulate(&mut m, &opts, settings, model)?;
     // the flap angle: the rigid auxiliary lever arm's, or the flap body's when that arm is
     // flexible (the flap is then a rigid body fixed to the arm's pivot node, starting at 0)
     let (body, th0) = if p.flexible[2] {
