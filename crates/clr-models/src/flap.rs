@@ -16,9 +16,9 @@
 //!
 //! Second part: the rigid linkage ([`FlapParams`], [`run`], [`study`]) with up to four
 //! revolute clearance joints, its closed-form ideal kinematics ([`FlapParams::ideal_flap_angle`])
-//! and the clearance studies. The flexible-body studies need a floating-frame flexible body in
-//! clr-mbd, which does not exist yet (only ground-fixed beams): they are not built (see
-//! docs/models/flap.md).
+//! and the clearance studies. With [`FlapParams::flexible`] the lever arm, auxiliary rod and
+//! auxiliary lever arm become floating-frame beam bodies of the calibrated sections; the model
+//! and the flexible-body studies are in [`crate::flap_flex`] (docs/models/flap.md).
 
 use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
