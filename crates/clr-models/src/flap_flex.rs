@@ -342,8 +342,21 @@ pub struct FlexStudyCase {
 /// # Errors
 /// The first failing case, or an output error.
 pub fn study(dir: &Path, base: &FlapParams) -> Result<Vec<FlexStudyCase>, String> {
+    study_of(dir, base, configurations())
+}
+
+/// As [`study`] for the given configurations only (e.g. [`configurations`] without its most
+/// expensive cases).
+///
+/// # Errors
+/// As [`study`].
+pub fn study_of(
+    dir: &Path,
+    base: &FlapParams,
+    configurations: Vec<FlexConfiguration>,
+) -> Result<Vec<FlexStudyCase>, String> {
     let base = with_beam_masses(base)?;
-    let configs: Vec<_> = configurations()
+    let configs: Vec<_> = configurations
         .into_iter()
         .map(|(study, label, x, flexible, clearances, hinge)| {
             let p = FlapParams {
