@@ -754,3 +754,17 @@ fn every_builtin_exports_to_an_equal_file() {
         }
     }
 }
+
+#[test]
+fn list_shows_the_paper_studies_and_an_unknown_study_names_the_valid_ones() {
+    let out = clr(&["list"]);
+    assert!(out.status.success());
+    let text = String::from_utf8_lossy(&out.stdout);
+    for s in clr_models::studies::studies() {
+        assert!(text.contains(s.name), "{} missing from `clr list`", s.name);
+    }
+    let out = clr(&["study", "no_such_study"]);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("guide_friction"), "{err}");
+}

@@ -81,6 +81,14 @@ enum Command {
         #[arg(long, default_value = "clr-sweep-merged")]
         out: PathBuf,
     },
+    /// Run a paper study (see `clr list`): CSV per run, summary.csv and figures into --out.
+    Study {
+        /// Study name.
+        name: String,
+        /// Output folder (default: clr-study/<name>).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
     /// Plot columns of a results.csv.
     Plot {
         /// A results.csv written by `clr run`.
@@ -152,6 +160,7 @@ pub(crate) fn main() -> ExitCode {
             out,
         } => sweep::sweep_command(&args, &vary, jobs, shard.as_deref(), &out),
         Command::Merge { dirs, out } => sweep::merge_command(&dirs, &out),
+        Command::Study { name, out } => study_command(&name, out),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
         Command::Export { model, set, out } => job::export_command(&model, &set, out.as_deref()),
     };
@@ -179,4 +188,30 @@ fn list() {
         println!("  (none yet)");
     }
     println!("Model files: clr run path/to/model.toml (format: docs/model-file.md)");
+    let studies = clr_models::studies::studies();
+    println!("Paper studies (clr study <name>):");
+    let w = studies.iter().map(|s| s.name.len()).max().unwrap_or(0);
+    for s in &studies {
+        println!("  {:w$}  [{}] {}", s.name, s.model, s.description);
+    }
+}
+
+fn study_command(name: &str, out: Option<PathBuf>) -> Result<(), CliError> {
+    let study = clr_models::studies::find(name).map_err(CliError::Input)?;
+    let dir = out.unwrap_or_else(|| PathBuf::from("clr-study").join(name));
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| CliError::Input(format!("cannot create {}: {e}", dir.display())))?;
+    eprintln!(
+        "clr: study {name} ({}) → {}",
+        study.description,
+        dir.display()
+    );
+    let start = std::time::Instant::now();
+    let runs = (study.run)(&dir).map_err(CliError::Simulation)?;
+    eprintln!(
+        "clr: study {name}: {runs} runs in {:.1} s; summary.csv and figures in {}",
+        start.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    Ok(())
 }

@@ -530,6 +530,21 @@ impl Stroke {
     }
 }
 
+/// Duration of every run of the paper's friction study, s (0.2 m of stroke at 1 m/s).
+pub const FRICTION_DURATION: f64 = 0.2;
+
+/// Series of the paper's friction study as run by `cargo xtask verify` and `clr study
+/// guide_friction`: deployment and retraction at 1 m/s with c = 0.25, 0.5, 1.0, 2.0 mm, and
+/// deployment at 0.25 m/s with c = 0.25, 1.0 mm.
+pub fn friction_series() -> Vec<(Stroke, f64, Vec<f64>)> {
+    let cs = vec![0.25e-3, 0.5e-3, 1.0e-3, 2.0e-3];
+    vec![
+        (Stroke::Deployment, 1.0, cs.clone()),
+        (Stroke::Retraction, 1.0, cs),
+        (Stroke::Deployment, 0.25, vec![0.25e-3, 1.0e-3]),
+    ]
+}
+
 /// Name of a friction-study run: `<deploy|retract>_v<speed m/s>_c<clearance mm>mm`.
 pub fn friction_run_name(stroke: Stroke, speed: f64, clearance: f64) -> String {
     format!("{}_v{speed:.2}_c{:.2}mm", stroke.name(), clearance * 1e3)

@@ -17,6 +17,7 @@ pub mod guide;
 pub mod manipulator;
 pub mod output;
 pub mod slider_crank;
+pub mod studies;
 
 pub use error::ModelsError;
 pub use output::{Metric, RunOutput, RunSettings};

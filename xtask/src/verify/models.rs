@@ -322,7 +322,7 @@ fn flap_dir() -> std::path::PathBuf {
 /// Study base of the flap verify cases and figures: 0.25 s ramp (excluded) + 4 actuator periods.
 fn flap_study_base() -> clr_models::flap::FlapParams {
     clr_models::flap::FlapParams {
-        duration: 2.25,
+        duration: clr_models::studies::FLAP_STUDY_DURATION,
         ..Default::default()
     }
 }
@@ -800,19 +800,14 @@ fn guide_support_cases(out: &mut Vec<Case>) {
     );
 }
 
-/// Clearances (m) of the friction study's 1 m/s series and of its 0.25 m/s series.
+/// Clearances (m) of the friction study's 1 m/s series and of its 0.25 m/s series
+/// (`clr_models::guide::friction_series`).
 const GUIDE_CLEARANCES: [f64; 4] = [0.25e-3, 0.5e-3, 1.0e-3, 2.0e-3];
 const GUIDE_SLOW_CLEARANCES: [f64; 2] = [0.25e-3, 1.0e-3];
-/// Duration of every friction-study run, s (0.2 m of stroke at 1 m/s).
-const GUIDE_FRICTION_DURATION: f64 = 0.2;
+const GUIDE_FRICTION_DURATION: f64 = clr_models::guide::FRICTION_DURATION;
 
 fn guide_friction_series() -> Vec<(clr_models::guide::Stroke, f64, Vec<f64>)> {
-    use clr_models::guide::Stroke;
-    vec![
-        (Stroke::Deployment, 1.0, GUIDE_CLEARANCES.to_vec()),
-        (Stroke::Retraction, 1.0, GUIDE_CLEARANCES.to_vec()),
-        (Stroke::Deployment, 0.25, GUIDE_SLOW_CLEARANCES.to_vec()),
-    ]
+    clr_models::guide::friction_series()
 }
 
 /// The clearance findings (simulation) and the equivalent-friction findings (experiment) of the

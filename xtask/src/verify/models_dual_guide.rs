@@ -17,7 +17,7 @@ fn dir(study: &str) -> std::path::PathBuf {
 }
 
 /// Interguide spacings of the spacing study, m.
-const SPACINGS: [f64; 3] = [0.05, 0.1, 0.2];
+const SPACINGS: [f64; 3] = clr_models::studies::DUAL_GUIDE_SPACINGS;
 
 pub fn cases(filter: &Filter) -> Vec<Case> {
     use clr_models::dual_guide::{self, StudyRun};

@@ -30,7 +30,7 @@ fn flex_verify_dir() -> std::path::PathBuf {
 /// (at 1e-7 NDF fails on the rigid three-joint case).
 fn study_base() -> FlapParams {
     FlapParams {
-        duration: 1.25,
+        duration: clr_models::studies::FLAP_FLEX_STUDY_DURATION,
         ..Default::default()
     }
 }

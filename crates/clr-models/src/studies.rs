@@ -1,0 +1,143 @@
+//! The paper studies, by name: what `clr study <name>` runs. Each writes its CSV files,
+//! `summary.csv` and figures into a folder; the same studies back `cargo xtask verify models`
+//! (where their findings are checked) with the settings listed here.
+
+use std::path::Path;
+
+use crate::flap::{self, FlapParams};
+use crate::{dual_guide, flap_flex, guide, manipulator};
+
+/// One built-in study.
+#[derive(Debug, Clone, Copy)]
+pub struct Study {
+    /// Name used on the command line (`clr study <name>`).
+    pub name: &'static str,
+    /// The catalog model it varies.
+    pub model: &'static str,
+    /// One-line description, with its size and rough wall time on 2 cores.
+    pub description: &'static str,
+    /// Run it, writing into the folder; returns the number of runs.
+    pub run: fn(&Path) -> Result<usize, String>,
+}
+
+/// Duration of the rigid flap studies, s (ramp 0.25 s + 4 actuator periods).
+pub const FLAP_STUDY_DURATION: f64 = 2.25;
+/// Duration of the flexible flap studies, s (ramp 0.25 s + 2 actuator periods).
+pub const FLAP_FLEX_STUDY_DURATION: f64 = 1.25;
+/// Interguide spacings of the dual-guide spacing study, m.
+pub const DUAL_GUIDE_SPACINGS: [f64; 3] = [0.05, 0.1, 0.2];
+
+fn flap_rigid(dir: &Path) -> Result<usize, String> {
+    let base = FlapParams {
+        duration: FLAP_STUDY_DURATION,
+        ..Default::default()
+    };
+    flap::study(dir, &base).map(|c| c.len())
+}
+
+fn flap_flexible(dir: &Path) -> Result<usize, String> {
+    let base = FlapParams {
+        duration: FLAP_FLEX_STUDY_DURATION,
+        ..Default::default()
+    };
+    flap_flex::study(dir, &base).map(|c| c.len())
+}
+
+/// Every built-in study.
+pub fn studies() -> Vec<Study> {
+    vec![
+        Study {
+            name: "manipulator_cases",
+            model: "manipulator",
+            description:
+                "ideal case and cases 1-5 of Kuang, Bai, Wei (2026), 2 s each (6 runs, ~2 s)",
+            run: |dir| manipulator::study(dir, None).map(|c| c.len()),
+        },
+        Study {
+            name: "flap_clearance",
+            model: "flap",
+            description: "rigid flap linkage: clearance size, joint position, number of joints, \
+                          reversing load (14 runs of 2.25 s, ~1 min)",
+            run: flap_rigid,
+        },
+        Study {
+            name: "flap_flexible",
+            model: "flap",
+            description:
+                "flexible lever arm / aux rod / aux lever arm: number of flexible bodies, \
+                          number of joints, 4 joints + 3 flexible (23 runs of 1.25 s, ~11 min)",
+            run: flap_flexible,
+        },
+        Study {
+            name: "guide_elastic_vs_rigid",
+            model: "guide",
+            description: "single sliding guide, elastic against rigid guide (2 runs, ~10 s)",
+            run: |dir| guide::elastic_vs_rigid(dir).map(|r| r.len()),
+        },
+        Study {
+            name: "guide_friction",
+            model: "guide",
+            description: "single sliding guide: clearance x stroke direction x speed, equivalent \
+                          friction coefficient (10 runs of 0.2 s, ~1 min)",
+            run: |dir| {
+                guide::friction_study(
+                    dir,
+                    &guide::GuideParams::default(),
+                    &guide::friction_series(),
+                    guide::FRICTION_DURATION,
+                )
+                .map(|r| r.len())
+            },
+        },
+        Study {
+            name: "dual_guide_vs_single",
+            model: "dual_guide",
+            description: "dual-stage dual guide against the single guide (2 runs, ~5 s)",
+            run: |dir| dual_guide::single_vs_dual(dir).map(|r| r.len()),
+        },
+        Study {
+            name: "dual_guide_spacing",
+            model: "dual_guide",
+            description:
+                "dual-stage dual guide at interguide spacings 50/100/200 mm (3 runs, ~10 s)",
+            run: |dir| dual_guide::spacing_study(dir, &DUAL_GUIDE_SPACINGS).map(|r| r.len()),
+        },
+    ]
+}
+
+/// A study by name.
+///
+/// # Errors
+/// The valid names when `name` is unknown.
+pub fn find(name: &str) -> Result<Study, String> {
+    studies()
+        .into_iter()
+        .find(|s| s.name == name)
+        .ok_or_else(|| {
+            format!(
+                "unknown study `{name}`; valid: {}",
+                studies()
+                    .iter()
+                    .map(|s| s.name)
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn study_names_are_unique_and_name_catalog_models() {
+        let all = studies();
+        let models: Vec<&str> = crate::catalog::entries().iter().map(|e| e.name).collect();
+        for (k, s) in all.iter().enumerate() {
+            assert!(models.contains(&s.model), "{} names {}", s.name, s.model);
+            assert!(all[k + 1..].iter().all(|o| o.name != s.name), "{}", s.name);
+        }
+        let e = find("nope").unwrap_err();
+        assert!(e.contains("guide_friction"), "{e}");
+    }
+}
