@@ -10,6 +10,7 @@ use clr_models::slider_crank::{self, SliderCrankParams};
 use clr_models::{RunOutput, RunSettings};
 
 use super::Filter;
+use crate::figures::copy_study_figures;
 use crate::report::Case;
 
 fn metric(out: &RunOutput, name: &str) -> f64 {
@@ -565,33 +566,29 @@ pub fn figures(dir: &Path) -> Result<(), String> {
     guide_figures(dir)?;
     let mdir = manipulator_dir();
     manipulator::study(&mdir, None)?;
-    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
-    for name in ["paths", "path_error", "base_y", "contact_force", "orbits"] {
-        for ext in ["svg", "png"] {
-            let from = mdir.join(format!("{name}.{ext}"));
-            let to = dir.join(format!("models-manipulator-{name}.{ext}"));
-            std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
-        }
-    }
+    copy_study_figures(
+        &mdir,
+        &["paths", "path_error", "base_y", "contact_force", "orbits"],
+        dir,
+        "models-manipulator-",
+    )?;
     let fdir = flap_dir();
     clr_models::flap::study(&fdir, &flap_study_base())?;
-    for name in [
-        "size_oscillation",
-        "number_oscillation",
-        "position_oscillation",
-        "orbits_n4",
-        "poincare_n4",
-        "orbits_reversing_n4",
-        "poincare_reversing_n4",
-        "alpha_error_size",
-    ] {
-        for ext in ["svg", "png"] {
-            let from = fdir.join(format!("{name}.{ext}"));
-            let to = dir.join(format!("models-flap-{name}.{ext}"));
-            std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
-        }
-    }
-    Ok(())
+    copy_study_figures(
+        &fdir,
+        &[
+            "size_oscillation",
+            "number_oscillation",
+            "position_oscillation",
+            "orbits_n4",
+            "poincare_n4",
+            "orbits_reversing_n4",
+            "poincare_reversing_n4",
+            "alpha_error_size",
+        ],
+        dir,
+        "models-flap-",
+    )
 }
 
 fn guide_dir(study: &str) -> std::path::PathBuf {
@@ -971,7 +968,6 @@ fn guide_figures(dir: &Path) -> Result<(), String> {
         &guide_support_series(),
         GUIDE_FRICTION_DURATION,
     )?;
-    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
     for (study, names) in [
         ("elastic_vs_rigid", &["lateral", "tip", "contact_force"][..]),
         (
@@ -980,13 +976,12 @@ fn guide_figures(dir: &Path) -> Result<(), String> {
         ),
         ("friction_support", &["friction"][..]),
     ] {
-        for name in names {
-            for ext in ["svg", "png"] {
-                let from = guide_dir(study).join(format!("{name}.{ext}"));
-                let to = dir.join(format!("models-guide-{study}-{name}.{ext}"));
-                std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
-            }
-        }
+        copy_study_figures(
+            &guide_dir(study),
+            names,
+            dir,
+            &format!("models-guide-{study}-"),
+        )?;
     }
     Ok(())
 }

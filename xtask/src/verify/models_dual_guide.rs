@@ -150,15 +150,13 @@ pub fn figures(out: &Path) -> Result<(), String> {
     use clr_models::dual_guide;
     dual_guide::single_vs_dual(&dir("single_vs_dual"))?;
     dual_guide::spacing_study(&dir("spacing"), &SPACINGS)?;
-    std::fs::create_dir_all(out).map_err(|e| e.to_string())?;
     for study in ["single_vs_dual", "spacing"] {
-        for name in ["lateral", "actuator"] {
-            for ext in ["svg", "png"] {
-                let from = dir(study).join(format!("{name}.{ext}"));
-                let to = out.join(format!("models-guide-dual-{study}-{name}.{ext}"));
-                std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
-            }
-        }
+        crate::figures::copy_study_figures(
+            &dir(study),
+            &["lateral", "actuator"],
+            out,
+            &format!("models-guide-dual-{study}-"),
+        )?;
     }
     Ok(())
 }

@@ -301,20 +301,17 @@ pub fn figures(dir: &Path) -> Result<(), String> {
     if !fdir.join("summary.csv").exists() {
         flap_flex::study(&fdir, &study_base())?;
     }
-    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
-    for name in [
-        "bodies_oscillation",
-        "joints_oscillation",
-        "joints_reduction",
-        "poincare_spread",
-        "orbits_all",
-        "poincare_all",
-    ] {
-        for ext in ["svg", "png"] {
-            let from = fdir.join(format!("{name}.{ext}"));
-            let to = dir.join(format!("models-flap-flex-{name}.{ext}"));
-            std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
-        }
-    }
-    Ok(())
+    crate::figures::copy_study_figures(
+        &fdir,
+        &[
+            "bodies_oscillation",
+            "joints_oscillation",
+            "joints_reduction",
+            "poincare_spread",
+            "orbits_all",
+            "poincare_all",
+        ],
+        dir,
+        "models-flap-flex-",
+    )
 }
