@@ -550,7 +550,16 @@ impl ElasticLaw {
     /// L·K_n(δ) for Liu (the Bai–Zhao identity, contact-laws.md §1.4);
     /// K_n δ^{3/2}[(1/δ + 4/(3ΔR+2δ) − 3/(ΔR+δ))/2 + 3/(2δ)] for Bai–Zhao;
     /// πLE*/(−ln x) with x = F/F* for Johnson (πLE* beyond δ*); n_l K_l δ^{n_l−1} + (E*/h)wl
-    /// for the area law.
+    /// for the area law at fixed contact length l (the sensitivity to l is
+    /// [`contact_length_derivative`](Self::contact_length_derivative)).
+    ///
+    /// Non-smooth points:
+    /// - δ = 0 for every law (contact onset): the stiffness jumps from 0 to its limit from above,
+    ///   which is 0 for exponents n > 1 (Hertz and Liu ~δ^{1/2}, Pereira ~δ^{n−1}, Bai–Zhao ~δ),
+    ///   k for the linear spring and (E*/h)wl from the Winkler term of the area law, +∞ for power
+    ///   laws with n < 1, and 0 (logarithmically, πLE*/ln(1/x)) for Johnson;
+    /// - δ = δ* = 4ΔR/e² for Johnson: the stiffness of the implicit law diverges as δ → δ*
+    ///   from below (dδ/dF = 0 at F*), while the linear continuation beyond δ* has πLE*.
     #[inline]
     pub fn stiffness(&self, delta: f64) -> f64 {
         if delta.is_nan() || delta <= 0.0 {
@@ -583,6 +592,24 @@ impl ElasticLaw {
                 k_per_length,
                 contact_length,
             } => n_line * power(k_line, n_line, delta) / delta + k_per_length * contact_length,
+        }
+    }
+
+    /// Sensitivity ∂F_e/∂l (N/m) of the elastic force to the contact length l (m) of an area law
+    /// ([`ElasticLaw::area`]), at the penetration δ (m): the Winkler term gives
+    /// ∂F_e/∂l = (E*/h)·w·δ, independent of l. 0 for δ ≤ 0 or NaN and for every other law (they
+    /// do not depend on l). Needed in a Jacobian when l is itself a function of the state (e.g.
+    /// the wetted length of a multipoint contact). At l = 0, where
+    /// [`with_contact_length`](Self::with_contact_length) clamps negative lengths to 0, this is
+    /// the derivative from above.
+    #[inline]
+    pub fn contact_length_derivative(&self, delta: f64) -> f64 {
+        if delta.is_nan() || delta <= 0.0 {
+            return 0.0;
+        }
+        match self.kind {
+            Kind::Area { k_per_length, .. } => k_per_length * delta,
+            _ => 0.0,
         }
     }
 

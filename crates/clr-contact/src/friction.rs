@@ -273,6 +273,40 @@ impl FrictionLaw {
         self.signed_coefficient(v_t) * f_n
     }
 
+    /// [`force`](Self::force) with its partial derivatives, for Jacobians of implicit
+    /// integrators: (F_T (N), ∂F_T/∂v_T (N·s/m), ∂F_T/∂F_N (–)).
+    ///
+    /// F_T is computed exactly as [`force`](Self::force) computes it (bit for bit). With the
+    /// [signed coefficient](Self::signed_coefficient) μ(v_T), F_T = μ(v_T)·F_N, so
+    ///
+    /// ∂F_T/∂v_T = F_N·μ'(v_T),  ∂F_T/∂F_N = μ(v_T),
+    ///
+    /// where μ' = dμ/dv_T ([`coefficient_derivative`](Self::coefficient_derivative)) is, with
+    /// a = |v_T|:
+    /// - Coulomb, regularized: −μ/v_reg for a < v_reg, 0 above (contact-laws.md §2);
+    /// - Ambrósio (J. Ambrósio, NATO ASI Virtual Nonlinear Multibody Systems II (2002) 15–33):
+    ///   −μ/(v1 − v0) for v0 ≤ a < v1, 0 otherwise; the C¹ variant −6μs(1 − s)/(v1 − v0) with
+    ///   s = (a − v0)/(v1 − v0) ∈ [0, 1];
+    /// - Threlfall (Mech. Mach. Theory 13 (1978) 475–483): −(3μ/v0)e^{−3a/v0};
+    /// - Bai & Zhao / STEP Stribeck (Int. J. Mech. Sci. 54 (2012) 190–205): 0 for a > v_d,
+    ///   −6(μ_s − μ_d)s(1 − s)/(v_s − v_d) with s = (a − v_d)/(v_s − v_d) for v_s ≤ a ≤ v_d,
+    ///   −6μ_s u(1 − u)/v_s with u = (v_T + v_s)/(2v_s) for a < v_s.
+    ///
+    /// Non-smooth points: the regularized Coulomb law has kinks at ±v_reg and the linear Ambrósio
+    /// ramp at ±v0 and ±v1, where the derivative of the branch with the larger |v_T| is returned;
+    /// the C¹ Ambrósio variant, Threlfall (at v_T = 0) and Stribeck (at ±v_s, ±v_d) have a
+    /// continuous first derivative. For F_N ≤ 0 or NaN the force is clamped to 0 and all three
+    /// components are 0 (the derivative from above at F_N = 0 would be ∂F_T/∂F_N = μ(v_T)).
+    /// Allocates nothing.
+    #[inline]
+    pub fn force_with_derivatives(&self, v_t: f64, f_n: f64) -> (f64, f64, f64) {
+        if f_n.is_nan() || f_n <= 0.0 {
+            return (0.0, 0.0, 0.0);
+        }
+        let mu = self.signed_coefficient(v_t);
+        (mu * f_n, self.coefficient_derivative(v_t) * f_n, mu)
+    }
+
     /// Largest |μ| the law can produce (–).
     pub fn mu_max(&self) -> f64 {
         match self.kind {
@@ -339,6 +373,38 @@ impl LuGre {
         v - self.sigma0 * v.abs() * z / self.g(v)
     }
 
+    /// Derivative of the Stribeck curve, g'(v) = −2(μ_s − μ_c)(v/v_s²)e^{−(v/v_s)²} (s/m).
+    #[inline]
+    pub fn g_derivative(&self, v: f64) -> f64 {
+        let r = v / self.v_s;
+        -2.0 * (self.mu_s - self.mu_c) * r / self.v_s * (-r * r).exp()
+    }
+
+    /// [`z_dot`](Self::z_dot) with its partial derivatives, for Jacobians of implicit
+    /// integrators that carry z as a state: (ż (m/s), ∂ż/∂v (–), ∂ż/∂z (1/s)).
+    ///
+    /// ż is computed exactly as [`z_dot`](Self::z_dot) computes it (bit for bit). From
+    /// ż = v − σ₀|v|z/g(v) (Canudas de Wit, Olsson, Åström, Lischinsky, IEEE Trans. Autom.
+    /// Control 40 (1995) 419–425):
+    ///
+    /// ∂ż/∂v = 1 − σ₀z·[sgn(v)·g(v) − |v|·g'(v)]/g(v)²,  ∂ż/∂z = −σ₀|v|/g(v),
+    ///
+    /// with g' from [`g_derivative`](Self::g_derivative).
+    ///
+    /// Non-smooth point: |v| makes ż a kink at v = 0 for z ≠ 0; the one-sided derivatives there are
+    /// 1 ∓ σ₀z/g(0), and at v = 0 exactly sgn(0) = 0 gives ∂ż/∂v = 1, their mean. Allocates
+    /// nothing.
+    #[inline]
+    pub fn z_dot_derivatives(&self, v: f64, z: f64) -> (f64, f64, f64) {
+        let g = self.g(v);
+        let a = v.abs();
+        let z_dot = v - self.sigma0 * a * z / g;
+        let dg = self.g_derivative(v);
+        let d_v = 1.0 - self.sigma0 * z * (sign(v) * g - a * dg) / (g * g);
+        let d_z = -self.sigma0 * a / g;
+        (z_dot, d_v, d_z)
+    }
+
     /// Friction coefficient μ = σ₀z + σ₁ż + σ₂v (–), positive along the slip.
     #[inline]
     pub fn coefficient(&self, v: f64, z: f64, z_dot: f64) -> f64 {
@@ -353,6 +419,44 @@ impl LuGre {
             return 0.0;
         }
         -self.coefficient(v, z, z_dot) * f_n
+    }
+
+    /// [`force`](Self::force) with its partial derivatives with respect to its four arguments,
+    /// for Jacobians of implicit integrators: (F_T (N), ∂F_T/∂v (N·s/m), ∂F_T/∂z (N/m),
+    /// ∂F_T/∂ż (N·s/m), ∂F_T/∂F_N (–)).
+    ///
+    /// F_T is computed exactly as [`force`](Self::force) computes it (bit for bit). From
+    /// F_T = −(σ₀z + σ₁ż + σ₂v)F_N (Canudas de Wit et al., IEEE Trans. Autom. Control 40 (1995)
+    /// 419–425, friction-coefficient form):
+    ///
+    /// ∂F_T/∂v = −σ₂F_N, ∂F_T/∂z = −σ₀F_N, ∂F_T/∂ż = −σ₁F_N, ∂F_T/∂F_N = −μ.
+    ///
+    /// ż is an argument here, held fixed in ∂F_T/∂v and ∂F_T/∂z. When ż = ż(v, z) from
+    /// [`z_dot`](Self::z_dot), the total derivatives follow with
+    /// [`z_dot_derivatives`](Self::z_dot_derivatives): dF_T/dv = ∂F_T/∂v + ∂F_T/∂ż·∂ż/∂v and
+    /// dF_T/dz = ∂F_T/∂z + ∂F_T/∂ż·∂ż/∂z.
+    ///
+    /// Non-smooth point: for F_N ≤ 0 or NaN the force is clamped to 0 and all five components are
+    /// 0 (the derivative from above at F_N = 0 would be ∂F_T/∂F_N = −μ). Allocates nothing.
+    #[inline]
+    pub fn force_with_derivatives(
+        &self,
+        v: f64,
+        z: f64,
+        z_dot: f64,
+        f_n: f64,
+    ) -> (f64, f64, f64, f64, f64) {
+        if f_n.is_nan() || f_n <= 0.0 {
+            return (0.0, 0.0, 0.0, 0.0, 0.0);
+        }
+        let mu = self.coefficient(v, z, z_dot);
+        (
+            -mu * f_n,
+            -self.sigma2 * f_n,
+            -self.sigma0 * f_n,
+            -self.sigma1 * f_n,
+            -mu,
+        )
     }
 
     /// Steady-state bristle deflection z_ss = g(v) sgn(v)/σ₀ (m).

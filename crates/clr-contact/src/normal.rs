@@ -152,7 +152,13 @@ impl NormalLaw {
     /// [`force`](Self::force) with its partial derivatives, for Jacobians of implicit
     /// integrators: (F_N (N), ∂F_N/∂δ (N/m), ∂F_N/∂δ̇ (N·s/m)), with δ̇⁻ held fixed (it is
     /// contact state, not a function of the current state). Where the clamp F_N = 0 is active the
-    /// derivatives are 0. ∂F_N/∂δ = F_e'(δ)(1 + χδ̇/δ̇⁻), ∂F_N/∂δ̇ = F_e(δ)χ/δ̇⁻.
+    /// derivatives are 0. ∂F_N/∂δ = F_e'(δ)(1 + χδ̇/δ̇⁻), ∂F_N/∂δ̇ = F_e(δ)χ/δ̇⁻, with
+    /// F_e' = [`ElasticLaw::stiffness`] (contact-laws.md §1.2: the Hunt–Crossley form).
+    ///
+    /// Non-smooth points: δ = 0 (contact onset, see [`ElasticLaw::stiffness`]), the clamp
+    /// 1 + χδ̇/δ̇⁻ = 0, i.e. δ̇ = −δ̇⁻/χ (a kink: the derivatives jump to 0 there), the non-smooth
+    /// points of the elastic part (Johnson's δ*), and the floor of δ̇⁻ (a kink in δ̇⁻, which is
+    /// held fixed here).
     #[inline]
     pub fn force_with_derivatives(
         &self,
@@ -176,6 +182,26 @@ impl NormalLaw {
         } else {
             (0.0, 0.0, 0.0)
         }
+    }
+
+    /// Sensitivity ∂F_N/∂l (N/m) of [`force`](Self::force) to the contact length l (m) of an
+    /// area law ([`ElasticLaw::area`], [`NormalLaw::area`]), for Jacobians in which l depends on
+    /// the state: ∂F_N/∂l = (∂F_e/∂l)(1 + χδ̇/δ̇⁻) with
+    /// [`ElasticLaw::contact_length_derivative`]. 0 where the clamp F_N = 0 is active and for
+    /// laws without a contact length.
+    #[inline]
+    pub fn contact_length_derivative(
+        &self,
+        delta: f64,
+        delta_dot: f64,
+        delta_dot_minus: f64,
+    ) -> f64 {
+        let dl = self.elastic.contact_length_derivative(delta);
+        if dl == 0.0 || self.force(delta, delta_dot, delta_dot_minus) == 0.0 {
+            return 0.0;
+        }
+        let v0 = delta_dot_minus.max(self.min_impact_velocity);
+        dl * (1.0 + self.chi * delta_dot / v0)
     }
 
     /// Elastic part F_e(δ) (N).
