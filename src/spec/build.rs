@@ -3,9 +3,8 @@
 use std::collections::HashMap;
 
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
-use clr_mbd::{Anchor, Model, ModelBuilder, Motion, RevoluteClearanceSpec, RigidBody, SimOptions};
+use clr_mbd::{Anchor, Model, ModelBuilder, RevoluteClearanceSpec, RigidBody, SimOptions};
 use clr_mbd::{SolverKind, TranslationalClearanceSpec, GROUND};
-use nalgebra::Vector2;
 
 use super::file::{
     BeamFile, ClearanceFile, FrictionFile, MaterialFile, ModelFile, NormalFile, SectionFile,
@@ -29,7 +28,7 @@ enum ItemSpec {
     Clearance(String, Anchor, Anchor, f64, f64, NormalLaw, FrictionLaw),
     /// guide, slider, [guide_width, guide_angle, slider_length, slider_height, slider_angle]
     TransClearance(String, Anchor, Anchor, [f64; 5], NormalLaw, FrictionLaw),
-    Beam(String, Box<clr_beam::BeamModel>),
+    Beam(String, Box<clr_mbd::BeamMesh>),
     BeamPoint(String, String, usize),
     NodalLoad(String, String, usize, [TimeFn; 3]),
 }
@@ -1047,10 +1046,7 @@ impl ModelSpec {
                 _ => {}
             }
         }
-        let motion = |f: &TimeFn| {
-            let f = f.clone();
-            Motion::new(move |t| f.eval(t))
-        };
+        let motion = |f: &TimeFn| f.clone();
         for it in &self.items {
             match it {
                 ItemSpec::Revolute(n, a, c) => {
@@ -1075,25 +1071,17 @@ impl ModelSpec {
                     b.rotational_spring_damper(n, i, j, *k, *d, *a0);
                 }
                 ItemSpec::Force(n, at, fx, fy) => {
-                    let (fx, fy) = (fx.clone(), fy.clone());
-                    b.applied_force(n, at.clone(), move |t, _| {
-                        Vector2::new(fx.eval(t)[0], fy.eval(t)[0])
-                    });
+                    b.force(n, at.clone(), fx.clone(), fy.clone());
                 }
                 ItemSpec::Torque(n, body, f) => {
-                    let f = f.clone();
-                    b.applied_torque(n, body, move |t, _| f.eval(t)[0]);
+                    b.torque(n, body, f.clone());
                 }
                 ItemSpec::PairTorque(n, i, j, f) => {
-                    let f = f.clone();
-                    b.torque_between(n, i, j, move |t, _, _| f.eval(t)[0]);
+                    b.motor_torque(n, i, j, f.clone());
                 }
                 ItemSpec::Beam(..) | ItemSpec::BeamPoint(..) => {}
                 ItemSpec::NodalLoad(n, beam, node, [fx, fy, mz]) => {
-                    let (fx, fy, mz) = (fx.clone(), fy.clone(), mz.clone());
-                    b.beam_nodal_load(n, beam, *node, move |t| {
-                        [fx.eval(t)[0], fy.eval(t)[0], mz.eval(t)[0]]
-                    });
+                    b.nodal_load(n, beam, *node, [fx.clone(), fy.clone(), mz.clone()]);
                 }
                 ItemSpec::TransClearance(n, guide, slider, d, normal, friction) => {
                     b.translational_clearance(
@@ -1106,8 +1094,8 @@ impl ModelSpec {
                             slider_length: d[2],
                             slider_height: d[3],
                             slider_angle: d[4],
-                            normal: *normal,
-                            friction: *friction,
+                            normal: (*normal).into(),
+                            friction: (*friction).into(),
                         },
                     );
                 }
@@ -1119,8 +1107,8 @@ impl ModelSpec {
                         RevoluteClearanceSpec {
                             bearing_radius: *rb,
                             journal_radius: *rj,
-                            normal: *normal,
-                            friction: *friction,
+                            normal: (*normal).into(),
+                            friction: (*friction).into(),
                         },
                     );
                 }
@@ -1246,8 +1234,9 @@ fn beam_model(
     v: &V,
     p: &FieldPath,
     bm: &BeamFile,
-) -> Result<(clr_beam::BeamModel, usize), SpecError> {
-    use clr_beam::{BeamModel, MassKind, Section, Support};
+) -> Result<(clr_mbd::BeamMesh, usize), SpecError> {
+    use clr_beam::{BeamModel, Section, Support};
+    use clr_mbd::desc::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
     let start = v.finite2(
         &p.key("start"),
         v.req(&p.key("start"), &bm.start, "the first end [x, y] in m")?,
@@ -1299,28 +1288,47 @@ fn beam_model(
             "m",
         )
     };
-    let section = match shape {
-        "rectangular" => Section::rectangular(dim("width", &sf.width)?, dim("depth", &sf.depth)?),
-        "circular" => Section::circular(dim("diameter", &sf.diameter)?),
-        "tube" => Section::tube(
-            dim("outer_diameter", &sf.outer_diameter)?,
-            dim("wall", &sf.wall)?,
-        ),
+    let section_desc = match shape {
+        "rectangular" => SectionDesc::Rectangular {
+            width: dim("width", &sf.width)?,
+            depth: dim("depth", &sf.depth)?,
+        },
+        "circular" => SectionDesc::Circular {
+            diameter: dim("diameter", &sf.diameter)?,
+        },
+        "tube" => SectionDesc::Tube {
+            outer_diameter: dim("outer_diameter", &sf.outer_diameter)?,
+            wall: dim("wall", &sf.wall)?,
+        },
         _ => {
             let a = sp.key("area");
             let i = sp.key("second_moment");
-            Section::new(
-                v.positive(&a, v.req(&a, &sf.area, "the area in m²")?, "m²")?,
-                v.positive(
+            SectionDesc::General {
+                area: v.positive(&a, v.req(&a, &sf.area, "the area in m²")?, "m²")?,
+                second_moment: v.positive(
                     &i,
                     v.req(&i, &sf.second_moment, "the second moment in m⁴")?,
                     "m⁴",
                 )?,
-                dim("depth", &sf.depth)?,
-            )
+                depth: dim("depth", &sf.depth)?,
+            }
         }
+    };
+    let section = match section_desc {
+        SectionDesc::Rectangular { width, depth } => Section::rectangular(width, depth),
+        SectionDesc::Circular { diameter } => Section::circular(diameter),
+        SectionDesc::Tube {
+            outer_diameter,
+            wall,
+        } => Section::tube(outer_diameter, wall),
+        SectionDesc::General {
+            area,
+            second_moment,
+            depth,
+        } => Section::new(area, second_moment, depth),
     }
     .map_err(|e| v.err(&sp, e.to_string()))?;
+    let mut supports = Vec::new();
     let mut model = BeamModel::straight(start, end, n as usize, mat, section)
         .map_err(|e| v.err(p, e.to_string()))?;
     let nodes = n as usize + 1;
@@ -1342,12 +1350,16 @@ fn beam_model(
             &["clamped", "pinned", "roller_x", "roller_y"],
             "support",
         )?;
-        let support = match kind {
-            "clamped" => Support::Clamped,
-            "pinned" => Support::Pinned,
-            "roller_x" => Support::RollerX,
-            _ => Support::RollerY,
+        let (support, sk) = match kind {
+            "clamped" => (Support::Clamped, SupportKind::Clamped),
+            "pinned" => (Support::Pinned, SupportKind::Pinned),
+            "roller_x" => (Support::RollerX, SupportKind::RollerX),
+            _ => (Support::RollerY, SupportKind::RollerY),
         };
+        supports.push(SupportDesc {
+            node: node as usize,
+            kind: sk,
+        });
         model
             .support(node as usize, support)
             .map_err(|e| v.err(&q, e.to_string()))?;
@@ -1358,18 +1370,32 @@ fn beam_model(
         v.non_negative(&q, b, "s")?;
         model.set_rayleigh(a, b);
     }
+    let _ = model;
     let mass = v.kind(
         &p.key("mass"),
         &bm.mass.clone().or(Some("consistent".into())),
         &["consistent", "lumped"],
         "mass matrix",
     )?;
-    model.set_mass_kind(if mass == "lumped" {
-        MassKind::Lumped
-    } else {
-        MassKind::Consistent
-    });
-    Ok((model, nodes))
+    let mesh = clr_mbd::BeamMesh {
+        start,
+        end,
+        elements: n as usize,
+        material: BeamMaterial {
+            youngs_modulus: e,
+            density: rho,
+            poisson_ratio: mf.poisson_ratio.unwrap_or(0.3),
+        },
+        section: section_desc,
+        supports,
+        rayleigh: bm.rayleigh.unwrap_or([0.0, 0.0]),
+        mass: if mass == "lumped" {
+            MassKindDesc::Lumped
+        } else {
+            MassKindDesc::Consistent
+        },
+    };
+    Ok((mesh, nodes))
 }
 
 /// Anchors and dimensions of a translational clearance:

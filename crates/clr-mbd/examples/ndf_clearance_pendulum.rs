@@ -29,8 +29,8 @@ fn main() {
                 RevoluteClearanceSpec {
                     bearing_radius: 10e-3,
                     journal_radius: 9.5e-3,
-                    normal,
-                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+                    normal: normal.into(),
+                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap().into(),
                 },
             );
         let mut m = b.build().unwrap();

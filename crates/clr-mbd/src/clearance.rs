@@ -11,7 +11,7 @@ use nalgebra::Vector2;
 
 use crate::flexible::FlexBeam;
 use crate::floating::FloatingBody;
-use crate::system::{perp, rot};
+use crate::runtime::{perp, rot};
 
 /// Which flexible body carries a guide face.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -117,6 +117,15 @@ pub enum MbdError {
         /// The most violated equation.
         worst: String,
     },
+    /// A field of the description is invalid (the path names it, e.g. `driver[0].motion.rate`
+    /// or `crank_drive.motion.rate` for an element's field).
+    #[error("field `{path}`: {message}")]
+    Invalid {
+        /// Path of the offending field.
+        path: String,
+        /// What is wrong and what to change.
+        message: String,
+    },
     /// Invalid simulation settings.
     #[error("simulation options: {0}")]
     Options(String),
@@ -147,6 +156,15 @@ fn rows_note(r: &Results) -> String {
             r.len(),
             r.row(r.len() - 1)[0]
         )
+    }
+}
+
+impl From<crate::desc::FieldError> for MbdError {
+    fn from(e: crate::desc::FieldError) -> Self {
+        MbdError::Invalid {
+            path: e.path,
+            message: e.message,
+        }
     }
 }
 

@@ -59,7 +59,7 @@ use clr_beam::{BeamModel, ReducedModel};
 use nalgebra::Vector2;
 
 use crate::error::MbdError;
-use crate::system::{perp, rot};
+use crate::runtime::{perp, rot};
 
 /// A floating-frame flexible body: the data computed once from the reduction, and its place in q.
 pub(crate) struct FloatingBody {
@@ -581,16 +581,48 @@ fn positive_definite(a: &[f64], n: usize) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use crate::{MbdError, ModelBuilder, SimOptions, SolverKind};
-    use clr_beam::{BeamModel, Material, Section, Support};
+    use crate::desc::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
+    use crate::{BeamMesh, MbdError, ModelBuilder, Reduction, SimOptions, SolverKind};
 
-    fn arm(e: f64) -> (BeamModel, clr_beam::ReducedModel) {
-        let mat = Material::new(e, 7850.0, 0.3).unwrap();
-        let sec = Section::rectangular(0.01, 0.01).unwrap();
-        let mut beam = BeamModel::straight([0.0, 0.0], [1.0, 0.0], 4, mat, sec).unwrap();
-        beam.support(0, Support::Clamped).unwrap();
-        let red = beam.modal_truncation(2).unwrap();
-        (beam, red)
+    /// A 1 m arm of 4 elements, section 0.01 × 0.01 m, of `material`, with `supports`.
+    fn arm_mesh(material: BeamMaterial, supports: Vec<SupportDesc>) -> BeamMesh {
+        BeamMesh {
+            start: [0.0, 0.0],
+            end: [1.0, 0.0],
+            elements: 4,
+            material,
+            section: SectionDesc::Rectangular {
+                width: 0.01,
+                depth: 0.01,
+            },
+            supports,
+            rayleigh: [0.0, 0.0],
+            mass: MassKindDesc::Consistent,
+        }
+    }
+
+    /// The arm clamped at node 0, reduced on its 2 lowest cantilever modes, and the mass of the
+    /// reduced model (kg).
+    fn arm(e: f64) -> (BeamMesh, Reduction, f64) {
+        let material = BeamMaterial {
+            youngs_modulus: e,
+            density: 7850.0,
+            poisson_ratio: 0.3,
+        };
+        let mesh = arm_mesh(
+            material,
+            vec![SupportDesc {
+                node: 0,
+                kind: SupportKind::Clamped,
+            }],
+        );
+        let red = Reduction::Modal { modes: 2 };
+        let m = red
+            .reduce(&mesh.build("arm").unwrap(), "arm")
+            .unwrap()
+            .invariants
+            .mass;
+        (mesh, red, m)
     }
 
     /// A pinned flexible arm released horizontally: T + V + U is conserved (closed form, no
@@ -598,8 +630,7 @@ mod tests {
     /// ½ (mL²/3) ω² with ω the frame rate (independent closed form; the elastic share is tiny).
     #[test]
     fn floating_pendulum_conserves_energy_and_is_rigid_when_stiff() {
-        let (beam, red) = arm(2e13);
-        let m = red.invariants.mass;
+        let (beam, red, m) = arm(2e13);
         let mut b = ModelBuilder::new();
         b.gravity(0.0, -9.81)
             .floating_beam("arm", beam, red, [0.0; 3], [0.0; 3])
@@ -636,8 +667,7 @@ mod tests {
     #[test]
     fn joint_at_a_deforming_node_conserves_energy_and_tends_to_rigid() {
         let run = |flexible: bool| {
-            let (beam, red) = arm(2e13);
-            let m = red.invariants.mass;
+            let (beam, red, m) = arm(2e13);
             let mut b = ModelBuilder::new();
             b.gravity(0.0, -9.81);
             if flexible {
@@ -672,10 +702,15 @@ mod tests {
 
     #[test]
     fn free_free_reduction_and_unknown_node_are_rejected() {
-        let mat = Material::steel();
-        let sec = Section::rectangular(0.01, 0.01).unwrap();
-        let beam = BeamModel::straight([0.0, 0.0], [1.0, 0.0], 4, mat, sec).unwrap();
-        let red = beam.modal_truncation(4).unwrap();
+        // clr-beam's `Material::steel()`, no supports (free–free)
+        let mat = clr_beam::Material::steel();
+        let steel = BeamMaterial {
+            youngs_modulus: mat.youngs_modulus,
+            density: mat.density,
+            poisson_ratio: mat.poisson_ratio,
+        };
+        let beam = arm_mesh(steel, Vec::new());
+        let red = Reduction::Modal { modes: 4 };
         let mut b = ModelBuilder::new();
         b.floating_beam("arm", beam, red, [0.0; 3], [0.0; 3]);
         assert!(matches!(
@@ -685,7 +720,7 @@ mod tests {
                 ..
             })
         ));
-        let (beam, red) = arm(2e11);
+        let (beam, red, _) = arm(2e11);
         let mut b = ModelBuilder::new();
         b.floating_beam("arm", beam, red, [0.0; 3], [0.0; 3])
             .revolute("pin", ("ground", [1.0, 0.0]), ("arm", 5usize));

@@ -32,25 +32,34 @@
 #![warn(missing_docs)]
 
 mod clearance;
+pub mod desc;
+pub mod element;
 pub mod error;
 mod flexible;
 pub mod floating;
 mod init;
+pub mod jacobian;
 pub mod model;
+mod runtime;
 pub mod sim;
 pub mod system;
+pub mod timefn;
 
 pub use clr_contact::ForceApplication;
+pub use desc::laws::{FrictionLawDesc, FrictionSpec, NormalLawDesc, NormalSpec};
+pub use desc::{BeamMesh, Body, FieldError, ModelDesc, Reduction};
+pub use element::Anchor;
 pub use error::MbdError;
-pub use flexible::NodalLoadFn;
+pub use jacobian::Jacobians;
 pub use model::{
-    Anchor, FlexibleGuideSpec, ModelBuilder, RevoluteClearanceSpec, RigidBody,
-    TranslationalClearanceSpec, GROUND,
+    FlexibleGuideSpec, ModelBuilder, RevoluteClearanceSpec, TranslationalClearanceSpec,
 };
+pub use runtime::{RigidBody, GROUND};
+pub use timefn::TimeFn;
+/// The former name of [`TimeFn`] for drivers' motions.
+pub type Motion = TimeFn;
 pub use sim::{Results, SimOptions, SolverKind};
-pub use system::{
-    ContactReport, Energies, Model, Motion, DEFAULT_BAUMGARTE_ALPHA, DEFAULT_BAUMGARTE_BETA,
-};
+pub use system::{ContactReport, Energies, Model, DEFAULT_BAUMGARTE_ALPHA, DEFAULT_BAUMGARTE_BETA};
 
 #[cfg(test)]
 mod tests;

@@ -14,7 +14,9 @@
 //! with γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt. The first-order system is y = (q, q̇),
 //! ẏ = (q̇, q̈).
 
-use clr_contact::{BodyState, ContactMemory};
+use clr_contact::ContactMemory;
+
+use crate::timefn::TimeFn;
 
 pub use crate::clearance::ContactReport;
 use crate::clearance::{Clearance, GuideBeam, GuideRef};
@@ -24,8 +26,11 @@ use clr_ode::linalg::DenseLu;
 use clr_ode::{Direction, OdeSystem};
 use nalgebra::Vector2;
 
+use crate::element::Compiler;
 use crate::error::MbdError;
-use crate::model::{ForceFn, PairTorqueFn, RigidBody, TorqueFn, GROUND_ID};
+use crate::runtime::{
+    add_gen, body_state, perp, put, rot, Con, ConKind, ForceEl, Frame, RigidBody, GROUND_ID,
+};
 
 /// Default Baumgarte coefficient α (1/s) multiplying 2Φ̇ (Flores et al., *Kinematics and
 /// Dynamics of Multibody Systems with Imperfect Joints*, Springer 2008, §2.6, use α = β = 5).
@@ -33,217 +38,6 @@ pub const DEFAULT_BAUMGARTE_ALPHA: f64 = 5.0;
 /// Default Baumgarte coefficient β (1/s) with β² multiplying Φ (see
 /// [`DEFAULT_BAUMGARTE_ALPHA`]).
 pub const DEFAULT_BAUMGARTE_BETA: f64 = 5.0;
-
-/// A prescribed motion f(t) with its first and second time derivatives (units of the driven
-/// coordinate: rad or m, per s, per s²).
-pub struct Motion(Box<dyn Fn(f64) -> [f64; 3]>);
-
-impl Motion {
-    /// A motion from a closure returning [f(t), f′(t), f″(t)].
-    pub fn new(f: impl Fn(f64) -> [f64; 3] + 'static) -> Self {
-        Motion(Box::new(f))
-    }
-    /// f(t) = x0 + v·t (e.g. a crank at constant speed v rad/s from angle x0).
-    pub fn linear(x0: f64, v: f64) -> Self {
-        Motion::new(move |t| [x0 + v * t, v, 0.0])
-    }
-    /// f(t) = offset + amplitude·sin(ω t + phase).
-    pub fn harmonic(offset: f64, amplitude: f64, omega: f64, phase: f64) -> Self {
-        Motion::new(move |t| {
-            let (s, c) = (omega * t + phase).sin_cos();
-            [
-                offset + amplitude * s,
-                amplitude * omega * c,
-                -amplitude * omega * omega * s,
-            ]
-        })
-    }
-    /// [f(t), f′(t), f″(t)].
-    #[inline]
-    pub fn eval(&self, t: f64) -> [f64; 3] {
-        (self.0)(t)
-    }
-}
-
-#[derive(Debug, Clone, Copy)]
-pub(crate) enum ConKind {
-    /// r_i + A_i s_i − r_j − A_j s_j = 0 (2 rows).
-    Coincide {
-        i: usize,
-        si: Vector2<f64>,
-        j: usize,
-        sj: Vector2<f64>,
-    },
-    /// θ_j − θ_i − c(t) = 0, c = offset or motion (1 row).
-    Angle {
-        i: usize,
-        j: usize,
-        offset: f64,
-        motion: Option<usize>,
-    },
-    /// (A_i w)ᵀ (r_j + A_j s_j − r_i − A_i s_i) − c(t) = 0 (1 row).
-    Project {
-        i: usize,
-        si: Vector2<f64>,
-        j: usize,
-        sj: Vector2<f64>,
-        w: Vector2<f64>,
-        motion: Option<usize>,
-    },
-    /// Node tie of floating body `f`: the node-frame coordinates (p, ψ) at columns
-    /// `col..col + 3` equal R + A(ū₀ + Φ_N q_f) and θ + φ_θN·q_f (3 rows); `i` is the body's
-    /// frame, `j` the node frame.
-    FloatNode {
-        f: usize,
-        node: usize,
-        col: usize,
-        i: usize,
-        j: usize,
-    },
-}
-
-/// One primitive constraint (rows of Φ) belonging to a named joint or driver.
-#[derive(Debug, Clone)]
-pub(crate) struct Con {
-    pub(crate) name: String,
-    pub(crate) kind: ConKind,
-    pub(crate) row: usize,
-}
-
-impl Con {
-    pub(crate) fn coincide(
-        name: &str,
-        i: usize,
-        si: Vector2<f64>,
-        j: usize,
-        sj: Vector2<f64>,
-    ) -> Self {
-        Con {
-            name: name.into(),
-            kind: ConKind::Coincide { i, si, j, sj },
-            row: 0,
-        }
-    }
-    pub(crate) fn angle(
-        name: &str,
-        i: usize,
-        j: usize,
-        offset: f64,
-        motion: Option<usize>,
-    ) -> Self {
-        Con {
-            name: name.into(),
-            kind: ConKind::Angle {
-                i,
-                j,
-                offset,
-                motion,
-            },
-            row: 0,
-        }
-    }
-    pub(crate) fn project(
-        name: &str,
-        i: usize,
-        si: Vector2<f64>,
-        j: usize,
-        sj: Vector2<f64>,
-        w: Vector2<f64>,
-        motion: Option<usize>,
-    ) -> Self {
-        Con {
-            name: name.into(),
-            kind: ConKind::Project {
-                i,
-                si,
-                j,
-                sj,
-                w,
-                motion,
-            },
-            row: 0,
-        }
-    }
-    fn rows(&self) -> usize {
-        match self.kind {
-            ConKind::Coincide { .. } => 2,
-            ConKind::FloatNode { .. } => 3,
-            _ => 1,
-        }
-    }
-    fn bodies(&self) -> (usize, usize) {
-        match self.kind {
-            ConKind::Coincide { i, j, .. }
-            | ConKind::Angle { i, j, .. }
-            | ConKind::Project { i, j, .. }
-            | ConKind::FloatNode { i, j, .. } => (i, j),
-        }
-    }
-    pub(crate) fn label(&self, r: usize) -> String {
-        let eq = match (self.kind, r) {
-            (ConKind::Coincide { .. }, 0) => "x",
-            (ConKind::Coincide { .. }, _) => "y",
-            (ConKind::Angle { motion: None, .. }, _) => "relative angle",
-            (ConKind::Angle { .. }, _) => "driven angle",
-            (ConKind::Project { motion: None, .. }, _) => "normal offset",
-            (ConKind::Project { .. }, _) => "driven displacement",
-            (ConKind::FloatNode { .. }, 0) => "node x",
-            (ConKind::FloatNode { .. }, 1) => "node y",
-            (ConKind::FloatNode { .. }, _) => "node angle",
-        };
-        format!("{} ({eq})", self.name)
-    }
-}
-
-pub(crate) enum ForceEl {
-    Spring {
-        name: String,
-        i: usize,
-        si: Vector2<f64>,
-        j: usize,
-        sj: Vector2<f64>,
-        k: f64,
-        c: f64,
-        l0: f64,
-    },
-    RotSpring {
-        name: String,
-        i: usize,
-        j: usize,
-        k: f64,
-        c: f64,
-        angle0: f64,
-    },
-    Force {
-        name: String,
-        i: usize,
-        si: Vector2<f64>,
-        f: ForceFn,
-    },
-    Torque {
-        name: String,
-        i: usize,
-        f: TorqueFn,
-    },
-    PairTorque {
-        name: String,
-        i: usize,
-        j: usize,
-        f: PairTorqueFn,
-    },
-}
-
-impl ForceEl {
-    fn name(&self) -> &str {
-        match self {
-            ForceEl::Spring { name, .. }
-            | ForceEl::RotSpring { name, .. }
-            | ForceEl::Force { name, .. }
-            | ForceEl::Torque { name, .. }
-            | ForceEl::PairTorque { name, .. } => name,
-        }
-    }
-}
 
 /// Energies at one state, J.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -277,7 +71,7 @@ pub struct Model {
     pub(crate) frames: Vec<Frame>,
     pub(crate) points: Vec<(String, usize, Vector2<f64>)>,
     pub(crate) cons: Vec<Con>,
-    pub(crate) motions: Vec<Motion>,
+    pub(crate) motions: Vec<TimeFn>,
     pub(crate) forces: Vec<ForceEl>,
     pub(crate) clearances: Vec<Clearance>,
     pub(crate) gravity: Vector2<f64>,
@@ -303,71 +97,22 @@ pub struct Model {
     pub(crate) p_diss: f64,
 }
 
-#[inline]
-pub(crate) fn perp(v: Vector2<f64>) -> Vector2<f64> {
-    Vector2::new(-v.y, v.x)
-}
-
-#[inline]
-pub(crate) fn rot(th: f64, s: Vector2<f64>) -> Vector2<f64> {
-    let (sn, c) = th.sin_cos();
-    Vector2::new(c * s.x - sn * s.y, sn * s.x + c * s.y)
-}
-
-#[inline]
-fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
-/// A frame that joints and forces attach to: a rigid body (columns 3k..3k+3 of q) or a beam
-/// node (its free DOF columns; a constrained DOF stays 0), with the reference position `base`
-/// added to the displacement.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Frame {
-    pub(crate) cols: [Option<usize>; 3],
-    pub(crate) base: Vector2<f64>,
-}
-
-impl Frame {
-    pub(crate) fn rigid(k: usize) -> Self {
-        Frame {
-            cols: [Some(3 * k), Some(3 * k + 1), Some(3 * k + 2)],
-            base: Vector2::zeros(),
-        }
-    }
-}
-
-/// Position, angle, velocity and angular velocity of frame k (the ground is fixed at 0). For a
-/// beam node the angle is the node rotation (small-rotation frame).
-#[inline]
-pub(crate) fn body_state(frames: &[Frame], k: usize, q: &[f64], qd: &[f64]) -> BodyState {
-    if k == GROUND_ID {
-        return BodyState::default();
-    }
-    let f = &frames[k];
-    let v = |x: &[f64], d: usize| f.cols[d].map_or(0.0, |c| x[c]);
-    BodyState::new(
-        f.base + Vector2::new(v(q, 0), v(q, 1)),
-        v(q, 2),
-        Vector2::new(v(qd, 0), v(qd, 1)),
-        v(qd, 2),
-    )
-}
-
 impl Model {
-    #[allow(clippy::too_many_arguments)]
-    pub(crate) fn assemble(
-        bodies: Vec<(String, RigidBody)>,
-        beams: Vec<FlexBeam>,
-        floating: Vec<FloatingBody>,
-        frames: Vec<Frame>,
-        points: Vec<(String, usize, Vector2<f64>)>,
-        mut cons: Vec<Con>,
-        motions: Vec<Motion>,
-        forces: Vec<ForceEl>,
-        mut clearances: Vec<Clearance>,
-        gravity: Vector2<f64>,
-    ) -> Result<Self, MbdError> {
+    /// The runtime model from the compiled elements (rows, coordinates, contact memory and
+    /// the preallocated workspace).
+    pub(crate) fn assemble(c: Compiler, gravity: Vector2<f64>) -> Result<Self, MbdError> {
+        let Compiler {
+            bodies,
+            beams,
+            floating,
+            frames,
+            point_list: points,
+            mut cons,
+            motions,
+            forces,
+            mut clearances,
+            ..
+        } = c;
         let mut m = 0;
         for c in cons.iter_mut() {
             c.row = m;
@@ -636,63 +381,7 @@ impl Model {
         let qf = &mut self.qf;
         let mut p_diss = 0.0;
         for f in &self.forces {
-            match f {
-                ForceEl::Spring {
-                    i,
-                    si,
-                    j,
-                    sj,
-                    k,
-                    c,
-                    l0,
-                    ..
-                } => {
-                    let bi = body_state(&self.frames, *i, q, qd);
-                    let bj = body_state(&self.frames, *j, q, qd);
-                    let (ai, aj) = (bi.rotate(*si), bj.rotate(*sj));
-                    let d = bj.position + aj - bi.position - ai;
-                    let l = d.norm();
-                    if l <= f64::MIN_POSITIVE {
-                        continue;
-                    }
-                    let u = d / l;
-                    let vrel = bj.velocity + bj.angular_velocity * perp(aj)
-                        - bi.velocity
-                        - bi.angular_velocity * perp(ai);
-                    let ldot = u.dot(&vrel);
-                    let tension = k * (l - l0) + c * ldot;
-                    p_diss += c * ldot * ldot;
-                    add_force(&self.frames, qf, *i, ai, tension * u);
-                    add_force(&self.frames, qf, *j, aj, -tension * u);
-                }
-                ForceEl::RotSpring {
-                    i, j, k, c, angle0, ..
-                } => {
-                    let bi = body_state(&self.frames, *i, q, qd);
-                    let bj = body_state(&self.frames, *j, q, qd);
-                    let wrel = bj.angular_velocity - bi.angular_velocity;
-                    let tau = -k * (bj.angle - bi.angle - angle0) - c * wrel;
-                    p_diss += c * wrel * wrel;
-                    add_torque(&self.frames, qf, *j, tau);
-                    add_torque(&self.frames, qf, *i, -tau);
-                }
-                ForceEl::Force { i, si, f, .. } => {
-                    let bi = body_state(&self.frames, *i, q, qd);
-                    let force = f(t, &bi);
-                    add_force(&self.frames, qf, *i, bi.rotate(*si), force);
-                }
-                ForceEl::Torque { i, f, .. } => {
-                    let bi = body_state(&self.frames, *i, q, qd);
-                    add_torque(&self.frames, qf, *i, f(t, &bi));
-                }
-                ForceEl::PairTorque { i, j, f, .. } => {
-                    let bi = body_state(&self.frames, *i, q, qd);
-                    let bj = body_state(&self.frames, *j, q, qd);
-                    let tau = f(t, &bi, &bj);
-                    add_torque(&self.frames, qf, *j, tau);
-                    add_torque(&self.frames, qf, *i, -tau);
-                }
-            }
+            p_diss += f.eval(&self.frames, t, q, qd, qf);
         }
         for (k, cl) in self.clearances.iter_mut().enumerate() {
             let bi = body_state(&self.frames, cl.i, q, qd);
@@ -944,38 +633,6 @@ fn guide_ref<'a>(
     match b {
         GuideBeam::Fixed(k) => GuideRef::Fixed(&beams[k]),
         GuideBeam::Floating(k) => GuideRef::Floating(&floating[k]),
-    }
-}
-
-#[inline]
-fn put(frames: &[Frame], phiq: &mut [f64], n: usize, r: usize, k: usize, v: [f64; 3]) {
-    if k != GROUND_ID {
-        for (c, vd) in frames[k].cols.iter().zip(v) {
-            if let Some(c) = c {
-                phiq[r * n + c] += vd;
-            }
-        }
-    }
-}
-
-#[inline]
-fn add_force(frames: &[Frame], qf: &mut [f64], k: usize, arm: Vector2<f64>, f: Vector2<f64>) {
-    add_gen(frames, qf, k, [f.x, f.y, cross(arm, f)]);
-}
-
-#[inline]
-fn add_torque(frames: &[Frame], qf: &mut [f64], k: usize, tau: f64) {
-    add_gen(frames, qf, k, [0.0, 0.0, tau]);
-}
-
-#[inline]
-fn add_gen(frames: &[Frame], qf: &mut [f64], k: usize, g: [f64; 3]) {
-    if k != GROUND_ID {
-        for (c, gd) in frames[k].cols.iter().zip(g) {
-            if let Some(c) = c {
-                qf[*c] += gd;
-            }
-        }
     }
 }
 

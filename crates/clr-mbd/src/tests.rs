@@ -3,7 +3,42 @@
 
 use approx::assert_relative_eq;
 
-use crate::{MbdError, ModelBuilder, Motion, RigidBody, SimOptions, SolverKind};
+use crate::desc::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
+use crate::{BeamMesh, MbdError, ModelBuilder, Motion, RigidBody, SimOptions, SolverKind, TimeFn};
+
+/// clr-beam's `Material::steel()` as data (E = 207 GPa, ρ = 7800 kg/m³, ν = 0.3).
+fn steel() -> BeamMaterial {
+    let m = clr_beam::Material::steel();
+    BeamMaterial {
+        youngs_modulus: m.youngs_modulus,
+        density: m.density,
+        poisson_ratio: m.poisson_ratio,
+    }
+}
+
+/// A straight beam from the origin to (`length`, 0) m of `elements` elements of `material`, with
+/// a `width` × `depth` (m) rectangular section, clamped at node 0; no damping, consistent mass.
+fn cantilever(
+    length: f64,
+    elements: usize,
+    material: BeamMaterial,
+    width: f64,
+    depth: f64,
+) -> BeamMesh {
+    BeamMesh {
+        start: [0.0, 0.0],
+        end: [length, 0.0],
+        elements,
+        material,
+        section: SectionDesc::Rectangular { width, depth },
+        supports: vec![SupportDesc {
+            node: 0,
+            kind: SupportKind::Clamped,
+        }],
+        rayleigh: [0.0, 0.0],
+        mass: MassKindDesc::Consistent,
+    }
+}
 
 /// A model exercising every primitive constraint (coincide, angle, project with and without a
 /// motion) on bodies away from the origin.
@@ -244,8 +279,8 @@ fn add_thrown_journal(
             crate::RevoluteClearanceSpec {
                 bearing_radius: jb.r_bearing,
                 journal_radius: jb.r_journal,
-                normal,
-                friction,
+                normal: normal.into(),
+                friction: friction.into(),
             },
         );
 }
@@ -313,8 +348,8 @@ fn translational_clearance_flat_impact_restitution() {
                     slider_length: 0.05,
                     slider_height: 0.02,
                     slider_angle: 0.0,
-                    normal: law,
-                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+                    normal: law.into(),
+                    friction: FrictionLaw::coulomb(0.0, 1.0).unwrap().into(),
                 },
             );
         let mut model = b.build().unwrap();
@@ -353,10 +388,9 @@ fn translational_clearance_flat_impact_restitution() {
 /// constant load, F·u(t).
 #[test]
 fn flexible_beam_step_load_matches_modal_superposition() {
-    use clr_beam::{BeamModel, Material, Section, Support};
-    let sec = Section::rectangular(0.02, 0.01).unwrap();
-    let mut beam = BeamModel::straight([0.0, 0.0], [1.0, 0.0], 6, Material::steel(), sec).unwrap();
-    beam.support(0, Support::Clamped).unwrap();
+    let sec = clr_beam::Section::rectangular(0.02, 0.01).unwrap();
+    let mesh = cantilever(1.0, 6, steel(), 0.02, 0.01);
+    let beam = mesh.build("beam").unwrap();
     let p = -100.0;
     let tip = 3 * 6 + 1;
     let modes = beam.modes(18).unwrap();
@@ -371,8 +405,16 @@ fn flexible_beam_step_load_matches_modal_superposition() {
     };
     let u_static = p / (3.0 * 207e9 * sec.second_moment);
     let mut b = ModelBuilder::new();
-    b.flexible_beam("beam", beam)
-        .beam_nodal_load("P", "beam", 6, move |_| [0.0, p, 0.0]);
+    b.flexible_beam("beam", mesh).nodal_load(
+        "P",
+        "beam",
+        6,
+        [
+            TimeFn::constant(0.0),
+            TimeFn::constant(p),
+            TimeFn::constant(0.0),
+        ],
+    );
     let mut model = b.build().unwrap();
     assert_eq!(model.n_coordinates(), 18);
     let res = model
@@ -399,10 +441,13 @@ fn applied_force_and_torque_closed_form() {
     let (m, i, f, tau) = (2.0, 0.5, 3.0, 0.7);
     let mut b = ModelBuilder::new();
     b.body("a", RigidBody::new(m, i).at(1.0, 0.0, 0.0))
-        .applied_force("F", ("a", [0.0, 0.0]), move |_, _| {
-            nalgebra::Vector2::new(f, 0.0)
-        })
-        .applied_torque("T", "a", move |_, _| tau);
+        .force(
+            "F",
+            ("a", [0.0, 0.0]),
+            TimeFn::constant(f),
+            TimeFn::constant(0.0),
+        )
+        .torque("T", "a", TimeFn::constant(tau));
     let mut model = b.build().unwrap();
     let res = model
         .simulate(&SimOptions::span(0.0, 2.0, 4).tolerances(1e-10, 1e-12))
@@ -497,10 +542,7 @@ fn projection_keeps_constraints() {
 /// Gravity, a 0.5 m steel beam (two elements) clamped at the origin, and a 0.5 kg, 0.2 m bob
 /// pinned to its tip.
 fn add_pendulum_on_beam(b: &mut ModelBuilder) {
-    use clr_beam::{BeamModel, Material, Section, Support};
-    let sec = Section::rectangular(0.03, 0.02).unwrap();
-    let mut beam = BeamModel::straight([0.0, 0.0], [0.5, 0.0], 2, Material::steel(), sec).unwrap();
-    beam.support(0, Support::Clamped).unwrap();
+    let beam = cantilever(0.5, 2, steel(), 0.03, 0.02);
     b.gravity(0.0, -9.81)
         .flexible_beam("beam", beam)
         .beam_node_point("tip", "beam", 2)
@@ -541,12 +583,8 @@ fn pendulum_on_flexible_beam_conserves_energy() {
 /// results, bit for bit.
 #[test]
 fn beam_node_anchor_forms_agree() {
-    use clr_beam::{BeamModel, Material, Section, Support};
     let run = |named: bool| {
-        let sec = Section::rectangular(0.03, 0.02).unwrap();
-        let mut beam =
-            BeamModel::straight([0.0, 0.0], [0.5, 0.0], 2, Material::steel(), sec).unwrap();
-        beam.support(0, Support::Clamped).unwrap();
+        let beam = cantilever(0.5, 2, steel(), 0.03, 0.02);
         let mut b = ModelBuilder::new();
         b.gravity(0.0, -9.81)
             .flexible_beam("beam", beam)
@@ -572,12 +610,10 @@ fn beam_node_anchor_forms_agree() {
 /// and the slider rebounds.
 #[test]
 fn slider_on_flexible_guide_conserves_energy() {
-    use clr_beam::{BeamModel, Face, Material, Section, Support};
+    use clr_beam::Face;
     use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, NormalLaw};
     let depth = 0.01;
-    let sec = Section::rectangular(0.02, depth).unwrap();
-    let mut beam = BeamModel::straight([0.0, 0.0], [0.5, 0.0], 4, Material::steel(), sec).unwrap();
-    beam.support(0, Support::Clamped).unwrap();
+    let beam = cantilever(0.5, 4, steel(), 0.02, depth);
     let law = NormalLaw::new(ElasticLaw::hertz(1e9).unwrap(), DampingFactor::None, 1.0).unwrap();
     let (sl, sh) = (0.04, 0.02);
     let mut b = ModelBuilder::new();
@@ -600,9 +636,9 @@ fn slider_on_flexible_guide_conserves_energy() {
                 slider_angle: 0.0,
                 face_points: 3,
                 guide_samples: 0,
-                normal: law,
+                normal: law.into(),
                 area_normal: None,
-                friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+                friction: FrictionLaw::coulomb(0.0, 1.0).unwrap().into(),
             },
         );
     let mut model = b.build().unwrap();
@@ -637,12 +673,10 @@ fn slider_on_flexible_guide_conserves_energy() {
 /// energy separates the two (a regression check on the continuity, not a closed form).
 #[test]
 fn slider_on_flexible_guide_area_law_conserves_energy() {
-    use clr_beam::{BeamModel, Face, Material, Section, Support};
+    use clr_beam::Face;
     use clr_contact::{FrictionLaw, GuideFace, NormalLaw};
     let depth = 0.03;
-    let sec = Section::rectangular(0.02, depth).unwrap();
-    let mut beam = BeamModel::straight([0.0, 0.0], [0.5, 0.0], 4, Material::steel(), sec).unwrap();
-    beam.support(0, Support::Clamped).unwrap();
+    let beam = cantilever(0.5, 4, steel(), 0.02, depth);
     let steel = clr_contact::Material::new(207e9, 0.3).unwrap();
     let face = GuideFace {
         slider: steel,
@@ -673,9 +707,9 @@ fn slider_on_flexible_guide_area_law_conserves_energy() {
                 slider_angle: 0.0,
                 face_points: 3,
                 guide_samples: 0,
-                normal: line,
-                area_normal: Some(area),
-                friction: FrictionLaw::coulomb(0.0, 1.0).unwrap(),
+                normal: line.into(),
+                area_normal: Some(area.into()),
+                friction: FrictionLaw::coulomb(0.0, 1.0).unwrap().into(),
             },
         );
     let mut model = b.build().unwrap();
@@ -700,20 +734,26 @@ fn slider_on_flexible_guide_area_law_conserves_energy() {
 /// Shared pieces of the floating-guide tests: a steel cantilever (0.5 m, 4 elements, section
 /// 0.02 × 0.01 m, clamped at node 0), a flat slider pad and the Flores line law of its edge.
 mod floating_guide {
-    use crate::{FlexibleGuideSpec, ModelBuilder, RigidBody, SimOptions, SolverKind};
-    use clr_beam::{BeamModel, Face, Material, Section, Support};
+    use super::cantilever;
+    use crate::desc::BeamMaterial;
+    use crate::{
+        BeamMesh, FlexibleGuideSpec, ModelBuilder, Reduction, RigidBody, SimOptions, SolverKind,
+        TimeFn,
+    };
+    use clr_beam::Face;
     use clr_contact::{FrictionLaw, GuideFace, NormalLaw};
 
     const DEPTH: f64 = 0.01;
     const PAD: [f64; 2] = [0.04, 0.01];
 
     /// The cantilever with Young's modulus `e` (Pa), steel density.
-    fn beam(e: f64) -> BeamModel {
-        let sec = Section::rectangular(0.02, DEPTH).unwrap();
-        let mat = Material::new(e, 7850.0, 0.3).unwrap();
-        let mut b = BeamModel::straight([0.0, 0.0], [0.5, 0.0], 4, mat, sec).unwrap();
-        b.support(0, Support::Clamped).unwrap();
-        b
+    fn beam(e: f64) -> BeamMesh {
+        let mat = BeamMaterial {
+            youngs_modulus: e,
+            density: 7850.0,
+            poisson_ratio: 0.3,
+        };
+        cantilever(0.5, 4, mat, 0.02, DEPTH)
     }
 
     /// Hertz law K δ^1.5 (K in N/m^1.5) with a damping factor and restitution c_e.
@@ -741,9 +781,9 @@ mod floating_guide {
             slider_angle: 0.0,
             face_points: 3,
             guide_samples: 0,
-            normal,
+            normal: normal.into(),
             area_normal: None,
-            friction,
+            friction: friction.into(),
         }
     }
 
@@ -807,7 +847,7 @@ mod floating_guide {
                 }
                 Some(r) => {
                     let bm = beam(207e9);
-                    let red = bm.modal_truncation(r).unwrap();
+                    let red = Reduction::Modal { modes: r };
                     b.floating_beam("guide", bm, red, [0.0; 3], [0.0; 3]).fixed(
                         "clamp",
                         ("ground", [0.0, 0.0]),
@@ -823,9 +863,12 @@ mod floating_guide {
                 law(0.8),
                 FrictionLaw::coulomb(0.1, 1e-3).unwrap(),
             );
-            b.applied_force("press", ("slider", [0.0, 0.0]), |_, _| {
-                nalgebra::Vector2::new(0.0, -20.0)
-            });
+            b.force(
+                "press",
+                ("slider", [0.0, 0.0]),
+                TimeFn::constant(0.0),
+                TimeFn::constant(-20.0),
+            );
             let mut model = b.build().unwrap();
             let res = model.simulate(&dopri(2e-3, 40, 1e-9, 1e-12)).unwrap();
             let y = res.column("slider.y").unwrap();
@@ -880,7 +923,7 @@ mod floating_guide {
         let omega = 2.0;
         let delta0 = 1e-4;
         let bm = beam(2e12);
-        let red = bm.modal_truncation(4).unwrap();
+        let red = Reduction::Modal { modes: 4 };
         // a soft Hertz law (K = 1e7 N/m^1.5, 10 N per point) keeps the explicit step large
         let normal = hertz(1e7, clr_contact::DampingFactor::Flores, 0.5);
         // no friction: in a turning frame the pad point and the guide point, δ₀ apart, have the
@@ -939,7 +982,7 @@ mod floating_guide {
     #[test]
     fn free_floating_guide_hit_by_slider_conserves_energy() {
         let bm = beam(207e9);
-        let red = bm.modal_truncation(4).unwrap();
+        let red = Reduction::Modal { modes: 4 };
         let normal = hertz(1e9, clr_contact::DampingFactor::None, 1.0);
         let mut b = ModelBuilder::new();
         b.floating_beam("guide", bm, red, [0.0; 3], [0.0; 3]);

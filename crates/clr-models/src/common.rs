@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
-use clr_mbd::{MbdError, Model, Results, SimOptions, SolverKind};
+use clr_mbd::desc::MaterialDesc;
+use clr_mbd::{FrictionLawDesc, MbdError, Model, NormalLawDesc, Results, SimOptions, SolverKind};
 use serde::{Deserialize, Serialize};
 
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
@@ -88,6 +89,38 @@ pub enum FrictionParams {
 }
 
 impl FrictionParams {
+    /// The law as model-file data (by name with its parameters).
+    pub fn desc(&self) -> FrictionLawDesc {
+        let mut d = FrictionLawDesc::none();
+        match *self {
+            FrictionParams::None => {}
+            FrictionParams::Coulomb { mu, v_reg } => {
+                d.law = "coulomb".into();
+                d.mu = Some(mu);
+                d.v_reg = Some(v_reg);
+            }
+            FrictionParams::Ambrosio { mu, v0, v1 } => {
+                d.law = "ambrosio".into();
+                d.mu = Some(mu);
+                d.v0 = Some(v0);
+                d.v1 = Some(v1);
+            }
+            FrictionParams::Stribeck {
+                mu_s,
+                mu_d,
+                v_s,
+                v_d,
+            } => {
+                d.law = "stribeck".into();
+                d.mu_s = Some(mu_s);
+                d.mu_d = Some(mu_d);
+                d.v_s = Some(v_s);
+                d.v_d = Some(v_d);
+            }
+        }
+        d
+    }
+
     /// The clr-contact law.
     ///
     /// # Errors
@@ -132,6 +165,61 @@ pub fn preset_law(
         length,
     };
     NormalLaw::preset(name, &jb, restitution).map_err(|e| format!("normal law: {e}"))
+}
+
+/// A flap-paper preset as model-file data: the radii come from the clearance joint, the
+/// material (`youngs_modulus` Pa, `poisson_ratio`) is the same for bearing and journal.
+pub fn preset_desc(
+    name: &str,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    length: f64,
+    restitution: f64,
+) -> NormalLawDesc {
+    let mat = MaterialDesc {
+        youngs_modulus,
+        poisson_ratio,
+    };
+    NormalLawDesc {
+        law: "preset".into(),
+        preset: Some(name.into()),
+        restitution,
+        length: Some(length),
+        bearing_material: Some(mat),
+        journal_material: Some(mat),
+        ..NormalLawDesc::default()
+    }
+}
+
+/// The sliding-guide laws as model-file data: the edge line law (`flores-line`) and the area law
+/// (`area`) of a slider face on a guide of the same material.
+pub fn guide_law_descs(
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    edge_radius: f64,
+    width: f64,
+    layer_depth: f64,
+    restitution: f64,
+) -> (NormalLawDesc, NormalLawDesc) {
+    let mat = MaterialDesc {
+        youngs_modulus,
+        poisson_ratio,
+    };
+    let line = NormalLawDesc {
+        law: "flores-line".into(),
+        restitution,
+        slider_material: Some(mat),
+        guide_material: Some(mat),
+        edge_radius: Some(edge_radius),
+        width: Some(width),
+        ..NormalLawDesc::default()
+    };
+    let area = NormalLawDesc {
+        law: "area".into(),
+        layer_depth: Some(layer_depth),
+        ..line.clone()
+    };
+    (line, area)
 }
 
 /// Lankarani–Nikravesh law with a given Hertz constant K (N/m^1.5):

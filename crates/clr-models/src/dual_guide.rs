@@ -18,10 +18,9 @@
 
 use std::path::Path;
 
-use clr_beam::{BeamModel, Face, Material, ReducedModel, Section, Support};
-use clr_contact::{GuideFace, NormalLaw};
-use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Motion, Results, RigidBody};
-use nalgebra::Vector2;
+use clr_beam::{BeamModel, Face, ReducedModel};
+use clr_mbd::desc::{BeamMaterial, BeamMesh, SectionDesc, SupportDesc, SupportKind};
+use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Reduction, Results, RigidBody, TimeFn};
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, FrictionParams, Solver};
@@ -275,11 +274,6 @@ impl DualGuideParams {
             + self.carriage2_mass
     }
 
-    fn material(&self, model: &str) -> Result<Material, ModelsError> {
-        Material::new(self.youngs_modulus, self.density, self.poisson_ratio)
-            .map_err(|e| common::invalid(model, e.to_string()))
-    }
-
     /// A clamped-free straight guide from `a` to `b` of depth `h` and `elements` elements.
     fn guide_beam(
         &self,
@@ -288,14 +282,31 @@ impl DualGuideParams {
         b: [f64; 2],
         h: f64,
         elements: usize,
-    ) -> Result<BeamModel, ModelsError> {
-        let inv = |e: clr_beam::BeamError| common::invalid(model, e.to_string());
-        let sec = Section::rectangular(self.guide_width, h).map_err(inv)?;
-        let mut beam =
-            BeamModel::straight(a, b, elements, self.material(model)?, sec).map_err(inv)?;
-        beam.support(0, Support::Clamped).map_err(inv)?;
-        beam.set_rayleigh(self.rayleigh_alpha, 0.0);
-        Ok(beam)
+    ) -> Result<BeamMesh, ModelsError> {
+        let mesh = BeamMesh {
+            start: a,
+            end: b,
+            elements,
+            material: BeamMaterial {
+                youngs_modulus: self.youngs_modulus,
+                density: self.density,
+                poisson_ratio: self.poisson_ratio,
+            },
+            section: SectionDesc::Rectangular {
+                width: self.guide_width,
+                depth: h,
+            },
+            supports: vec![SupportDesc {
+                node: 0,
+                kind: SupportKind::Clamped,
+            }],
+            rayleigh: [self.rayleigh_alpha, 0.0],
+            mass: Default::default(),
+        };
+        // built once here for the parameter-level message (the model builds it again)
+        mesh.build("guide")
+            .map_err(|e| common::invalid(model, e.message))?;
+        Ok(mesh)
     }
 
     /// The stage-2 guide in its own frame (root at the origin, along +x) and its cantilever
@@ -304,17 +315,25 @@ impl DualGuideParams {
     /// # Errors
     /// Invalid parameters.
     pub fn stage2_guide(&self, model: &str) -> Result<(BeamModel, ReducedModel), ModelsError> {
-        let beam = self.guide_beam(
+        let mesh = self.stage2_mesh(model)?;
+        let beam = mesh
+            .build("stage-2 guide")
+            .map_err(|e| common::invalid(model, e.message))?;
+        let red = beam
+            .modal_truncation(self.modes2)
+            .map_err(|e| common::invalid(model, e.to_string()))?;
+        Ok((beam, red))
+    }
+
+    /// The stage-2 guide mesh in its own frame (root at the origin, along +x).
+    fn stage2_mesh(&self, model: &str) -> Result<BeamMesh, ModelsError> {
+        self.guide_beam(
             model,
             [0.0, 0.0],
             [self.guide2_length, 0.0],
             self.guide2_depth,
             self.elements2,
-        )?;
-        let red = beam
-            .modal_truncation(self.modes2)
-            .map_err(|e| common::invalid(model, e.to_string()))?;
-        Ok((beam, red))
+        )
     }
 
     /// y of each guide of a stage: ±d/2 (dual) or 0 (single), with its name suffix.
@@ -347,19 +366,19 @@ impl DualGuideParams {
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         let inv = |m: String| common::invalid(model, m);
-        let cm = clr_contact::Material::new(self.youngs_modulus, self.poisson_ratio)
-            .map_err(|e| inv(e.to_string()))?;
-        let face = GuideFace {
-            slider: cm,
-            guide: cm,
-            edge_radius: self.edge_radius,
-            width: self.guide_width,
-            layer_depth: self.layer_depth,
-        };
-        let line =
-            NormalLaw::flores_line(&face, self.restitution).map_err(|e| inv(e.to_string()))?;
-        let area = NormalLaw::area(&face, self.restitution, 0.0).map_err(|e| inv(e.to_string()))?;
-        let friction = self.friction.law().map_err(inv)?;
+        let (line, area) = common::guide_law_descs(
+            self.youngs_modulus,
+            self.poisson_ratio,
+            self.edge_radius,
+            self.guide_width,
+            self.layer_depth,
+            self.restitution,
+        );
+        line.build("normal", None).map_err(|e| inv(e.message))?;
+        area.build("area_normal", None)
+            .map_err(|e| inv(e.message))?;
+        self.friction.law().map_err(inv)?;
+        let friction = self.friction.desc();
         let spec = |f: Face| FlexibleGuideSpec {
             face: f,
             slider_length: self.slider_length,
@@ -367,9 +386,9 @@ impl DualGuideParams {
             slider_angle: 0.0,
             face_points: self.face_points,
             guide_samples: 0,
-            normal: line,
-            area_normal: Some(area),
-            friction,
+            normal: line.clone().into(),
+            area_normal: Some(area.clone().into()),
+            friction: friction.clone().into(),
         };
         let (c, hp, l) = (self.clearance, self.pad_height, self.slider_length);
         let rows = self.guide_rows();
@@ -380,8 +399,8 @@ impl DualGuideParams {
                 .at(x, 0.0, 0.0)
                 .moving(v, 0.0, 0.0)
         };
-        let motion = |x0: f64, v: f64, a: f64| {
-            Motion::new(move |t| [x0 + v * t + 0.5 * a * t * t, v + a * t, a])
+        let motion = |x0: f64, v: f64, a: f64| TimeFn::Polynomial {
+            coefficients: vec![x0, v, 0.5 * a],
         };
         let pads = |b: &mut ModelBuilder, stage: u8, guide: &str, y: f64, h: f64| {
             let off = 0.5 * h + c + 0.5 * hp;
@@ -439,12 +458,12 @@ impl DualGuideParams {
                 ),
             );
             for &(s, y) in &rows {
-                let (beam, red) = self.stage2_guide(model)?;
+                let mesh = self.stage2_mesh(model)?;
                 let g = format!("g2{s}");
                 b.floating_beam(
                     &g,
-                    beam,
-                    red,
+                    mesh,
+                    Reduction::Modal { modes: self.modes2 },
                     [self.start1, y, 0.0],
                     [self.speed1, 0.0, 0.0],
                 )
@@ -464,13 +483,14 @@ impl DualGuideParams {
             );
         }
         let load = self.lateral_load;
-        b.applied_force(
+        b.force(
             "load",
             (
                 self.loaded().0,
                 [self.load_offset, self.load_lateral_offset],
             ),
-            move |_, _| Vector2::new(0.0, -load),
+            TimeFn::constant(0.0),
+            TimeFn::constant(-load),
         );
         b.build().map_err(|e| common::build_error(model, e))
     }

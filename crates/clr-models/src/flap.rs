@@ -24,7 +24,7 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 
 use clr_beam::{BeamModel, Material, Section, Support};
-use clr_mbd::{Anchor, Model, ModelBuilder, Motion, Results, RevoluteClearanceSpec, RigidBody};
+use clr_mbd::{Anchor, Model, ModelBuilder, Results, RevoluteClearanceSpec, RigidBody, TimeFn};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -352,6 +352,32 @@ impl FlapParams {
         ]
     }
 
+    /// The actuator extension s0 + x(t) as data: a smooth step (fade-in over `ramp_time`) times
+    /// a harmonic of amplitude `actuator_amplitude` at `actuator_frequency` (the same function
+    /// as [`FlapParams::actuator`]).
+    pub fn actuator_motion(&self, s0: f64) -> TimeFn {
+        let w = 2.0 * PI * self.actuator_frequency;
+        let wave = TimeFn::harmonic(0.0, self.actuator_amplitude, w, 0.0);
+        let x = if self.ramp_time > 0.0 {
+            TimeFn::Product {
+                factors: vec![
+                    TimeFn::SmoothStep {
+                        from: 0.0,
+                        to: 1.0,
+                        start: 0.0,
+                        duration: self.ramp_time,
+                    },
+                    wave,
+                ],
+            }
+        } else {
+            wave
+        };
+        TimeFn::Sum {
+            terms: vec![TimeFn::constant(s0), x],
+        }
+    }
+
     /// Actuator period 1/f, s.
     pub fn period(&self) -> f64 {
         1.0 / self.actuator_frequency
@@ -537,7 +563,8 @@ impl FlapParams {
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
-        let friction = self.friction.law().map_err(|m| common::invalid(model, m))?;
+        self.friction.law().map_err(|m| common::invalid(model, m))?;
+        let friction = self.friction.desc();
         let [c0, o1, o2] = self.ground_points();
         let (a, b) = (self.lever_arm_actuator_distance, self.lever_arm_length);
         let (lr, lc, lp) = (
@@ -637,17 +664,13 @@ impl FlapParams {
                 [1.0, 0.0],
             )
             .revolute("O2", ("ground", o2), a_o2);
-        let p = self.clone();
         let s0 = self.actuator_length;
         m.drive_displacement(
             "x",
             ("cylinder", [-0.5 * lc, 0.0]),
             ("piston", [0.5 * lp, 0.0]),
             [1.0, 0.0],
-            Motion::new(move |t| {
-                let [x, v, acc] = p.actuator(t);
-                [s0 + x, v, acc]
-            }),
+            self.actuator_motion(s0),
         );
         // (name, bearing anchor, journal anchor)
         let joints: [JointSpec; 4] = [
@@ -659,7 +682,8 @@ impl FlapParams {
         for (k, (name, bi, bj)) in joints.into_iter().enumerate() {
             let cl = self.clearances[k];
             if cl > 0.0 {
-                let normal = common::preset_law(
+                // validated here for the parameter-level message; the model gets it as data
+                common::preset_law(
                     &self.normal_law,
                     self.youngs_modulus,
                     self.poisson_ratio,
@@ -669,6 +693,13 @@ impl FlapParams {
                     self.restitution,
                 )
                 .map_err(|m| common::invalid(model, m))?;
+                let normal = common::preset_desc(
+                    &self.normal_law,
+                    self.youngs_modulus,
+                    self.poisson_ratio,
+                    self.axial_length,
+                    self.restitution,
+                );
                 m.revolute_clearance(
                     name,
                     bi,
@@ -676,8 +707,8 @@ impl FlapParams {
                     RevoluteClearanceSpec {
                         bearing_radius: self.bearing_radius,
                         journal_radius: self.bearing_radius - cl,
-                        normal,
-                        friction,
+                        normal: normal.into(),
+                        friction: friction.clone().into(),
                     },
                 );
             } else {
@@ -685,7 +716,9 @@ impl FlapParams {
             }
         }
         let (m0, k) = (self.hinge_moment, self.hinge_stiffness);
-        m.applied_torque("hinge", hinge_body, move |_, s| -(m0 + k * (s.angle - th0)));
+        // hinge moment −(M0 + k(θ − θ0)): a constant torque plus a rotational spring to ground
+        m.torque("hinge", hinge_body, TimeFn::constant(-m0))
+            .rotational_spring_damper("hinge_stiffness", "ground", hinge_body, k, 0.0, th0);
         m.build().map_err(|e| common::build_error(model, e))
     }
 }

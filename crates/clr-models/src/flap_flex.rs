@@ -23,8 +23,9 @@
 use std::f64::consts::PI;
 use std::path::Path;
 
-use clr_beam::{BeamModel, ReducedModel, Support};
-use clr_mbd::{ModelBuilder, Results};
+use clr_beam::{BeamModel, ReducedModel};
+use clr_mbd::desc::{BeamMaterial, BeamMesh, SectionDesc, SupportDesc, SupportKind};
+use clr_mbd::{ModelBuilder, Reduction, Results};
 use nalgebra::DMatrix;
 
 use crate::common::{self, col};
@@ -48,6 +49,8 @@ pub struct FlexibleBody {
     pub part: FlexiblePart,
     /// Calibrated section depth and pinned–roller frequencies.
     pub calibration: Calibration,
+    /// The beam as model-file data (the mesh `beam` is built from).
+    pub mesh: BeamMesh,
     /// Beam along the body x axis from the reference node 0 (clamped), with Rayleigh damping.
     pub beam: BeamModel,
     /// Craig–Bampton reduction (interface nodes [`FlexibleBody::interface_nodes`]).
@@ -140,14 +143,36 @@ pub fn flexible_body(p: &FlapParams, k: usize) -> Result<FlexibleBody, String> {
     part.length = lengths[k];
     part.elements = ELEMENTS;
     let calibration = part.calibrate()?;
-    let mut beam = part.beam(calibration.depth)?;
-    let err = |e: clr_beam::BeamError| format!("{}: {e}", part.name);
-    beam.support(0, Support::Clamped).map_err(err)?;
-    beam.support(ELEMENTS, Support::Free).map_err(err)?;
-    beam.set_rayleigh(
-        0.0,
-        2.0 * p.flexible_damping_ratios[k] / (2.0 * PI * part.target_hz),
-    );
+    // the calibration beam (pinned–roller) re-supported as a cantilever from node 0
+    let support = |node, kind| SupportDesc { node, kind };
+    let mesh = BeamMesh {
+        start: [0.0, 0.0],
+        end: [part.length, 0.0],
+        elements: part.elements,
+        material: BeamMaterial {
+            youngs_modulus: part.youngs_modulus,
+            density: part.density,
+            poisson_ratio: 0.3,
+        },
+        section: SectionDesc::Rectangular {
+            width: part.width,
+            depth: calibration.depth,
+        },
+        supports: vec![
+            support(0, SupportKind::Pinned),
+            support(part.elements, SupportKind::RollerX),
+            support(0, SupportKind::Clamped),
+            support(part.elements, SupportKind::Free),
+        ],
+        rayleigh: [
+            0.0,
+            2.0 * p.flexible_damping_ratios[k] / (2.0 * PI * part.target_hz),
+        ],
+        mass: Default::default(),
+    };
+    let beam = mesh
+        .build(PARTS[k])
+        .map_err(|e| format!("{}: {}", part.name, e.message))?;
     let interface_nodes = if k == 0 {
         let n1 = (p.lever_arm_actuator_distance / p.lever_arm_length * ELEMENTS as f64).round();
         vec![n1 as usize, ELEMENTS]
@@ -160,6 +185,7 @@ pub fn flexible_body(p: &FlapParams, k: usize) -> Result<FlexibleBody, String> {
     Ok(FlexibleBody {
         part,
         calibration,
+        mesh,
         beam,
         reduced,
         interface_nodes,
@@ -181,8 +207,11 @@ pub fn add_part(
     let fb = flexible_body(p, k)?;
     m.floating_beam(
         PARTS[k],
-        fb.beam,
-        fb.reduced,
+        fb.mesh,
+        Reduction::CraigBampton {
+            interface_nodes: fb.interface_nodes,
+            modes: p.flexible_modes,
+        },
         [origin[0], origin[1], angle],
         [0.0; 3],
     );

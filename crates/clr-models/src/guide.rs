@@ -10,9 +10,9 @@
 
 use std::path::Path;
 
-use clr_beam::{BeamModel, Face, Material, Section, Support};
-use clr_contact::{GuideFace, NormalLaw};
-use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Motion, Results, RigidBody};
+use clr_beam::Face;
+use clr_mbd::desc::{BeamMaterial, BeamMesh, SectionDesc, SupportDesc, SupportKind};
+use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Results, RigidBody, TimeFn};
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
@@ -190,6 +190,45 @@ impl GuideParams {
         1.875_104_f64.powi(2) / (2.0 * std::f64::consts::PI) * (ei / (rho_a * l.powi(4))).sqrt()
     }
 
+    /// The guide rail as data: clamped at node 0; for the rigid guide every other node clamped
+    /// but the tip node pinned (clr-mbd needs at least one free beam coordinate; the tip rotation
+    /// only bends the last element, which the slider never reaches, checked in `validate`).
+    pub fn guide_mesh(&self) -> BeamMesh {
+        let mut supports = vec![SupportDesc {
+            node: 0,
+            kind: SupportKind::Clamped,
+        }];
+        if !self.elastic_guide {
+            for n in 1..=self.elements {
+                supports.push(SupportDesc {
+                    node: n,
+                    kind: if n == self.elements {
+                        SupportKind::Pinned
+                    } else {
+                        SupportKind::Clamped
+                    },
+                });
+            }
+        }
+        BeamMesh {
+            start: [0.0, 0.0],
+            end: [self.guide_length, 0.0],
+            elements: self.elements,
+            material: BeamMaterial {
+                youngs_modulus: self.youngs_modulus,
+                density: self.density,
+                poisson_ratio: self.poisson_ratio,
+            },
+            section: SectionDesc::Rectangular {
+                width: self.guide_width,
+                depth: self.guide_depth,
+            },
+            supports,
+            rayleigh: [self.rayleigh_alpha, 0.0],
+            mass: Default::default(),
+        }
+    }
+
     /// The multibody model: guide beam `guide` (x from 0 at the clamped root), slider `slider`
     /// centred on the guide axis, contact elements `upper` (slider's upper pad on the guide's
     /// upper face) and `lower`, actuator `actuator` (axial displacement driver), lateral load
@@ -200,47 +239,22 @@ impl GuideParams {
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         let inv = |m: String| common::invalid(model, m);
-        let mat = Material::new(self.youngs_modulus, self.density, self.poisson_ratio)
-            .map_err(|e| inv(e.to_string()))?;
-        let sec = Section::rectangular(self.guide_width, self.guide_depth)
-            .map_err(|e| inv(e.to_string()))?;
-        let mut beam = BeamModel::straight(
-            [0.0, 0.0],
-            [self.guide_length, 0.0],
-            self.elements,
-            mat,
-            sec,
-        )
-        .map_err(|e| inv(e.to_string()))?;
-        beam.support(0, Support::Clamped)
-            .map_err(|e| inv(e.to_string()))?;
-        if !self.elastic_guide {
-            // rigid guide: every node clamped except the tip node's rotation (clr-mbd needs at
-            // least one free beam coordinate); the tip rotation only bends the last element,
-            // which the slider never reaches (checked in `validate`)
-            for n in 1..=self.elements {
-                let s = if n == self.elements {
-                    Support::Pinned
-                } else {
-                    Support::Clamped
-                };
-                beam.support(n, s).map_err(|e| inv(e.to_string()))?;
-            }
-        }
-        beam.set_rayleigh(self.rayleigh_alpha, 0.0);
-        let cm = clr_contact::Material::new(self.youngs_modulus, self.poisson_ratio)
-            .map_err(|e| inv(e.to_string()))?;
-        let face = GuideFace {
-            slider: cm,
-            guide: cm,
-            edge_radius: self.edge_radius,
-            width: self.guide_width,
-            layer_depth: self.layer_depth,
-        };
-        let line =
-            NormalLaw::flores_line(&face, self.restitution).map_err(|e| inv(e.to_string()))?;
-        let area = NormalLaw::area(&face, self.restitution, 0.0).map_err(|e| inv(e.to_string()))?;
-        let friction = self.friction.law().map_err(inv)?;
+        let beam = self.guide_mesh();
+        // built here once for the parameter-level message (the model builds it again)
+        beam.build("guide").map_err(|e| inv(e.message))?;
+        let (line, area) = common::guide_law_descs(
+            self.youngs_modulus,
+            self.poisson_ratio,
+            self.edge_radius,
+            self.guide_width,
+            self.layer_depth,
+            self.restitution,
+        );
+        line.build("normal", None).map_err(|e| inv(e.message))?;
+        area.build("area_normal", None)
+            .map_err(|e| inv(e.message))?;
+        self.friction.law().map_err(inv)?;
+        let friction = self.friction.desc();
         let (l, hp, c) = (self.slider_length, self.pad_height, self.clearance);
         let off = 0.5 * self.guide_depth + c + 0.5 * hp;
         let height = 2.0 * off + hp;
@@ -254,9 +268,9 @@ impl GuideParams {
             slider_angle: 0.0,
             face_points: self.face_points,
             guide_samples: self.guide_samples,
-            normal: line,
-            area_normal: Some(area),
-            friction,
+            normal: line.clone().into(),
+            area_normal: Some(area.clone().into()),
+            friction: friction.clone().into(),
         };
         let load = self.lateral_load;
         let mut b = ModelBuilder::new();
@@ -274,11 +288,14 @@ impl GuideParams {
                 ("ground", [0.0, 0.0]),
                 ("slider", [0.0, 0.0]),
                 [1.0, 0.0],
-                Motion::linear(self.start, v),
+                TimeFn::linear(self.start, v),
             )
-            .applied_force("load", ("slider", [self.load_offset, 0.0]), move |_, _| {
-                Vector2::new(0.0, -load)
-            });
+            .force(
+                "load",
+                ("slider", [self.load_offset, 0.0]),
+                TimeFn::constant(0.0),
+                TimeFn::constant(-load),
+            );
         let k = self.lateral_support_stiffness;
         if k > 0.0 {
             b.applied_force("support", ("slider", [0.0, 0.0]), move |_, s| {
@@ -689,11 +706,12 @@ mod tests {
     fn first_frequency_matches_the_fe_guide() {
         // independent formulation: clr-beam's modal analysis of the same 8-element guide
         let p = GuideParams::default();
-        let mat = Material::new(p.youngs_modulus, p.density, p.poisson_ratio).unwrap();
-        let sec = Section::rectangular(p.guide_width, p.guide_depth).unwrap();
+        let mat = clr_beam::Material::new(p.youngs_modulus, p.density, p.poisson_ratio).unwrap();
+        let sec = clr_beam::Section::rectangular(p.guide_width, p.guide_depth).unwrap();
         let mut beam =
-            BeamModel::straight([0.0, 0.0], [p.guide_length, 0.0], p.elements, mat, sec).unwrap();
-        beam.support(0, Support::Clamped).unwrap();
+            clr_beam::BeamModel::straight([0.0, 0.0], [p.guide_length, 0.0], p.elements, mat, sec)
+                .unwrap();
+        beam.support(0, clr_beam::Support::Clamped).unwrap();
         let modes = beam.modes(1).unwrap();
         let f_fe = modes.frequencies_hz()[0];
         assert!(

@@ -18,7 +18,7 @@
 
 use std::path::Path;
 
-use clr_mbd::{Model, ModelBuilder, Results, RevoluteClearanceSpec, RigidBody};
+use clr_mbd::{Model, ModelBuilder, Results, RevoluteClearanceSpec, RigidBody, TimeFn};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
@@ -196,9 +196,12 @@ impl ManipulatorParams {
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
-        let normal = common::ln_law(self.contact_stiffness, self.restitution)
+        // validated here for the parameter-level message; the model gets the laws as data
+        common::ln_law(self.contact_stiffness, self.restitution)
             .map_err(|m| common::invalid(model, m))?;
-        let friction = self.friction.law().map_err(|m| common::invalid(model, m))?;
+        self.friction.law().map_err(|m| common::invalid(model, m))?;
+        let normal = clr_mbd::NormalLawDesc::hertz(self.contact_stiffness, self.restitution);
+        let friction = self.friction.desc();
         let (l, a) = (self.link_length, self.mount_offset);
         let mut b = ModelBuilder::new();
         b.clearance_force_application(self.force_application.into());
@@ -253,8 +256,8 @@ impl ManipulatorParams {
                         RevoluteClearanceSpec {
                             bearing_radius: self.bearing_radius,
                             journal_radius: self.bearing_radius - c,
-                            normal,
-                            friction,
+                            normal: normal.clone().into(),
+                            friction: friction.clone().into(),
                         },
                     );
                 } else {
@@ -263,8 +266,8 @@ impl ManipulatorParams {
             }
             let w = self.torque_frequency;
             let (a_sh, a_el) = (self.torque_amplitudes[k], self.torque_amplitudes[k + 1]);
-            b.torque_between(t_sh, "base", inner, move |t, _, _| a_sh * (w * t).sin())
-                .torque_between(t_el, inner, outer, move |t, _, _| a_el * (w * t).sin());
+            b.motor_torque(t_sh, "base", inner, TimeFn::harmonic(0.0, a_sh, w, 0.0))
+                .motor_torque(t_el, inner, outer, TimeFn::harmonic(0.0, a_el, w, 0.0));
         }
         b.build().map_err(|e| common::build_error(model, e))
     }

@@ -7,7 +7,7 @@
 //! The crank turns at constant speed from θ = 0 (all links along +x); the bearing is on the
 //! slider at its centre, the journal at the rod end, centred in the bearing at t = 0.
 
-use clr_mbd::{Model, ModelBuilder, Motion, RevoluteClearanceSpec, RigidBody};
+use clr_mbd::{Model, ModelBuilder, RevoluteClearanceSpec, RigidBody, TimeFn};
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, non_negative, positive, FrictionParams, Solver};
@@ -182,7 +182,8 @@ impl SliderCrankParams {
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
-        let normal = common::preset_law(
+        // validated here for the parameter-level message; the model gets the law as data
+        common::preset_law(
             &self.normal_law,
             self.youngs_modulus,
             self.poisson_ratio,
@@ -192,7 +193,16 @@ impl SliderCrankParams {
             self.restitution,
         )
         .map_err(|m| common::invalid(model, m))?;
-        let friction = self.friction.law().map_err(|m| common::invalid(model, m))?;
+        self.friction.law().map_err(|m| common::invalid(model, m))?;
+        let normal = common::preset_desc(
+            &self.normal_law,
+            self.youngs_modulus,
+            self.poisson_ratio,
+            self.axial_length,
+            self.restitution,
+        )
+        .into();
+        let friction = self.friction.desc().into();
         let (r, l) = (self.crank_length, self.rod_length);
         let w = self.omega();
         let mut b = ModelBuilder::new();
@@ -223,7 +233,7 @@ impl SliderCrankParams {
             ("slider", [0.0, 0.0]),
             [1.0, 0.0],
         )
-        .drive_angle("motor", "crank", Motion::linear(0.0, w))
+        .drive_angle("motor", "crank", TimeFn::linear(0.0, w))
         .revolute_clearance(
             "B",
             ("slider", [0.0, 0.0]),

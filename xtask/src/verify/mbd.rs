@@ -6,6 +6,7 @@
 use clr_contact::{FrictionLaw, JournalBearing, Material, NormalLaw};
 use clr_mbd::{
     Model, ModelBuilder, Motion, Results, RevoluteClearanceSpec, RigidBody, SimOptions, SolverKind,
+    TimeFn,
 };
 
 use super::Filter;
@@ -385,8 +386,8 @@ fn clearance_slider_crank(
         RevoluteClearanceSpec {
             bearing_radius: rb,
             journal_radius: rj,
-            normal,
-            friction,
+            normal: normal.into(),
+            friction: friction.into(),
         },
     );
     b.build().map_err(|e| e.to_string())
@@ -484,8 +485,10 @@ fn clearance_pendulum() -> Result<Model, String> {
             RevoluteClearanceSpec {
                 bearing_radius: R_BEARING,
                 journal_radius: R_JOURNAL,
-                normal,
-                friction: FrictionLaw::coulomb(0.0, 1.0).map_err(|e| e.to_string())?,
+                normal: normal.into(),
+                friction: FrictionLaw::coulomb(0.0, 1.0)
+                    .map_err(|e| e.to_string())?
+                    .into(),
             },
         );
     b.build().map_err(|e| e.to_string())
@@ -526,8 +529,17 @@ fn beam_step_case(out: &mut Vec<Case>) {
         };
         let u_static = p / (3.0 * 207e9 * sec.second_moment);
         let mut b = ModelBuilder::new();
-        b.flexible_beam("beam", beam)
-            .beam_nodal_load("P", "beam", ne, move |_| [0.0, p, 0.0]);
+        b.flexible_beam("beam", mesh(ne, [0.02, 0.01], &beam))
+            .nodal_load(
+                "P",
+                "beam",
+                ne,
+                [
+                    TimeFn::constant(0.0),
+                    TimeFn::constant(p),
+                    TimeFn::constant(0.0),
+                ],
+            );
         let mut m = b.build().map_err(|e| e.to_string())?;
         let res = m
             .simulate(&SimOptions::span(0.0, 0.05, 200).tolerances(1e-10, 1e-14))
@@ -580,8 +592,10 @@ fn balance_case(out: &mut Vec<Case>) {
                 RevoluteClearanceSpec {
                     bearing_radius: R_BEARING,
                     journal_radius: R_JOURNAL,
-                    normal,
-                    friction: FrictionLaw::coulomb(0.1, 1e-3).map_err(|e| e.to_string())?,
+                    normal: normal.into(),
+                    friction: FrictionLaw::coulomb(0.1, 1e-3)
+                        .map_err(|e| e.to_string())?
+                        .into(),
                 },
             )
             .rotational_spring_damper("damper", "ground", "rod", 0.0, 0.02, 0.0);
@@ -794,7 +808,32 @@ fn floating_pendulum(e: f64, solver: SolverKind) -> Result<(f64, f64, usize), St
         .solver(solver);
     let mut b = ModelBuilder::new();
     b.gravity(0.0, -9.81)
-        .floating_beam("arm", beam, red, [0.0; 3], [0.0; 3])
+        .floating_beam(
+            "arm",
+            clr_mbd::BeamMesh {
+                start: [0.0, 0.0],
+                end: [l, 0.0],
+                elements: ne,
+                material: clr_mbd::desc::BeamMaterial {
+                    youngs_modulus: e,
+                    density: 7850.0,
+                    poisson_ratio: 0.3,
+                },
+                section: clr_mbd::desc::SectionDesc::Rectangular {
+                    width: 0.01,
+                    depth: 0.01,
+                },
+                supports: vec![clr_mbd::desc::SupportDesc {
+                    node: 0,
+                    kind: clr_mbd::desc::SupportKind::Clamped,
+                }],
+                rayleigh: [0.0, 0.0],
+                mass: Default::default(),
+            },
+            clr_mbd::Reduction::Modal { modes },
+            [0.0; 3],
+            [0.0; 3],
+        )
         .revolute("pin", ("ground", [0.0, 0.0]), ("arm", 0usize));
     let mut flex = b.build().map_err(|e| e.to_string())?;
     let rf = flex.simulate(&opts).map_err(|e| e.to_string())?;
@@ -882,4 +921,29 @@ fn floating_pendulum_cases(out: &mut Vec<Case>) {
             Err(err) => case.failed(1e-6, err.as_str()),
         });
     }
+}
+
+/// The data form of a 1 m clamped steel beam along x with `ne` elements and a rectangular
+/// section [width, depth] (m), the same mesh as `beam` (checked: same DOF count).
+fn mesh(ne: usize, [width, depth]: [f64; 2], beam: &clr_beam::BeamModel) -> clr_mbd::BeamMesh {
+    let steel = clr_beam::Material::steel();
+    let m = clr_mbd::BeamMesh {
+        start: [0.0, 0.0],
+        end: [1.0, 0.0],
+        elements: ne,
+        material: clr_mbd::desc::BeamMaterial {
+            youngs_modulus: steel.youngs_modulus,
+            density: steel.density,
+            poisson_ratio: steel.poisson_ratio,
+        },
+        section: clr_mbd::desc::SectionDesc::Rectangular { width, depth },
+        supports: vec![clr_mbd::desc::SupportDesc {
+            node: 0,
+            kind: clr_mbd::desc::SupportKind::Clamped,
+        }],
+        rayleigh: [0.0, 0.0],
+        mass: Default::default(),
+    };
+    debug_assert_eq!(m.build("beam").map(|b| b.n_dof()).ok(), Some(beam.n_dof()));
+    m
 }

@@ -1,0 +1,268 @@
+//! The model description: plain data (`Clone + Send + Sync`, serde) holding bodies, flexible
+//! bodies, joints, drivers, force elements, clearance joints, contact laws and the solver and
+//! output settings. A TOML model file is this structure (`docs/model-file.md`);
+//! [`ModelDesc::compile`] validates it and builds the runtime [`Model`](crate::Model). One
+//! description compiles into any number of independent runs (sweeps clone the description).
+//!
+//! Rust closures are an explicit opt-in ([`crate::TimeFn::custom`], the `custom` force
+//! element): a description holding one still compiles and runs but cannot be written to a file.
+
+pub mod beam;
+pub mod laws;
+mod settings;
+
+use serde::{Deserialize, Serialize};
+
+pub use beam::{
+    BeamMaterial, BeamMesh, MassKindDesc, Reduction, SectionDesc, SupportDesc, SupportKind,
+};
+pub use laws::{FrictionLawDesc, MaterialDesc, NormalLawDesc};
+pub use settings::{OutputSettings, SolverMethod, SolverSettings};
+
+use crate::element::{Clearance, Driver, Force, Joint};
+
+/// A field-level error of a description: the path of the field (`joint[2].axis`) and what to
+/// change.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("field `{path}`: {message}")]
+pub struct FieldError {
+    /// Path of the offending field, e.g. `clearance[0].normal.restitution`.
+    pub path: String,
+    /// What is wrong and what to change.
+    pub message: String,
+}
+
+impl FieldError {
+    /// An error at `path`.
+    pub fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
+        Self {
+            path: path.into(),
+            message: message.into(),
+        }
+    }
+}
+
+/// A whole model as data. Sections in a file: `[model]`, `[[body]]`, `[[point]]`, `[[beam]]`,
+/// `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`,
+/// `[output]`. Constraint rows follow the order joints, then drivers (then the node ties of
+/// floating bodies, first); force elements and contacts keep their section order.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelDesc {
+    /// Name, description, gravity, clearance force application.
+    #[serde(default)]
+    pub model: ModelInfo,
+    /// Rigid bodies.
+    #[serde(default, rename = "body", skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<Body>,
+    /// Named points on bodies or beam nodes.
+    #[serde(default, rename = "point", skip_serializing_if = "Vec::is_empty")]
+    pub points: Vec<Point>,
+    /// Ground-fixed flexible beams.
+    #[serde(default, rename = "beam", skip_serializing_if = "Vec::is_empty")]
+    pub beams: Vec<crate::element::ground_beam::GroundBeam>,
+    /// Floating-frame flexible bodies.
+    #[serde(
+        default,
+        rename = "flexible_body",
+        skip_serializing_if = "Vec::is_empty"
+    )]
+    pub flexible_bodies: Vec<crate::element::floating_body::FlexibleBody>,
+    /// Ideal joints.
+    #[serde(default, rename = "joint", skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<Joint>,
+    /// Drivers (prescribed motions).
+    #[serde(default, rename = "driver", skip_serializing_if = "Vec::is_empty")]
+    pub drivers: Vec<Driver>,
+    /// Force elements.
+    #[serde(default, rename = "force", skip_serializing_if = "Vec::is_empty")]
+    pub forces: Vec<Force>,
+    /// Clearance joints and sliders (contact elements).
+    #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
+    pub clearances: Vec<Clearance>,
+    /// Integrator settings.
+    #[serde(default)]
+    pub solver: SolverSettings,
+    /// Time span and output times.
+    #[serde(default)]
+    pub output: OutputSettings,
+}
+
+/// `[model]`: name, description and model-wide settings.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelInfo {
+    /// Model name (used in reports).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// One-line description.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// Gravitational acceleration (g_x, g_y), m/s² (default none).
+    #[serde(default)]
+    pub gravity: [f64; 2],
+    /// Where the force pair of every revolute clearance joint acts: `common_point` (default,
+    /// collinear action and reaction) or `contact_points` (Flores et al. 2004).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clearance_force_application: Option<ForceApplicationDesc>,
+}
+
+/// Where a revolute clearance joint's force pair acts (clr-contact `ForceApplication`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ForceApplicationDesc {
+    /// Action and reaction collinear through the journal centre's contact normal.
+    CommonPoint,
+    /// At the contact points of each body (the published Flores et al. 2004 form).
+    ContactPoints,
+}
+
+/// A rigid body. Its frame is at `position` with angle `angle`; the centre of mass sits at
+/// `centre_of_mass` in that frame (default the frame origin). Anchors and points on the body are
+/// given in this frame. The model's coordinates (and result columns) are those of the centre
+/// of mass.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Body {
+    /// Unique name.
+    pub name: String,
+    /// Mass, kg (> 0).
+    pub mass: f64,
+    /// Moment of inertia about the centre of mass, kg·m² (> 0).
+    pub inertia: f64,
+    /// Initial position of the body frame's origin, m.
+    #[serde(default)]
+    pub position: [f64; 2],
+    /// Initial angle, rad.
+    #[serde(default)]
+    pub angle: f64,
+    /// Initial velocity of the body frame's origin, m/s.
+    #[serde(default)]
+    pub velocity: [f64; 2],
+    /// Initial angular velocity, rad/s.
+    #[serde(default)]
+    pub angular_velocity: f64,
+    /// Centre of mass in the body frame, m (default [0, 0]).
+    #[serde(default, skip_serializing_if = "is_zero2")]
+    pub centre_of_mass: [f64; 2],
+}
+
+fn is_zero2(v: &[f64; 2]) -> bool {
+    v[0] == 0.0 && v[1] == 0.0
+}
+
+/// A named point: on a body (`body`, `at`) or at a beam node (`beam`, `node`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Point {
+    /// Unique name.
+    pub name: String,
+    /// Body (or `ground`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub body: Option<String>,
+    /// Local coordinates in the body frame, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<[f64; 2]>,
+    /// Beam (ground-fixed or floating) whose node this point is.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub beam: Option<String>,
+    /// Node index on `beam`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub node: Option<usize>,
+}
+
+/// The closest of `known` to `name` as a "did you mean" phrase, else the list.
+pub fn suggestion<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> String {
+    let known: Vec<&str> = known.into_iter().collect();
+    let best = known
+        .iter()
+        .map(|k| {
+            (
+                edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
+                *k,
+            )
+        })
+        .min();
+    match best {
+        Some((d, k)) if d <= 2.max(name.len() / 3) => format!("did you mean `{k}`?"),
+        _ => format!("valid: {}", known.join(", ")),
+    }
+}
+
+fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut prev: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut cur = vec![i + 1; b.len() + 1];
+        for (j, cb) in b.iter().enumerate() {
+            cur[j + 1] = (prev[j] + usize::from(ca != *cb))
+                .min(prev[j + 1] + 1)
+                .min(cur[j] + 1);
+        }
+        prev = cur;
+    }
+    prev[b.len()]
+}
+
+impl ModelDesc {
+    /// An empty description (only the ground), no gravity, default settings.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Validate every element and build the runtime model (Baumgarte coefficients and contact
+    /// events from `solver`).
+    ///
+    /// # Errors
+    /// A typed [`MbdError`](crate::MbdError) naming the item (and for field errors the path).
+    pub fn compile(&self) -> Result<crate::Model, crate::MbdError> {
+        crate::element::compile(self)
+    }
+
+    /// The simulation options of `solver` and `output`.
+    ///
+    /// # Errors
+    /// [`FieldError`] for invalid settings (e.g. `output.t_end` missing or before `t_start`).
+    pub fn sim_options(&self) -> Result<crate::SimOptions, FieldError> {
+        settings::sim_options(&self.solver, &self.output)
+    }
+
+    /// Names of the items holding a Rust closure (they cannot be written to a file).
+    pub fn closures(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for d in &self.drivers {
+            if d.has_closure() {
+                out.push(d.name().to_string());
+            }
+        }
+        for f in &self.forces {
+            if f.has_closure() {
+                out.push(f.name().to_string());
+            }
+        }
+        out
+    }
+
+    /// The description as TOML text (a complete model file).
+    ///
+    /// # Errors
+    /// A message naming the items that hold closures, or the serializer's message.
+    pub fn to_toml(&self) -> Result<String, String> {
+        let c = self.closures();
+        if !c.is_empty() {
+            return Err(format!(
+                "items {} hold Rust closures, which a model file cannot express; replace them \
+                 by data (time functions, force elements)",
+                c.join(", ")
+            ));
+        }
+        toml::to_string(self).map_err(|e| e.to_string())
+    }
+}
+
+// Compile-time check that the description is plain data: `Clone + Send + Sync` (the issue's
+/// requirement for sweeps that share one description among threads).
+const _: () = {
+    const fn assert_plain_data<T: Clone + Send + Sync + 'static>() {}
+    assert_plain_data::<ModelDesc>();
+};

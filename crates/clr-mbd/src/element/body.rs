@@ -1,0 +1,55 @@
+//! Rigid bodies: validation of a [`Body`] and its runtime form (centre-of-mass coordinates).
+
+use nalgebra::Vector2;
+
+use crate::desc::Body;
+use crate::error::MbdError;
+use crate::runtime::{rot, RigidBody};
+
+/// Check `b` and return its runtime form (pose and velocity of the centre of mass) and the
+/// centre-of-mass offset in the body frame.
+pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>), MbdError> {
+    for (what, v) in [
+        ("mass (kg)", b.mass),
+        (
+            "moment of inertia about the centre of mass (kg·m²)",
+            b.inertia,
+        ),
+    ] {
+        if !(v.is_finite() && v > 0.0) {
+            return Err(MbdError::InvalidInertia {
+                body: b.name.clone(),
+                what,
+                value: v,
+            });
+        }
+    }
+    let finite = b
+        .position
+        .iter()
+        .chain(b.velocity.iter())
+        .chain(b.centre_of_mass.iter())
+        .all(|v| v.is_finite())
+        && b.angle.is_finite()
+        && b.angular_velocity.is_finite();
+    if !finite {
+        return Err(MbdError::InvalidParameter {
+            item: b.name.clone(),
+            what: "initial pose, velocity or centre of mass",
+            value: f64::NAN,
+            requirement: "every component must be finite",
+        });
+    }
+    let com = Vector2::new(b.centre_of_mass[0], b.centre_of_mass[1]);
+    // r_G = r_O + A c,  v_G = v_O + ω Ĩ A c
+    let arm = rot(b.angle, com);
+    let p = Vector2::new(b.position[0], b.position[1]) + arm;
+    let w = b.angular_velocity;
+    let v = Vector2::new(b.velocity[0] - w * arm.y, b.velocity[1] + w * arm.x);
+    Ok((
+        RigidBody::new(b.mass, b.inertia)
+            .at(p.x, p.y, b.angle)
+            .moving(v.x, v.y, w),
+        com,
+    ))
+}

@@ -1,0 +1,464 @@
+//! The compile context: resolves names (bodies, points, beam nodes) into frames and coordinate
+//! columns, and collects each element's runtime form. Elements call [`Compiler::anchor`],
+//! [`Compiler::body`] and push their runtime forms; [`compile`] drives the sections in order.
+
+use std::collections::HashMap;
+
+use clr_contact::ForceApplication;
+use nalgebra::Vector2;
+
+use super::anchor::Anchor;
+use crate::clearance::Clearance;
+use crate::desc::{ForceApplicationDesc, ModelDesc};
+use crate::error::MbdError;
+use crate::flexible::FlexBeam;
+use crate::floating::FloatingBody;
+use crate::runtime::{Con, ConKind, ForceEl, Frame, RigidBody, GROUND, GROUND_ID};
+use crate::system::Model;
+use crate::timefn::TimeFn;
+
+/// Everything resolved so far, and the runtime forms collected from the elements.
+pub(crate) struct Compiler {
+    pub(crate) bodies: Vec<(String, RigidBody)>,
+    /// Centre of mass of each rigid body in its drawing frame (subtracted from local anchors).
+    com: Vec<Vector2<f64>>,
+    body_ids: HashMap<String, usize>,
+    known: String,
+    pub(crate) floating: Vec<FloatingBody>,
+    pub(crate) beams: Vec<FlexBeam>,
+    pub(crate) frames: Vec<Frame>,
+    points: HashMap<String, (usize, Vector2<f64>)>,
+    pub(crate) point_list: Vec<(String, usize, Vector2<f64>)>,
+    node_points: HashMap<String, usize>,
+    float_points: HashMap<String, (usize, Vector2<f64>)>,
+    float_nodes: HashMap<(String, usize), (usize, Vector2<f64>)>,
+    node_frames: HashMap<(String, usize), usize>,
+    ties: Vec<(usize, usize, usize)>,
+    /// Next free column of q.
+    offset: usize,
+    pub(crate) cons: Vec<Con>,
+    pub(crate) motions: Vec<TimeFn>,
+    pub(crate) forces: Vec<ForceEl>,
+    pub(crate) clearances: Vec<Clearance>,
+    pub(crate) force_application: ForceApplication,
+}
+
+/// Validate `desc` and build the runtime model.
+pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
+    claim_names(desc)?;
+    let mut c = Compiler::new(desc)?;
+    for j in &desc.joints {
+        j.compile(&mut c)?;
+    }
+    for d in &desc.drivers {
+        d.compile(&mut c)?;
+    }
+    for f in &desc.forces {
+        f.compile(&mut c)?;
+    }
+    for cl in &desc.clearances {
+        cl.compile(&mut c)?;
+    }
+    let g = desc.model.gravity;
+    if !(g[0].is_finite() && g[1].is_finite()) {
+        return Err(MbdError::InvalidParameter {
+            item: "gravity".into(),
+            what: "gravitational acceleration (m/s²)",
+            value: f64::NAN,
+            requirement: "both components must be finite",
+        });
+    }
+    for (f, node, col) in std::mem::take(&mut c.ties) {
+        c.floating[f].ties.push((node, col));
+    }
+    let mut model = Model::assemble(c, Vector2::new(g[0], g[1]))?;
+    model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
+    model.set_contact_events(desc.solver.contact_events);
+    Ok(model)
+}
+
+/// One namespace for every named thing; `ground` is reserved.
+fn claim_names(desc: &ModelDesc) -> Result<(), MbdError> {
+    let mut names: HashMap<&str, &'static str> = HashMap::new();
+    names.insert(GROUND, "ground");
+    let all = desc
+        .bodies
+        .iter()
+        .map(|b| (b.name.as_str(), "body"))
+        .chain(
+            desc.flexible_bodies
+                .iter()
+                .map(|f| (f.name.as_str(), "floating flexible body")),
+        )
+        .chain(
+            desc.beams
+                .iter()
+                .map(|b| (b.name.as_str(), "flexible beam")),
+        )
+        .chain(desc.points.iter().map(|p| (p.name.as_str(), "point")))
+        .chain(desc.joints.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.drivers.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.forces.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.clearances.iter().map(|e| (e.name(), e.kind())));
+    for (name, kind) in all {
+        if let Some(first) = names.get(name) {
+            return Err(MbdError::DuplicateName {
+                name: name.to_string(),
+                first,
+                second: kind,
+            });
+        }
+        names.insert(name, kind);
+    }
+    Ok(())
+}
+
+impl Compiler {
+    /// Bodies, flexible bodies, beams, points and the node frames every anchor needs.
+    fn new(desc: &ModelDesc) -> Result<Self, MbdError> {
+        let mut c = Compiler {
+            bodies: Vec::new(),
+            com: Vec::new(),
+            body_ids: HashMap::new(),
+            known: desc
+                .bodies
+                .iter()
+                .map(|b| b.name.as_str())
+                .collect::<Vec<_>>()
+                .join(", "),
+            floating: Vec::new(),
+            beams: Vec::new(),
+            frames: Vec::new(),
+            points: HashMap::new(),
+            point_list: Vec::new(),
+            node_points: HashMap::new(),
+            float_points: HashMap::new(),
+            float_nodes: HashMap::new(),
+            node_frames: HashMap::new(),
+            ties: Vec::new(),
+            offset: 0,
+            cons: Vec::new(),
+            motions: Vec::new(),
+            forces: Vec::new(),
+            clearances: Vec::new(),
+            force_application: match desc.model.clearance_force_application {
+                Some(ForceApplicationDesc::ContactPoints) => ForceApplication::ContactPoints,
+                _ => ForceApplication::CommonPoint,
+            },
+        };
+        for (k, b) in desc.bodies.iter().enumerate() {
+            let (rb, com) = crate::element::body::compile(b)?;
+            c.body_ids.insert(b.name.clone(), k);
+            c.bodies.push((b.name.clone(), rb));
+            c.com.push(com);
+        }
+        // floating bodies: frame index after the rigid bodies, coordinates before the beams
+        c.offset = 3 * c.bodies.len();
+        for (k, f) in desc.flexible_bodies.iter().enumerate() {
+            let mut fb = f.compile(&format!("flexible_body[{k}]"))?;
+            fb.offset = c.offset;
+            c.offset += fb.n_coords();
+            c.body_ids
+                .insert(f.name.clone(), c.bodies.len() + c.floating.len());
+            c.floating.push(fb);
+        }
+        for (k, b) in desc.beams.iter().enumerate() {
+            let mut fb = b.compile(&format!("beam[{k}]"))?;
+            fb.offset = c.offset;
+            c.offset += fb.n_free();
+            c.beams.push(fb);
+        }
+        c.frames = (0..c.bodies.len()).map(Frame::rigid).collect();
+        let floating_frames: Vec<Frame> = c
+            .floating
+            .iter()
+            .map(|f| Frame {
+                cols: [Some(f.offset), Some(f.offset + 1), Some(f.offset + 2)],
+                base: Vector2::zeros(),
+            })
+            .collect();
+        c.frames.extend(floating_frames);
+        c.body_points(desc)?;
+        c.node_frames_of(desc)?;
+        Ok(c)
+    }
+
+    fn body_points(&mut self, desc: &ModelDesc) -> Result<(), MbdError> {
+        for p in &desc.points {
+            if p.beam.is_some() || p.node.is_some() {
+                if p.body.is_some() || p.at.is_some() {
+                    return Err(MbdError::InvalidParameter {
+                        item: p.name.clone(),
+                        what: "point placement",
+                        value: f64::NAN,
+                        requirement: "a point is on a body (`body`, `at`) or on a beam node \
+                                      (`beam`, `node`), not both",
+                    });
+                }
+                continue;
+            }
+            let body = p
+                .body
+                .as_deref()
+                .ok_or_else(|| MbdError::InvalidParameter {
+                    item: p.name.clone(),
+                    what: "point body",
+                    value: f64::NAN,
+                    requirement: "give `body` and `at` (or `beam` and `node`)",
+                })?;
+            let at = p.at.unwrap_or([0.0, 0.0]);
+            let (id, s) = self.local(&p.name, body, at)?;
+            self.points.insert(p.name.clone(), (id, s));
+            self.point_list.push((p.name.clone(), id, s));
+        }
+        Ok(())
+    }
+
+    /// Node frames for beam points and beam-node anchors, in definition order.
+    fn node_frames_of(&mut self, desc: &ModelDesc) -> Result<(), MbdError> {
+        let mut wanted: Vec<(String, String, usize, Option<String>)> = Vec::new();
+        for p in &desc.points {
+            if let (Some(b), Some(n)) = (&p.beam, p.node) {
+                wanted.push((p.name.clone(), b.clone(), n, Some(p.name.clone())));
+            } else if p.beam.is_some() || p.node.is_some() {
+                return Err(MbdError::InvalidParameter {
+                    item: p.name.clone(),
+                    what: "beam node point",
+                    value: f64::NAN,
+                    requirement: "give both `beam` and `node`",
+                });
+            }
+        }
+        let anchors = desc
+            .joints
+            .iter()
+            .map(|e| (e.name(), e.anchors()))
+            .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))
+            .chain(desc.forces.iter().map(|e| (e.name(), e.anchors())))
+            .chain(desc.clearances.iter().map(|e| (e.name(), e.anchors())));
+        for (name, list) in anchors {
+            for a in list {
+                if let Anchor::BeamNode(beam, node) = a {
+                    wanted.push((name.to_string(), beam.clone(), *node, None));
+                }
+            }
+        }
+        for (name, beam, node, point) in &wanted {
+            if let Some(f) = self.floating.iter().position(|f| &f.name == beam) {
+                self.floating_node(name, f, beam, *node, point)?;
+            } else {
+                self.beam_node(name, beam, *node, point)?;
+            }
+        }
+        Ok(())
+    }
+
+    fn floating_node(
+        &mut self,
+        name: &str,
+        f: usize,
+        beam: &str,
+        node: usize,
+        point: &Option<String>,
+    ) -> Result<(), MbdError> {
+        let nb = self.bodies.len();
+        if node >= self.floating[f].nodes.len() {
+            return Err(MbdError::InvalidParameter {
+                item: name.to_string(),
+                what: "floating-body node index",
+                value: node as f64,
+                requirement: "must be a node of the floating body's beam model",
+            });
+        }
+        let key = (beam.to_string(), node);
+        let a = if let Some(&a) = self.float_nodes.get(&key) {
+            a
+        } else if self.floating[f].is_reference_node(node) {
+            let p = self.floating[f].nodes[node];
+            (nb + f, Vector2::new(p[0], p[1]))
+        } else {
+            // a deforming node: its own frame coordinates tied to the body (3 rows)
+            let col = self.offset;
+            self.frames.push(Frame {
+                cols: [Some(col), Some(col + 1), Some(col + 2)],
+                base: Vector2::zeros(),
+            });
+            let j = self.frames.len() - 1;
+            self.cons.push(Con {
+                name: format!("{beam}.node{node}"),
+                kind: ConKind::FloatNode {
+                    f,
+                    node,
+                    col,
+                    i: nb + f,
+                    j,
+                },
+                row: 0,
+            });
+            self.ties.push((f, node, col));
+            self.offset += 3;
+            (j, Vector2::zeros())
+        };
+        self.float_nodes.insert(key, a);
+        if let Some(p) = point {
+            self.float_points.insert(p.clone(), a);
+        }
+        Ok(())
+    }
+
+    fn beam_node(
+        &mut self,
+        name: &str,
+        beam: &str,
+        node: usize,
+        point: &Option<String>,
+    ) -> Result<(), MbdError> {
+        let key = (beam.to_string(), node);
+        if let Some(&k) = self.node_frames.get(&key) {
+            if let Some(p) = point {
+                self.node_points.insert(p.clone(), k);
+            }
+            return Ok(());
+        }
+        let Some(fb) = self.beams.iter().find(|b| b.name == beam) else {
+            return Err(MbdError::UnknownBody {
+                item: name.to_string(),
+                body: beam.to_string(),
+                known: "(beams) ".to_string() + &self.known,
+            });
+        };
+        if node >= fb.nodes.len() {
+            return Err(MbdError::InvalidParameter {
+                item: name.to_string(),
+                what: "beam node index",
+                value: node as f64,
+                requirement: "must be a node of the beam model",
+            });
+        }
+        let cols = [0, 1, 2].map(|c| {
+            fb.free
+                .iter()
+                .position(|&d| d == 3 * node + c)
+                .map(|k| fb.offset + k)
+        });
+        let p = fb.nodes[node];
+        self.frames.push(Frame {
+            cols,
+            base: Vector2::new(p[0], p[1]),
+        });
+        self.node_frames.insert(key, self.frames.len() - 1);
+        if let Some(p) = point {
+            self.node_points.insert(p.clone(), self.frames.len() - 1);
+        }
+        Ok(())
+    }
+
+    /// Number of rigid bodies.
+    pub(crate) fn n_rigid(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// Frame index of a body (rigid or floating) by name; the ground is [`GROUND_ID`].
+    pub(crate) fn body(&self, item: &str, name: &str) -> Result<usize, MbdError> {
+        if name == GROUND {
+            return Ok(GROUND_ID);
+        }
+        self.body_ids
+            .get(name)
+            .copied()
+            .ok_or_else(|| MbdError::UnknownBody {
+                item: item.to_string(),
+                body: name.to_string(),
+                known: self.known.clone(),
+            })
+    }
+
+    /// A body-local point in the body's drawing frame → (frame, arm from the centre of mass).
+    fn local(
+        &self,
+        item: &str,
+        body: &str,
+        l: [f64; 2],
+    ) -> Result<(usize, Vector2<f64>), MbdError> {
+        if !(l[0].is_finite() && l[1].is_finite()) {
+            return Err(MbdError::InvalidParameter {
+                item: item.to_string(),
+                what: "local anchor coordinates (m)",
+                value: if l[0].is_finite() { l[1] } else { l[0] },
+                requirement: "must be finite",
+            });
+        }
+        let id = self.body(item, body)?;
+        let com = self.com.get(id).copied().unwrap_or_else(Vector2::zeros);
+        Ok((id, Vector2::new(l[0], l[1]) - com))
+    }
+
+    /// Resolve an anchor into (frame index, local arm in m from the frame's reference point).
+    pub(crate) fn anchor(&self, item: &str, a: &Anchor) -> Result<(usize, Vector2<f64>), MbdError> {
+        match a {
+            Anchor::Point(p) => {
+                if let Some(&k) = self.node_points.get(p) {
+                    return Ok((k, Vector2::zeros()));
+                }
+                if let Some(&a) = self.float_points.get(p) {
+                    return Ok(a);
+                }
+                self.points
+                    .get(p)
+                    .copied()
+                    .ok_or_else(|| MbdError::UnknownPoint {
+                        item: item.to_string(),
+                        point: p.clone(),
+                    })
+            }
+            Anchor::Local(b, l) => self.local(item, b, *l),
+            Anchor::BeamNode(b, k) => {
+                if let Some(&a) = self.float_nodes.get(&(b.clone(), *k)) {
+                    return Ok(a);
+                }
+                self.node_frames
+                    .get(&(b.clone(), *k))
+                    .map(|&f| (f, Vector2::zeros()))
+                    .ok_or_else(|| MbdError::UnknownBody {
+                        item: item.to_string(),
+                        body: b.clone(),
+                        known: self.known.clone(),
+                    })
+            }
+        }
+    }
+
+    /// Error when an element connects a frame to itself.
+    pub(crate) fn distinct(&self, item: &str, i: usize, j: usize) -> Result<(), MbdError> {
+        if i != j {
+            return Ok(());
+        }
+        let body = match self.bodies.get(i) {
+            Some(b) => b.0.clone(),
+            None if i == GROUND_ID => GROUND.to_string(),
+            None => "a beam node".to_string(),
+        };
+        Err(MbdError::SameBody {
+            item: item.to_string(),
+            body,
+        })
+    }
+
+    /// Initial angle of frame `id` (rigid or floating body; 0 for the ground and nodes).
+    pub(crate) fn angle0(&self, id: usize) -> f64 {
+        let nb = self.bodies.len();
+        match self.bodies.get(id) {
+            Some(b) => b.1.angle,
+            None => self
+                .floating
+                .get(id.wrapping_sub(nb))
+                .map_or(0.0, |f| f.pose[2]),
+        }
+    }
+
+    /// Register a motion; returns its index.
+    pub(crate) fn motion(&mut self, f: &TimeFn) -> usize {
+        self.motions.push(f.clone());
+        self.motions.len() - 1
+    }
+}

@@ -1,0 +1,193 @@
+//! Element kinds, one module each: its data (serde, the model-file form), its validation and
+//! its compilation into the runtime form. Adding a kind touches its module and one line of
+//! registration in a section enum below (see docs/architecture.md, "How to add an element
+//! kind").
+
+pub mod anchor;
+pub mod applied_force;
+pub mod applied_torque;
+mod body;
+mod compiler;
+pub mod custom;
+pub mod drive_angle;
+pub mod drive_displacement;
+pub mod fixed;
+pub mod floating_body;
+pub mod ground_beam;
+pub mod nodal_load;
+pub mod revolute;
+pub mod revolute_clearance;
+pub mod rotational_spring_damper;
+pub mod slider_on_beam;
+pub mod spring_damper;
+pub mod torque_between;
+pub mod translational;
+pub mod translational_clearance;
+
+use clr_contact::SliderShape;
+use nalgebra::Vector2;
+use serde::{Deserialize, Serialize};
+
+pub use anchor::Anchor;
+pub(crate) use compiler::{compile, Compiler};
+
+use crate::error::MbdError;
+
+/// What every element kind provides to the compiler.
+pub(crate) trait Element {
+    /// Validate and push the runtime form into the compiler.
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError>;
+    /// The anchors it refers to (beam-node anchors get node frames before compilation).
+    fn anchors(&self) -> Vec<&Anchor> {
+        Vec::new()
+    }
+    /// True when it holds a Rust closure (cannot be written to a file).
+    fn has_closure(&self) -> bool {
+        false
+    }
+}
+
+/// A section of the description: an enum of element kinds tagged by `type` in a file, with
+/// name, kind and dispatch to the kind's module.
+macro_rules! section {
+    ($(#[$m:meta])* $enum:ident { $($(#[$vm:meta])* $var:ident($ty:ty) = $tag:literal,)* }) => {
+        $(#[$m])*
+        // element descriptions are few and read once at compile: their size does not matter
+        #[allow(clippy::large_enum_variant)]
+        #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+        #[serde(tag = "type")]
+        pub enum $enum {
+            $($(#[$vm])* #[serde(rename = $tag)] $var($ty),)*
+        }
+        impl $enum {
+            /// The element's name.
+            pub fn name(&self) -> &str {
+                match self { $(Self::$var(e) => &e.name,)* }
+            }
+            /// The element's kind as written in a file (`type`).
+            pub fn kind(&self) -> &'static str {
+                match self { $(Self::$var(_) => $tag,)* }
+            }
+            /// True when it holds a Rust closure.
+            pub fn has_closure(&self) -> bool {
+                match self { $(Self::$var(e) => e.has_closure(),)* }
+            }
+            pub(crate) fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+                match self { $(Self::$var(e) => e.compile(c),)* }
+            }
+            pub(crate) fn anchors(&self) -> Vec<&Anchor> {
+                match self { $(Self::$var(e) => e.anchors(),)* }
+            }
+        }
+        $(impl From<$ty> for $enum {
+            fn from(e: $ty) -> Self { Self::$var(e) }
+        })*
+    };
+}
+
+section! {
+    /// `[[joint]]`: ideal joints (constraint equations).
+    Joint {
+        /// Revolute joint.
+        Revolute(revolute::Revolute) = "revolute",
+        /// Fixed joint.
+        Fixed(fixed::Fixed) = "fixed",
+        /// Translational joint.
+        Translational(translational::Translational) = "translational",
+    }
+}
+
+section! {
+    /// `[[driver]]`: prescribed motions (rheonomic constraints).
+    Driver {
+        /// Absolute angle.
+        Angle(drive_angle::DriveAngle) = "angle",
+        /// Relative angle.
+        RelativeAngle(drive_angle::DriveRelativeAngle) = "relative_angle",
+        /// Relative displacement along an axis.
+        Displacement(drive_displacement::DriveDisplacement) = "displacement",
+    }
+}
+
+section! {
+    /// `[[force]]`: force elements.
+    Force {
+        /// Translational spring–damper.
+        SpringDamper(spring_damper::SpringDamper) = "spring_damper",
+        /// Rotational spring–damper.
+        RotationalSpringDamper(rotational_spring_damper::RotationalSpringDamper) = "rotational_spring_damper",
+        /// Applied force.
+        Force(applied_force::AppliedForce) = "force",
+        /// Applied torque.
+        Torque(applied_torque::AppliedTorque) = "torque",
+        /// Torque between two bodies.
+        TorqueBetween(torque_between::TorqueBetween) = "torque_between",
+        /// Nodal load on a beam.
+        NodalLoad(nodal_load::NodalLoad) = "nodal_load",
+        /// A Rust closure (opt-in; not in files).
+        #[serde(skip)]
+        Custom(custom::CustomForce) = "custom",
+    }
+}
+
+section! {
+    /// `[[clearance]]`: contact elements (force elements, no constraint equation).
+    Clearance {
+        /// Revolute clearance joint.
+        Revolute(revolute_clearance::RevoluteClearance) = "revolute",
+        /// Translational clearance joint.
+        Translational(translational_clearance::TranslationalClearance) = "translational",
+        /// Slider on a flexible beam face.
+        SliderOnBeam(slider_on_beam::SliderOnBeam) = "slider_on_beam",
+    }
+}
+
+/// A clr-contact slider rectangle (length, height in m) centred at `centre` on its body.
+pub(crate) fn slider_shape(
+    item: &str,
+    size: [f64; 2],
+    centre: Vector2<f64>,
+    angle: f64,
+) -> Result<SliderShape, MbdError> {
+    SliderShape::new(size[0], size[1], centre, angle).map_err(|source| MbdError::Contact {
+        item: item.to_string(),
+        source,
+    })
+}
+
+pub(crate) fn ground_load(item: &str) -> MbdError {
+    MbdError::InvalidParameter {
+        item: item.to_string(),
+        what: "body index",
+        value: f64::NAN,
+        requirement: "a load on the ground does nothing; attach it to a moving body",
+    }
+}
+
+pub(crate) fn non_negative(item: &str, what: &'static str, v: f64) -> Result<(), MbdError> {
+    if v.is_finite() && v >= 0.0 {
+        Ok(())
+    } else {
+        Err(MbdError::InvalidParameter {
+            item: item.to_string(),
+            what,
+            value: v,
+            requirement: "must be finite and not negative",
+        })
+    }
+}
+
+pub(crate) fn unit_axis(item: &str, axis: [f64; 2]) -> Result<Vector2<f64>, MbdError> {
+    let v = Vector2::new(axis[0], axis[1]);
+    let n = v.norm();
+    if n.is_finite() && n > 0.0 {
+        Ok(v / n)
+    } else {
+        Err(MbdError::InvalidParameter {
+            item: item.to_string(),
+            what: "axis length (local coordinates)",
+            value: n,
+            requirement: "the axis must be a finite non-zero vector",
+        })
+    }
+}

@@ -1,0 +1,63 @@
+//! Revolute clearance joint: a journal (pin) of radius R_j on body j inside a bearing (hole) of
+//! radius R_i on body i; a force element built on clr-contact (no constraint equation). The
+//! radii are given once: the normal law takes them from here.
+
+use clr_contact::RevoluteClearance as Geometry;
+use serde::{Deserialize, Serialize};
+
+use super::{Anchor, Compiler, Element};
+use crate::clearance::{Clearance as Runtime, ClearanceKind};
+use crate::desc::laws::{FrictionSpec, NormalSpec};
+use crate::error::MbdError;
+
+/// `type = "revolute"` (the default clearance type).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RevoluteClearance {
+    /// Unique name.
+    pub name: String,
+    /// Bearing centre (on body i).
+    pub bearing: Anchor,
+    /// Journal centre (on body j).
+    pub journal: Anchor,
+    /// Bearing radius R_i, m.
+    pub bearing_radius: f64,
+    /// Journal radius R_j, m (< R_i).
+    pub journal_radius: f64,
+    /// Normal-force law.
+    pub normal: NormalSpec,
+    /// Friction law (default none).
+    #[serde(default)]
+    pub friction: FrictionSpec,
+}
+
+impl Element for RevoluteClearance {
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let name = &self.name;
+        let (i, si) = c.anchor(name, &self.bearing)?;
+        let (j, sj) = c.anchor(name, &self.journal)?;
+        c.distinct(name, i, j)?;
+        let (rb, rj) = (self.bearing_radius, self.journal_radius);
+        let geometry = Geometry::new(rb, rj, si, sj).map_err(|source| MbdError::Contact {
+            item: name.clone(),
+            source,
+        })?;
+        let normal = self
+            .normal
+            .build(&format!("{name}.normal"), Some((rb, rj)))?;
+        let friction = self.friction.build(&format!("{name}.friction"))?;
+        c.clearances.push(Runtime {
+            name: name.clone(),
+            i,
+            j,
+            kind: ClearanceKind::Revolute(geometry, c.force_application),
+            normal,
+            friction,
+            mem: 0,
+        });
+        Ok(())
+    }
+    fn anchors(&self) -> Vec<&Anchor> {
+        vec![&self.bearing, &self.journal]
+    }
+}

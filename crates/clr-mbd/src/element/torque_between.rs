@@ -1,0 +1,43 @@
+//! Torque between two bodies (a joint motor): +τ(t) on body j, −τ(t) on body i.
+
+use serde::{Deserialize, Serialize};
+
+use super::{Compiler, Element};
+use crate::error::MbdError;
+use crate::runtime::ForceEl;
+use crate::timefn::TimeFn;
+
+/// `type = "torque_between"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TorqueBetween {
+    /// Unique name.
+    pub name: String,
+    /// Body i (reaction −τ).
+    pub body_i: String,
+    /// Body j (action +τ).
+    pub body_j: String,
+    /// Torque, N·m.
+    pub torque: TimeFn,
+}
+
+impl Element for TorqueBetween {
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let i = c.body(&self.name, &self.body_i)?;
+        let j = c.body(&self.name, &self.body_j)?;
+        c.distinct(&self.name, i, j)?;
+        self.torque.validate(&format!("{}.torque", self.name))?;
+        let f = self.torque.clone();
+        c.forces.push(ForceEl::PairTorque {
+            name: self.name.clone(),
+            i,
+            j,
+            state_free: true,
+            f: Box::new(move |t, _, _| f.eval(t)[0]),
+        });
+        Ok(())
+    }
+    fn has_closure(&self) -> bool {
+        self.torque.has_closure()
+    }
+}

@@ -1,0 +1,82 @@
+//! Translational clearance joint: a rectangular slider (length L, height h) inside a straight
+//! guide of inner width W > h (Flores, Ambrósio, Claro & Lankarani, J. Comput. Nonlinear Dyn. 3
+//! (2008) 011007; corners as point contacts, clr-contact `TranslationalClearance`).
+
+use clr_contact::TranslationalClearance as Geometry;
+use serde::{Deserialize, Serialize};
+
+use super::{slider_shape, Anchor, Compiler, Element};
+use crate::clearance::{Clearance as Runtime, ClearanceKind};
+use crate::desc::laws::{FrictionSpec, NormalSpec};
+use crate::error::MbdError;
+
+/// `type = "translational"`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TranslationalClearance {
+    /// Unique name.
+    pub name: String,
+    /// Guide frame origin (on body i): the guide centre line passes through it.
+    pub guide: Anchor,
+    /// Slider centre (on body j).
+    pub slider: Anchor,
+    /// Inner width W of the guide, m.
+    pub guide_width: f64,
+    /// Angle of the guide axis from the guide body's x axis, rad.
+    #[serde(default)]
+    pub guide_angle: f64,
+    /// Slider length L along its axis, m.
+    pub slider_length: f64,
+    /// Slider height h across the guide, m (< W).
+    pub slider_height: f64,
+    /// Angle of the slider axis from the slider body's x axis, rad.
+    #[serde(default)]
+    pub slider_angle: f64,
+    /// Normal-force law of each corner contact.
+    pub normal: NormalSpec,
+    /// Friction law of each corner contact (default none).
+    #[serde(default)]
+    pub friction: FrictionSpec,
+}
+
+impl Element for TranslationalClearance {
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let name = &self.name;
+        let (i, gi) = c.anchor(name, &self.guide)?;
+        let (j, sj) = c.anchor(name, &self.slider)?;
+        c.distinct(name, i, j)?;
+        let shape = slider_shape(
+            name,
+            [self.slider_length, self.slider_height],
+            sj,
+            self.slider_angle,
+        )?;
+        let geometry =
+            Geometry::new(shape, self.guide_width, gi, self.guide_angle).map_err(|source| {
+                MbdError::Contact {
+                    item: name.clone(),
+                    source,
+                }
+            })?;
+        let normal = self.normal.build(&format!("{name}.normal"), None)?;
+        let friction = self.friction.build(&format!("{name}.friction"))?;
+        c.clearances.push(Runtime {
+            name: name.clone(),
+            i,
+            j,
+            kind: ClearanceKind::Translational {
+                geometry,
+                origin: gi,
+                angle: self.guide_angle,
+                width: self.guide_width,
+            },
+            normal,
+            friction,
+            mem: 0,
+        });
+        Ok(())
+    }
+    fn anchors(&self) -> Vec<&Anchor> {
+        vec![&self.guide, &self.slider]
+    }
+}
