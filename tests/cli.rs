@@ -110,7 +110,8 @@ fn every_builtin_runs_briefly() {
     }
 }
 
-/// `clr export` then `clr run file` reproduces `clr run <model>` bit for bit (with overrides).
+/// `clr export --builtin` then `clr run file` reproduces `clr run <model>` bit for bit (with
+/// overrides; the model-file form of `clr export` is checked in tests/export.rs).
 #[test]
 fn exported_file_reproduces_the_builtin_bit_for_bit() {
     let e = clr_models::catalog::entries()[0];
@@ -132,6 +133,7 @@ fn exported_file_reproduces_the_builtin_bit_for_bit() {
     let o = clr(&[
         "export",
         e.name,
+        "--builtin",
         "--set",
         &set,
         "--out",
@@ -734,13 +736,20 @@ fn translational_clearance_file_rests_on_its_weight() {
     assert!(!out.join("orbit_guide.svg").exists());
 }
 
-/// Every built-in exports to a file whose resolved parameters equal the defaults exactly.
+/// Every built-in exports (`--builtin`) to a file whose resolved parameters equal the defaults
+/// exactly.
 #[test]
 fn every_builtin_exports_to_an_equal_file() {
     let dir = scratch("export-all");
     for e in clr_models::catalog::entries() {
         let file = dir.join(format!("{}.toml", e.name));
-        let o = clr(&["export", e.name, "--out", file.to_str().unwrap()]);
+        let o = clr(&[
+            "export",
+            e.name,
+            "--builtin",
+            "--out",
+            file.to_str().unwrap(),
+        ]);
         assert!(o.status.success(), "{}: {}", e.name, stderr(&o));
         match clr::spec::load(&file, &[]) {
             Ok(clr::spec::Loaded::Builtin { name, parameters }) => {

@@ -80,10 +80,22 @@ pub(crate) fn run_command(args: &RunArgs, out: &Path) -> Result<(), CliError> {
     }
 }
 
+/// What `clr export` writes besides the model: the run settings of the model file form, or the
+/// built-in form.
+pub(crate) struct ExportForm {
+    /// `--t-end`, s.
+    pub t_end: Option<f64>,
+    /// `--rtol`.
+    pub rtol: Option<f64>,
+    /// `--builtin`: `[model] builtin` with `[parameters]`.
+    pub builtin: bool,
+}
+
 /// `clr export`.
 pub(crate) fn export_command(
     model: &str,
     set: &[String],
+    form: &ExportForm,
     out: Option<&Path>,
 ) -> Result<(), CliError> {
     if is_file(model) {
@@ -95,7 +107,18 @@ pub(crate) fn export_command(
     let Job::Builtin { name, parameters } = resolve(model, &sets, None, None)? else {
         return Err(CliError::Input("export takes a built-in model name".into()));
     };
-    let text = export_text(&name, &parameters)?;
+    let text = if form.builtin {
+        if form.t_end.is_some() || form.rtol.is_some() {
+            return Err(CliError::Input(
+                "--t-end and --rtol are run settings, which the built-in form (--builtin) does \
+                 not hold; give them to `clr run`, or export without --builtin"
+                    .into(),
+            ));
+        }
+        export_text(&name, &parameters)?
+    } else {
+        desc_text(&name, &parameters, set, form)?
+    };
     match out {
         Some(p) => std::fs::write(p, text)
             .map_err(|e| CliError::Input(format!("cannot write {}: {e}", p.display()))),
@@ -106,7 +129,65 @@ pub(crate) fn export_command(
     }
 }
 
-/// The model file of a built-in model with its full parameters.
+/// The complete model of a built-in run as a model file (`clr_models::catalog::export`), with
+/// a header naming the built-in, the overrides `set` and run settings it came from, and every
+/// parameter (commented out).
+pub(crate) fn desc_text(
+    name: &str,
+    parameters: &serde_json::Value,
+    set: &[String],
+    form: &ExportForm,
+) -> Result<String, CliError> {
+    let settings = clr_models::RunSettings {
+        t_end: form.t_end,
+        rtol: form.rtol,
+        progress: None,
+    };
+    let desc = clr_models::catalog::export(name, parameters, &settings)
+        .map_err(|e| CliError::Input(e.to_string()))?;
+    let body = desc.to_toml().map_err(|e| {
+        CliError::Input(format!(
+            "`{name}` with these parameters cannot be written as a model file: {e}"
+        ))
+    })?;
+    let params = toml::to_string(parameters).map_err(|e| {
+        CliError::Input(format!(
+            "the parameters of `{name}` cannot be written as TOML ({e}); report this"
+        ))
+    })?;
+    let mut options = String::new();
+    for a in set {
+        options.push_str(&format!(" --set {a}"));
+    }
+    if let Some(t) = form.t_end {
+        options.push_str(&format!(" --t-end {t}"));
+    }
+    if let Some(r) = form.rtol {
+        options.push_str(&format!(" --rtol {r}"));
+    }
+    let mut text = format!(
+        "# clr model file: the built-in model `{name}` as its complete multibody model, with the\n\
+         # run settings in [solver] and [output]. Written by `clr export {name}{options}`.\n\
+         # `clr run <this file>` simulates exactly what `clr run {name}{options}` simulates:\n\
+         # the same clr-mbd columns bit for bit (the built-in run adds derived columns and its\n\
+         # own metrics). SI units, angles in rad (docs/model-file.md).\n\
+         #\n\
+         # The parameters of `{name}` it was built from (`clr export --builtin` writes them as a\n\
+         # built-in model file):\n#\n"
+    );
+    for line in params.lines() {
+        if line.is_empty() {
+            text.push_str("#\n");
+        } else {
+            text.push_str(&format!("#   {line}\n"));
+        }
+    }
+    text.push('\n');
+    text.push_str(&body);
+    Ok(text)
+}
+
+/// The model file of a built-in model with its full parameters (`clr export --builtin`).
 pub(crate) fn export_text(name: &str, parameters: &serde_json::Value) -> Result<String, CliError> {
     #[derive(serde::Serialize)]
     struct ModelPart<'a> {

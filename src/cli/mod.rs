@@ -103,15 +103,26 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
-    /// Write a built-in model as a model file that reproduces its run bit for bit.
+    /// Write a built-in model as a model file (its complete clr-mbd model with the run settings)
+    /// whose run reproduces `clr run <name>` bit for bit.
     Export {
         /// Built-in model name.
         model: String,
         /// Override a parameter: `name=value` (repeatable).
         #[arg(long = "set", value_name = "NAME=VALUE")]
         set: Vec<String>,
-        /// Output file (default: standard output).
+        /// End time written into the file's [output], s (as `clr run --t-end`).
+        #[arg(long, value_name = "S")]
+        t_end: Option<f64>,
+        /// Relative tolerance written into the file's [solver] (as `clr run --rtol`).
+        #[arg(long, value_name = "R")]
+        rtol: Option<f64>,
+        /// Write the short built-in form instead: `[model] builtin = "<name>"` and every
+        /// parameter under `[parameters]`.
         #[arg(long)]
+        builtin: bool,
+        /// Output file (default: standard output).
+        #[arg(long, short = 'o', value_name = "FILE")]
         out: Option<PathBuf>,
     },
 }
@@ -162,7 +173,23 @@ pub(crate) fn main() -> ExitCode {
         Command::Merge { dirs, out } => sweep::merge_command(&dirs, &out),
         Command::Study { name, out } => study_command(&name, out),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
-        Command::Export { model, set, out } => job::export_command(&model, &set, out.as_deref()),
+        Command::Export {
+            model,
+            set,
+            t_end,
+            rtol,
+            builtin,
+            out,
+        } => job::export_command(
+            &model,
+            &set,
+            &job::ExportForm {
+                t_end,
+                rtol,
+                builtin,
+            },
+            out.as_deref(),
+        ),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

@@ -58,6 +58,9 @@ pub struct ModelSpec {
     pub clearances: Vec<(String, Option<f64>)>,
     /// The file as validated, with every default filled in (for `summary.json`).
     pub resolved: serde_json::Value,
+    /// The model description when the file was read as a `clr_mbd::ModelDesc` (e.g. written
+    /// by `clr export`): [`ModelSpec::build`] compiles it instead of the validated items.
+    desc: Option<Box<clr_mbd::ModelDesc>>,
 }
 
 /// A built model with its run settings.
@@ -968,7 +971,100 @@ impl ModelSpec {
             baumgarte: (alpha, beta),
             clearances,
             resolved,
+            desc: None,
         })
+    }
+
+    /// A model from its description (`clr_mbd::ModelDesc`, the TOML form `clr export` writes);
+    /// `src` is the file's text (for placing errors). The description is compiled once here to
+    /// check it; the run settings come from its `[solver]` and `[output]`
+    /// (`ModelDesc::sim_options`), the name from `[model]` or else the file stem.
+    ///
+    /// # Errors
+    /// [`SpecError`] with the item or field named by clr-mbd and its line when found.
+    pub fn from_desc(file: &str, src: &str, desc: clr_mbd::ModelDesc) -> Result<Self, SpecError> {
+        let mut spec = Self {
+            file: file.to_string(),
+            src: src.to_string(),
+            name: desc.model.name.clone().unwrap_or_else(|| {
+                std::path::Path::new(file)
+                    .file_stem()
+                    .map_or("model".into(), |s| s.to_string_lossy().into_owned())
+            }),
+            description: desc.model.description.clone().unwrap_or_default(),
+            gravity: desc.model.gravity,
+            bodies: Vec::new(),
+            points: Vec::new(),
+            items: Vec::new(),
+            options: SimOptions::default(),
+            baumgarte: (desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta),
+            clearances: desc
+                .clearances
+                .iter()
+                .map(|c| {
+                    let radial = match c {
+                        clr_mbd::element::Clearance::Revolute(r) => {
+                            Some(r.bearing_radius - r.journal_radius)
+                        }
+                        _ => None,
+                    };
+                    (c.name().to_string(), radial)
+                })
+                .collect(),
+            resolved: serde_json::Value::Null,
+            desc: None,
+        };
+        spec.options = desc
+            .sim_options()
+            .map_err(|e| SpecError::at(file, src, &spec.desc_path(&e.path), e.message.clone()))?;
+        desc.compile().map_err(|e| spec.model_error(&e))?;
+        let mut resolved = serde_json::to_value(&desc).map_err(|e| {
+            SpecError::plain(file, "", format!("the model cannot be recorded: {e}"))
+        })?;
+        strip_nulls(&mut resolved);
+        spec.resolved = resolved;
+        spec.desc = Some(Box::new(desc));
+        Ok(spec)
+    }
+
+    /// A field path of a clr-mbd message (`joint[2].axis`, or `crank_drive.motion.rate` with
+    /// an item name first) as a path in the file.
+    fn desc_path(&self, path: &str) -> FieldPath {
+        let mut out = FieldPath::root();
+        for (k, part) in path.split('.').enumerate() {
+            let mut pieces = part.split('[');
+            let key = pieces.next().unwrap_or("");
+            let indices: Vec<usize> = pieces
+                .filter_map(|i| i.trim_end_matches(']').parse().ok())
+                .collect();
+            const SECTIONS: [&str; 11] = [
+                "model",
+                "body",
+                "point",
+                "beam",
+                "flexible_body",
+                "joint",
+                "driver",
+                "force",
+                "clearance",
+                "solver",
+                "output",
+            ];
+            let item = (k == 0 && indices.is_empty() && !SECTIONS.contains(&key))
+                .then(|| self.path_of(key))
+                .flatten();
+            match item {
+                // an item name first: its place in its section
+                Some(item) => out = item,
+                None => {
+                    out = out.key(key);
+                    for i in indices {
+                        out = out.index(i);
+                    }
+                }
+            }
+        }
+        out
     }
 
     /// Set the end time (s).
@@ -1027,6 +1123,12 @@ impl ModelSpec {
     /// [`SpecError`] from clr-mbd's validation (redundant constraints, assembly, …), placed at
     /// the item it names when possible.
     pub fn build(&self) -> Result<Built, SpecError> {
+        if let Some(d) = &self.desc {
+            return Ok(Built {
+                model: d.compile().map_err(|e| self.model_error(&e))?,
+                options: self.options.clone(),
+            });
+        }
         let mut b = ModelBuilder::new();
         b.gravity(self.gravity[0], self.gravity[1]);
         for (n, body) in &self.bodies {
@@ -1142,6 +1244,14 @@ impl ModelSpec {
             | E::Assembly { worst: label, .. } => {
                 label.split(" (").next().map(|s| s.trim().to_string())
             }
+            E::Invalid { path, message } => {
+                return SpecError::at(
+                    &self.file,
+                    &self.src,
+                    &self.desc_path(path),
+                    message.clone(),
+                )
+            }
             _ => None,
         };
         let path = item
@@ -1155,6 +1265,7 @@ impl ModelSpec {
         for sec in [
             "body",
             "beam",
+            "flexible_body",
             "point",
             "joint",
             "driver",
@@ -1175,6 +1286,9 @@ impl ModelSpec {
 
     /// Names of the rigid bodies, in order.
     pub fn body_names(&self) -> Vec<String> {
+        if let Some(d) = &self.desc {
+            return d.bodies.iter().map(|b| b.name.clone()).collect();
+        }
         self.bodies.iter().map(|(n, _)| n.clone()).collect()
     }
 }

@@ -3,9 +3,11 @@
 //!
 //! Two forms (field by field in `docs/model-file.md`):
 //!
-//! - a **generic model**: `[model]`, `[[body]]`, `[[point]]`, `[[joint]]`, `[[driver]]`,
-//!   `[[force]]`, `[[clearance]]`, `[solver]`, `[output]`; [`load`] validates it and
-//!   [`ModelSpec::build`] turns it into a `clr_mbd::Model` and its `SimOptions`;
+//! - a **generic model**: `[model]`, `[[body]]`, `[[point]]`, `[[beam]]`, `[[flexible_body]]`,
+//!   `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`, `[output]`; a file
+//!   that reads as a `clr_mbd::ModelDesc` (what `clr export <name>` writes) is compiled as is,
+//!   any other is checked by the validator; [`load`] does either and [`ModelSpec::build`] turns
+//!   the result into a `clr_mbd::Model` and its `SimOptions`;
 //! - a **built-in model**: `[model] builtin = "<name>"` and a `[parameters]` table merged over
 //!   the catalog defaults (`clr_models::catalog`).
 //!
@@ -122,6 +124,43 @@ pub fn load(path: &Path, overrides: &[Assignment]) -> Result<Loaded, SpecError> 
 /// # Errors
 /// [`SpecError`] with file, line and field.
 pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loaded, SpecError> {
+    // a model description (`clr_mbd::ModelDesc`, e.g. written by `clr export`) is used as is;
+    // anything else goes through the validator of model files. A description that does not
+    // compile gets the validator's message (placed at the field, written for files) when the
+    // validator reads the file and rejects it too, else its own (placed at the item or field)
+    if let Some(desc) = read_desc(src, overrides) {
+        return match ModelSpec::from_desc(file, src, desc?) {
+            Ok(spec) => Ok(Loaded::Generic(Box::new(spec))),
+            Err(e) if file::parse(file, src).is_ok() => {
+                Err(load_generic(file, src, overrides).err().unwrap_or(e))
+            }
+            Err(e) => Err(e),
+        };
+    }
+    load_generic(file, src, overrides)
+}
+
+/// The text as a model description with the overrides applied, when it is one: it parses as
+/// `clr_mbd::ModelDesc` and has at least one body, beam or flexible body (a file without any
+/// is left to the validator, which says what is missing). An override that does not apply, or
+/// leaves something that is no description, is an error.
+fn read_desc(src: &str, overrides: &[Assignment]) -> Option<Result<clr_mbd::ModelDesc, SpecError>> {
+    let desc: clr_mbd::ModelDesc = toml::from_str(src).ok()?;
+    if desc.bodies.is_empty() && desc.beams.is_empty() && desc.flexible_bodies.is_empty() {
+        return None;
+    }
+    if overrides.is_empty() {
+        return Some(Ok(desc));
+    }
+    Some(overrides::apply_to_table(src, overrides).and_then(|v| {
+        v.try_into().map_err(|e: toml::de::Error| {
+            SpecError::plain("--set", "", format!("after the overrides: {}", e.message()))
+        })
+    }))
+}
+
+/// [`load_str`] through the model-file validator.
+fn load_generic(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loaded, SpecError> {
     let parsed = file::parse(file, src)?;
     if let Some(name) = parsed.model.as_ref().and_then(|m| m.builtin.clone()) {
         return file::builtin(file, src, &parsed, &name, overrides);

@@ -187,6 +187,20 @@ pub(crate) fn apply_toml_overrides(
         .map_err(|e| SpecError::plain("--set", "", format!("after the overrides: {}", e.message())))
 }
 
+/// The TOML text with the assignments applied, as a TOML value (for a text that parses; a parse
+/// error is a [`SpecError`] without a place).
+pub(crate) fn apply_to_table(
+    src: &str,
+    overrides: &[Assignment],
+) -> Result<toml::Value, SpecError> {
+    let mut root: toml::Table =
+        toml::from_str(src).map_err(|e| SpecError::plain("", "", e.message().to_string()))?;
+    for a in overrides {
+        set_toml(&mut root, a)?;
+    }
+    Ok(toml::Value::Table(root))
+}
+
 fn set_toml(root: &mut toml::Table, a: &Assignment) -> Result<(), SpecError> {
     let err = |m: String| SpecError::plain("--set", &a.path, m);
     let parts: Vec<&str> = a.path.split('.').collect();

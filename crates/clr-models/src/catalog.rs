@@ -122,6 +122,58 @@ pub fn run(
     }
 }
 
+/// The complete model that [`run`] simulates for these parameters and settings, as data: the
+/// bodies, joints, drivers, force and contact elements, with the run settings in `solver`
+/// (method, rtol, atol = rtol·10⁻³, no step bound, 10⁶ steps, no projection, Baumgarte,
+/// contact events) and `output` (0 to the end time in s, every accepted step recorded), and
+/// the catalog name and description in `[model]`. Compiling it
+/// ([`clr_mbd::ModelDesc::compile`]) and simulating with
+/// [`clr_mbd::ModelDesc::sim_options`] gives the time histories of [`run`] bit for bit (its
+/// clr-mbd columns; [`run`] appends derived columns and computes metrics, and `flap` and
+/// `manipulator` also simulate an ideal-joint reference, which this description is not).
+/// `parameters` is overlaid on [`default_parameters`] as in [`run`]; `settings.progress` is
+/// not used.
+///
+/// A description holding a Rust closure (`guide` with `lateral_support_stiffness` > 0) is
+/// returned, but [`clr_mbd::ModelDesc::to_toml`] refuses it, naming the item.
+///
+/// # Errors
+/// [`ModelsError::UnknownModel`], [`ModelsError::InvalidParameters`].
+pub fn export(
+    name: &str,
+    parameters: &serde_json::Value,
+    settings: &RunSettings,
+) -> Result<clr_mbd::ModelDesc, ModelsError> {
+    let mut d = match name {
+        "slider_crank" | "wan_slider_crank" => {
+            let p: SliderCrankParams = parse(name, &with_defaults(name, parameters)?)?;
+            slider_crank::run_desc(name, &p, settings)
+        }
+        "flap" => {
+            let p: FlapParams = parse(name, &with_defaults(name, parameters)?)?;
+            flap::run_desc(name, &p, settings)
+        }
+        "guide" => {
+            let p: GuideParams = parse(name, &with_defaults(name, parameters)?)?;
+            guide::run_desc(name, &p, settings)
+        }
+        "dual_guide" => {
+            let p: DualGuideParams = parse(name, &with_defaults(name, parameters)?)?;
+            dual_guide::run_desc(name, &p, settings)
+        }
+        "manipulator" => {
+            let p: ManipulatorParams = parse(name, &with_defaults(name, parameters)?)?;
+            manipulator::run_desc(name, &p, settings)
+        }
+        _ => Err(unknown(name)),
+    }?;
+    d.model.description = entries()
+        .iter()
+        .find(|e| e.name == name)
+        .map(|e| e.description.to_string());
+    Ok(d)
+}
+
 /// The model's default parameters overlaid with the given (possibly partial) object, so a
 /// front end may pass only the fields it changes.
 fn with_defaults(

@@ -4,8 +4,9 @@
 use std::path::Path;
 
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
-use clr_mbd::desc::MaterialDesc;
-use clr_mbd::{FrictionLawDesc, MbdError, Model, NormalLawDesc, Results, SimOptions, SolverKind};
+use clr_mbd::desc::{MaterialDesc, OutputSettings, SolverMethod};
+use clr_mbd::SolverKind;
+use clr_mbd::{FrictionLawDesc, MbdError, Model, ModelDesc, NormalLawDesc, Results, SimOptions};
 use serde::{Deserialize, Serialize};
 
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
@@ -41,6 +42,15 @@ pub enum Solver {
     Dopri5,
     /// Variable-order NDF (implicit).
     Ndf,
+}
+
+impl From<Solver> for SolverMethod {
+    fn from(s: Solver) -> Self {
+        match s {
+            Solver::Dopri5 => SolverMethod::Dopri5,
+            Solver::Ndf => SolverMethod::Ndf,
+        }
+    }
 }
 
 impl From<Solver> for SolverKind {
@@ -307,31 +317,64 @@ pub(crate) fn simulate(
     r.map_err(|e| sim_error(model, e))
 }
 
-/// Simulation options from a model's defaults and the run settings: every accepted step is
-/// recorded (peaks of impact forces are missed by coarse output grids).
-pub(crate) fn options(
+/// How a built-in run records its rows.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Record {
+    /// After every accepted step (peaks of impact forces are missed by coarse output grids).
+    EveryStep,
+    /// At n + 1 equally spaced times over [0, t_end] (n ≥ 1).
+    Intervals(usize),
+}
+
+/// Write the run settings of a built-in model into `desc.solver` and `desc.output`: the
+/// model's default end time `t_end` (s) and relative tolerance `rtol` unless `settings`
+/// overrides them, absolute tolerance rtol·10⁻³, the integrator `solver`, no step bound, a
+/// budget of 10⁶ steps, no projection, located contact onsets, and the recording `record` from
+/// t = 0. The Baumgarte coefficients recorded in the description are kept. Compiling the
+/// description and simulating with [`ModelDesc::sim_options`] is the built-in run.
+pub(crate) fn write_run(
+    desc: &mut ModelDesc,
     t_end: f64,
     rtol: f64,
     solver: Solver,
     settings: &RunSettings,
-    every_step: bool,
-    n_out: usize,
-) -> SimOptions {
-    let t_end = settings.t_end.unwrap_or(t_end);
+    record: Record,
+) {
     let rtol = settings.rtol.unwrap_or(rtol);
-    let mut o = if every_step {
-        SimOptions {
-            t_end,
-            every_step: true,
-            ..Default::default()
-        }
-    } else {
-        SimOptions::span(0.0, t_end, n_out)
+    let s = &mut desc.solver;
+    s.method = solver.into();
+    s.rtol = rtol;
+    s.atol = rtol * 1e-3;
+    s.h_max = None;
+    s.max_steps = 1_000_000;
+    s.projection = None;
+    s.contact_events = true;
+    desc.output = OutputSettings {
+        t_start: 0.0,
+        t_end: Some(settings.t_end.unwrap_or(t_end)),
+        intervals: match record {
+            Record::EveryStep => 0,
+            Record::Intervals(n) => n.max(1),
+        },
+        every_step: record == Record::EveryStep,
     };
-    o.solver = solver.into();
-    o.rtol = rtol;
-    o.atol = rtol * 1e-3;
-    o
+}
+
+/// Compile a description into the runtime model ([`ModelsError::Build`] on failure).
+pub(crate) fn compile(model: &str, desc: &ModelDesc) -> Result<Model, ModelsError> {
+    desc.compile().map_err(|e| build_error(model, e))
+}
+
+/// Compile a description and take its simulation options (an invalid `[solver]` or
+/// `[output]` is [`ModelsError::InvalidParameters`]).
+pub(crate) fn compile_run(
+    model: &str,
+    desc: &ModelDesc,
+) -> Result<(Model, SimOptions), ModelsError> {
+    let opts = desc
+        .sim_options()
+        .map_err(|e| invalid(model, e.to_string()))?;
+    Ok((compile(model, desc)?, opts))
 }
 
 /// Check run settings that apply to every model.
@@ -634,13 +677,22 @@ mod tests {
             progress: Some(Box::new(move |t| s2.lock().unwrap().push(t))),
             ..Default::default()
         };
-        let mut opts = options(p.duration, p.rtol, p.solver, &settings, true, 0);
-        let full = simulate(&mut p.build("t").unwrap(), &opts, &settings, "t").unwrap();
+        let mut desc = p.desc("t").unwrap();
+        write_run(
+            &mut desc,
+            p.duration,
+            p.rtol,
+            p.solver,
+            &settings,
+            Record::EveryStep,
+        );
+        let (mut m, mut opts) = compile_run("t", &desc).unwrap();
+        let full = simulate(&mut m, &opts, &settings, "t").unwrap();
         let seen = seen.lock().unwrap().clone();
         assert!(seen.windows(2).all(|w| w[1] > w[0]));
         assert_eq!(seen.last().copied(), Some(opts.t_end));
         opts.max_steps = full.stats.accepted / 3;
-        let err = simulate(&mut p.build("t").unwrap(), &opts, &settings, "t").unwrap_err();
+        let err = simulate(&mut compile("t", &desc).unwrap(), &opts, &settings, "t").unwrap_err();
         let ModelsError::Simulation {
             message, partial, ..
         } = err

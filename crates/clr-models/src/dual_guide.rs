@@ -20,10 +20,13 @@ use std::path::Path;
 
 use clr_beam::{BeamModel, Face, ReducedModel};
 use clr_mbd::desc::{BeamMaterial, BeamMesh, SectionDesc, SupportDesc, SupportKind};
-use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Reduction, Results, RigidBody, TimeFn};
+
+use clr_mbd::{
+    FlexibleGuideSpec, Model, ModelBuilder, ModelDesc, Reduction, Results, RigidBody, TimeFn,
+};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, FrictionParams, Solver};
+use crate::common::{self, col, FrictionParams, Record, Solver};
 use crate::guide::oscillation_amplitude;
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
@@ -354,7 +357,18 @@ impl DualGuideParams {
         }
     }
 
-    /// The multibody model. Bodies: stage-1 guides `g1a`, `g1b` (flexible beams, x from 0 at
+    /// The multibody model ([`DualGuideParams::desc`] compiled).
+    ///
+    /// # Errors
+    /// Invalid parameters or a clr-mbd build error.
+    pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        common::compile(model, &self.desc(model)?)
+    }
+
+    /// The multibody model as data, with the run settings of `clr run <model>` (no `--t-end`
+    /// or `--rtol`) in `solver` and `output`: the `solver` and `rtol` parameters, atol =
+    /// rtol·10⁻³, 0 to `duration` s, every accepted step recorded. `model` names the model in
+    /// errors and in `[model]`. Bodies: stage-1 guides `g1a`, `g1b` (flexible beams, x from 0 at
     /// the clamped roots, y = ±d/2), carriage `carriage1` with pads `s1a_up`, `s1a_lo`,
     /// `s1b_up`, `s1b_lo`, actuator `act1` (ground → carriage1, axial); dual only: stage-2
     /// guides `g2a`, `g2b` (floating beams clamped to carriage1 at (0, ±d/2) by `root_a`,
@@ -362,8 +376,8 @@ impl DualGuideParams {
     /// (carriage1 → carriage2, axial); lateral load `load` on the loaded carriage.
     ///
     /// # Errors
-    /// Invalid parameters or a clr-mbd build error.
-    pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+    /// Invalid parameters.
+    pub fn desc(&self, model: &str) -> Result<ModelDesc, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         let inv = |m: String| common::invalid(model, m);
         let (line, area) = common::guide_law_descs(
@@ -492,7 +506,17 @@ impl DualGuideParams {
             TimeFn::constant(0.0),
             TimeFn::constant(-load),
         );
-        b.build().map_err(|e| common::build_error(model, e))
+        let mut d = b.into_desc();
+        d.model.name = Some(model.to_string());
+        common::write_run(
+            &mut d,
+            self.duration,
+            self.rtol,
+            self.solver,
+            &RunSettings::default(),
+            Record::EveryStep,
+        );
+        Ok(d)
     }
 }
 
@@ -502,6 +526,29 @@ fn onsets(contact: &[f64]) -> usize {
         .windows(2)
         .filter(|w| w[0] < 0.5 && w[1] >= 0.5)
         .count()
+}
+
+/// The model and run settings that [`run`] simulates: [`DualGuideParams::desc`] with the end
+/// time and tolerance of `settings` (when given) written into `solver` and `output`.
+///
+/// # Errors
+/// Invalid parameters or run settings.
+pub fn run_desc(
+    model: &str,
+    p: &DualGuideParams,
+    settings: &RunSettings,
+) -> Result<ModelDesc, ModelsError> {
+    common::check_settings(model, settings)?;
+    let mut d = p.desc(model)?;
+    common::write_run(
+        &mut d,
+        p.duration,
+        p.rtol,
+        p.solver,
+        settings,
+        Record::EveryStep,
+    );
+    Ok(d)
 }
 
 /// Simulate and compute the metrics (docs/models/dual_guide.md): lateral displacement of the
@@ -515,9 +562,7 @@ pub fn run(
     p: &DualGuideParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    common::check_settings(model, settings)?;
-    let mut m = p.build(model)?;
-    let opts = common::options(p.duration, p.rtol, p.solver, settings, true, 0);
+    let (mut m, opts) = common::compile_run(model, &run_desc(model, p, settings)?)?;
     let res = common::simulate(&mut m, &opts, settings, model)?;
     if let Some(cb) = &settings.progress {
         cb(opts.t_end);
@@ -829,17 +874,17 @@ mod tests {
     #[test]
     fn unloaded_accelerated_stages_follow_newton() {
         let p = DualGuideParams::newton_check();
-        let mut m = p.build("t").unwrap();
-        let res = m
-            .simulate(&common::options(
-                p.duration,
-                p.rtol,
-                p.solver,
-                &RunSettings::default(),
-                false,
-                4,
-            ))
-            .unwrap();
+        let mut d = p.desc("t").unwrap();
+        common::write_run(
+            &mut d,
+            p.duration,
+            p.rtol,
+            p.solver,
+            &RunSettings::default(),
+            Record::Intervals(4),
+        );
+        let (mut m, opts) = common::compile_run("t", &d).unwrap();
+        let res = m.simulate(&opts).unwrap();
         for pad in ["s1a_up", "s1b_lo", "s2a_up", "s2b_lo"] {
             let n = col(&res, &format!("{pad}.contact"));
             assert!(n.iter().all(|&v| v == 0.0), "{pad} touched");

@@ -24,11 +24,13 @@ use std::f64::consts::{FRAC_PI_2, PI};
 use std::path::Path;
 
 use clr_beam::{BeamModel, Material, Section, Support};
-use clr_mbd::{Anchor, Model, ModelBuilder, Results, RevoluteClearanceSpec, RigidBody, TimeFn};
+use clr_mbd::{
+    Anchor, Model, ModelBuilder, ModelDesc, Results, RevoluteClearanceSpec, RigidBody, TimeFn,
+};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, non_negative, positive, FrictionParams, Solver};
+use crate::common::{self, col, non_negative, positive, FrictionParams, Record, Solver};
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// The paper's first five eigenfrequencies (Hz) per flexible part.
@@ -554,14 +556,27 @@ impl FlapParams {
         Ok(())
     }
 
-    /// The clr-mbd model. Bodies `cylinder`, `piston`, `lever_arm`, `aux_rod`,
-    /// `aux_lever_arm` (with the flap); ideal joints `C0` (ground–cylinder), `actuator`
-    /// (translational cylinder–piston), `O2` (ground–auxiliary lever arm); driver `x`; joints
-    /// `J1`..`J4` ideal or clearance per [`FlapParams::clearances`]; torque `hinge`.
+    /// The clr-mbd model ([`FlapParams::desc`] compiled).
     ///
     /// # Errors
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        common::compile(model, &self.desc(model)?)
+    }
+
+    /// The model as data, with the run settings of the clearance run of `clr run <model>` (no
+    /// `--t-end` or `--rtol`) in `solver` and `output`: the `solver` and `rtol` parameters,
+    /// atol = rtol·10⁻³, 0 to `duration` s, every accepted step recorded. Bodies `cylinder`,
+    /// `piston`, `lever_arm`, `aux_rod`, `aux_lever_arm` (with the flap; flexible parts per
+    /// [`FlapParams::flexible`] are floating-frame bodies of the same names, the flap then a
+    /// body `flap`); ideal joints `C0` (ground–cylinder), `actuator` (translational
+    /// cylinder–piston), `O2` (ground–auxiliary lever arm); driver `x`; joints `J1`..`J4` ideal
+    /// or clearance per [`FlapParams::clearances`]; torque `hinge`. `model` names the model in
+    /// errors and in `[model]`.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn desc(&self, model: &str) -> Result<ModelDesc, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         self.friction.law().map_err(|m| common::invalid(model, m))?;
         let friction = self.friction.desc();
@@ -719,8 +734,53 @@ impl FlapParams {
         // hinge moment −(M0 + k(θ − θ0)): a constant torque plus a rotational spring to ground
         m.torque("hinge", hinge_body, TimeFn::constant(-m0))
             .rotational_spring_damper("hinge_stiffness", "ground", hinge_body, k, 0.0, th0);
-        m.build().map_err(|e| common::build_error(model, e))
+        let mut d = m.into_desc();
+        d.model.name = Some(model.to_string());
+        common::write_run(
+            &mut d,
+            self.duration,
+            self.rtol,
+            self.solver,
+            &RunSettings::default(),
+            Record::EveryStep,
+        );
+        Ok(d)
     }
+}
+
+/// The model of one configuration with its run settings: every accepted step, or with
+/// `uniform` every `reference_interval` s.
+fn sim_desc(
+    model: &str,
+    p: &FlapParams,
+    settings: &RunSettings,
+    uniform: bool,
+) -> Result<ModelDesc, ModelsError> {
+    let mut d = p.desc(model)?;
+    let record = if uniform {
+        let t_end = settings.t_end.unwrap_or(p.duration);
+        Record::Intervals(((t_end / p.reference_interval).round() as usize).max(1))
+    } else {
+        Record::EveryStep
+    };
+    common::write_run(&mut d, p.duration, p.rtol, p.solver, settings, record);
+    Ok(d)
+}
+
+/// The model and run settings of the clearance run of [`run`] (the run it returns; [`run`]
+/// also simulates the same linkage with ideal joints as its reference): [`FlapParams::desc`]
+/// with the end time and tolerance of `settings` (when given) written into `solver` and
+/// `output`.
+///
+/// # Errors
+/// Invalid parameters or run settings.
+pub fn run_desc(
+    model: &str,
+    p: &FlapParams,
+    settings: &RunSettings,
+) -> Result<ModelDesc, ModelsError> {
+    common::check_settings(model, settings)?;
+    sim_desc(model, p, settings, false)
 }
 
 /// Simulate one configuration; appends `flap.angle` (rad, from the initial position) and
@@ -731,10 +791,7 @@ pub(crate) fn simulate(
     settings: &RunSettings,
     uniform: bool,
 ) -> Result<Results, ModelsError> {
-    let mut m = p.build(model)?;
-    let t_end = settings.t_end.unwrap_or(p.duration);
-    let n_out = ((t_end / p.reference_interval).round() as usize).max(1);
-    let opts = common::options(p.duration, p.rtol, p.solver, settings, !uniform, n_out);
+    let (mut m, opts) = common::compile_run(model, &sim_desc(model, p, settings, uniform)?)?;
     let mut res = common::simulate(&mut m, &opts, settings, model)?;
     // the flap angle: the rigid auxiliary lever arm's, or the flap body's when that arm is
     // flexible (the flap is then a rigid body fixed to the arm's pivot node, starting at 0)

@@ -12,11 +12,11 @@ use std::path::Path;
 
 use clr_beam::Face;
 use clr_mbd::desc::{BeamMaterial, BeamMesh, SectionDesc, SupportDesc, SupportKind};
-use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, Results, RigidBody, TimeFn};
+use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, ModelDesc, Results, RigidBody, TimeFn};
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, FrictionParams, Solver};
+use crate::common::{self, col, FrictionParams, Record, Solver};
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// Parameters of the single sliding guide (SI units). Defaults: [`GuideParams::default`]; every
@@ -229,14 +229,27 @@ impl GuideParams {
         }
     }
 
-    /// The multibody model: guide beam `guide` (x from 0 at the clamped root), slider `slider`
-    /// centred on the guide axis, contact elements `upper` (slider's upper pad on the guide's
-    /// upper face) and `lower`, actuator `actuator` (axial displacement driver), lateral load
-    /// `load`.
+    /// The multibody model ([`GuideParams::desc`] compiled).
     ///
     /// # Errors
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        common::compile(model, &self.desc(model)?)
+    }
+
+    /// The multibody model as data, with the run settings of `clr run <model>` (no `--t-end`
+    /// or `--rtol`) in `solver` and `output`: the `solver` and `rtol` parameters, atol =
+    /// rtol·10⁻³, 0 to [`GuideParams::duration`] s, every accepted step recorded. Guide beam
+    /// `guide` (x from 0 at the clamped root), slider `slider` centred on the guide axis,
+    /// contact elements `upper` (slider's upper pad on the guide's upper face) and `lower`,
+    /// actuator `actuator` (axial displacement driver), lateral load `load`; with
+    /// `lateral_support_stiffness` > 0 also the closure force `support`, which a model file
+    /// cannot hold (`ModelDesc::to_toml` then fails naming it). `model` names the model in
+    /// errors and in `[model]`.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn desc(&self, model: &str) -> Result<ModelDesc, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         let inv = |m: String| common::invalid(model, m);
         let beam = self.guide_mesh();
@@ -302,7 +315,17 @@ impl GuideParams {
                 Vector2::new(0.0, -k * s.position.y)
             });
         }
-        b.build().map_err(|e| common::build_error(model, e))
+        let mut d = b.into_desc();
+        d.model.name = Some(model.to_string());
+        common::write_run(
+            &mut d,
+            self.duration(),
+            self.rtol,
+            self.solver,
+            &RunSettings::default(),
+            Record::EveryStep,
+        );
+        Ok(d)
     }
 }
 
@@ -338,6 +361,29 @@ fn onsets(contact: &[f64]) -> usize {
         .count()
 }
 
+/// The model and run settings that [`run`] simulates: [`GuideParams::desc`] with the end time
+/// and tolerance of `settings` (when given) written into `solver` and `output`.
+///
+/// # Errors
+/// Invalid parameters or run settings.
+pub fn run_desc(
+    model: &str,
+    p: &GuideParams,
+    settings: &RunSettings,
+) -> Result<ModelDesc, ModelsError> {
+    common::check_settings(model, settings)?;
+    let mut d = p.desc(model)?;
+    common::write_run(
+        &mut d,
+        p.duration(),
+        p.rtol,
+        p.solver,
+        settings,
+        Record::EveryStep,
+    );
+    Ok(d)
+}
+
 /// Simulate and compute the metrics (see docs/models/guide.md): slider lateral displacement
 /// (max, RMS), peak contact force, guide-tip deflection oscillation amplitude, time-averaged
 /// friction force, number of impacts, actuator force peak, equivalent friction coefficient.
@@ -345,9 +391,7 @@ fn onsets(contact: &[f64]) -> usize {
 /// # Errors
 /// Invalid parameters, build or simulation errors.
 pub fn run(model: &str, p: &GuideParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
-    common::check_settings(model, settings)?;
-    let mut m = p.build(model)?;
-    let opts = common::options(p.duration(), p.rtol, p.solver, settings, true, 0);
+    let (mut m, opts) = common::compile_run(model, &run_desc(model, p, settings)?)?;
     let res = common::simulate(&mut m, &opts, settings, model)?;
     if let Some(cb) = &settings.progress {
         cb(opts.t_end);

@@ -5,7 +5,9 @@
 //! Every built-in model is reachable by name through [`catalog`], which is what the `clr`
 //! command and the Python package use: [`catalog::entries`] lists them,
 //! [`catalog::default_parameters`] gives the resolved parameters as JSON (so a front end can
-//! override any field), and [`catalog::run`] simulates one and returns a [`RunOutput`].
+//! override any field), [`catalog::run`] simulates one and returns a [`RunOutput`], and
+//! [`catalog::export`] gives the complete model of that run as data (a `clr_mbd::ModelDesc`
+//! with its solver and output settings, writable as a model file).
 
 pub mod catalog;
 pub mod common;

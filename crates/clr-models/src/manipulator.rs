@@ -18,11 +18,13 @@
 
 use std::path::Path;
 
-use clr_mbd::{Model, ModelBuilder, Results, RevoluteClearanceSpec, RigidBody, TimeFn};
+use clr_mbd::{Model, ModelBuilder, ModelDesc, Results, RevoluteClearanceSpec, RigidBody, TimeFn};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, non_negative, positive, FrictionParams, PairApplication, Solver};
+use crate::common::{
+    self, col, non_negative, positive, FrictionParams, PairApplication, Record, Solver,
+};
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// Names of the paper's cases, in order.
@@ -190,11 +192,24 @@ impl ManipulatorParams {
         Ok(())
     }
 
-    /// The clr-mbd model.
+    /// The clr-mbd model ([`ManipulatorParams::desc`] compiled).
     ///
     /// # Errors
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        common::compile(model, &self.desc(model)?)
+    }
+
+    /// The model as data, with the run settings of the clearance run of `clr run <model>` (no
+    /// `--t-end` or `--rtol`) in `solver` and `output`: the `solver` and `rtol` parameters,
+    /// atol = rtol·10⁻³, 0 to `duration` s, every accepted step recorded. Bodies `base`,
+    /// `arm1` … `arm4`; joints `J1` … `J4` ideal or clearance per
+    /// [`ManipulatorParams::clearances`]; joint torques `T1` … `T4`. `model` names the model in
+    /// errors and in `[model]`.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn desc(&self, model: &str) -> Result<ModelDesc, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         // validated here for the parameter-level message; the model gets the laws as data
         common::ln_law(self.contact_stiffness, self.restitution)
@@ -269,11 +284,56 @@ impl ManipulatorParams {
             b.motor_torque(t_sh, "base", inner, TimeFn::harmonic(0.0, a_sh, w, 0.0))
                 .motor_torque(t_el, inner, outer, TimeFn::harmonic(0.0, a_el, w, 0.0));
         }
-        b.build().map_err(|e| common::build_error(model, e))
+        let mut d = b.into_desc();
+        d.model.name = Some(model.to_string());
+        common::write_run(
+            &mut d,
+            self.duration,
+            self.rtol,
+            self.solver,
+            &RunSettings::default(),
+            Record::EveryStep,
+        );
+        Ok(d)
     }
 }
 
 const BODIES: [&str; 5] = ["base", "arm1", "arm2", "arm3", "arm4"];
+
+/// The model of one configuration with its run settings: every accepted step, or with
+/// `uniform` every `reference_interval` s.
+fn sim_desc(
+    model: &str,
+    p: &ManipulatorParams,
+    settings: &RunSettings,
+    uniform: bool,
+) -> Result<ModelDesc, ModelsError> {
+    let mut d = p.desc(model)?;
+    let record = if uniform {
+        let t_end = settings.t_end.unwrap_or(p.duration);
+        Record::Intervals(((t_end / p.reference_interval).round() as usize).max(1))
+    } else {
+        Record::EveryStep
+    };
+    common::write_run(&mut d, p.duration, p.rtol, p.solver, settings, record);
+    Ok(d)
+}
+
+/// The model and run settings of the clearance run of [`run`] (the run it returns; [`run`]
+/// also simulates the same system with ideal joints as its reference):
+/// [`ManipulatorParams::desc`] with the end time and tolerance of `settings` (when given)
+/// written into `solver` and `output`.
+///
+/// # Errors
+/// Invalid parameters or run settings.
+pub fn run_desc(
+    model: &str,
+    p: &ManipulatorParams,
+    settings: &RunSettings,
+) -> Result<ModelDesc, ModelsError> {
+    common::check_settings(model, settings)?;
+    sim_desc(model, p, settings, false)
+}
 
 /// Simulate one configuration and append the derived columns: end-effector positions
 /// `ee1.x ee1.y ee2.x ee2.y` (tips of links 2 and 4) and the system momentum `momentum.px
@@ -285,10 +345,7 @@ fn simulate(
     settings: &RunSettings,
     uniform: bool,
 ) -> Result<(Results, [f64; 2]), ModelsError> {
-    let mut m = p.build(model)?;
-    let t_end = settings.t_end.unwrap_or(p.duration);
-    let n_out = ((t_end / p.reference_interval).round() as usize).max(1);
-    let opts = common::options(p.duration, p.rtol, p.solver, settings, !uniform, n_out);
+    let (mut m, opts) = common::compile_run(model, &sim_desc(model, p, settings, uniform)?)?;
     let mut res = common::simulate(&mut m, &opts, settings, model)?;
     let n = res.len();
     let (mut px, mut py, mut lz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);

@@ -7,10 +7,10 @@
 //! The crank turns at constant speed from θ = 0 (all links along +x); the bearing is on the
 //! slider at its centre, the journal at the rod end, centred in the bearing at t = 0.
 
-use clr_mbd::{Model, ModelBuilder, RevoluteClearanceSpec, RigidBody, TimeFn};
+use clr_mbd::{Model, ModelBuilder, ModelDesc, RevoluteClearanceSpec, RigidBody, TimeFn};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, non_negative, positive, FrictionParams, Solver};
+use crate::common::{self, col, non_negative, positive, FrictionParams, Record, Solver};
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
 
 /// Parameters of a clearance slider–crank (SI units).
@@ -175,12 +175,23 @@ impl SliderCrankParams {
         Ok(())
     }
 
-    /// The clr-mbd model. Bodies `crank`, `rod`, `slider`; joints `O` (ground–crank), `A`
-    /// (crank–rod), `guide` (translational), driver `motor`; clearance joint `B`.
+    /// The clr-mbd model ([`SliderCrankParams::desc`] compiled).
     ///
     /// # Errors
     /// Invalid parameters or a clr-mbd build error.
     pub fn build(&self, model: &str) -> Result<Model, ModelsError> {
+        common::compile(model, &self.desc(model)?)
+    }
+
+    /// The model as data, with the run settings of `clr run <model>` (no `--t-end` or
+    /// `--rtol`) in `solver` and `output`: the `solver` and `rtol` parameters, atol = rtol·10⁻³,
+    /// 0 to `duration` s, every accepted step recorded. Bodies `crank`, `rod`, `slider`; joints
+    /// `O` (ground–crank), `A` (crank–rod), `guide` (translational), driver `motor`; clearance
+    /// joint `B`. `model` names the model in errors and in `[model]`.
+    ///
+    /// # Errors
+    /// Invalid parameters.
+    pub fn desc(&self, model: &str) -> Result<ModelDesc, ModelsError> {
         self.validate().map_err(|m| common::invalid(model, m))?;
         // validated here for the parameter-level message; the model gets the law as data
         common::preset_law(
@@ -245,7 +256,17 @@ impl SliderCrankParams {
                 friction,
             },
         );
-        b.build().map_err(|e| common::build_error(model, e))
+        let mut d = b.into_desc();
+        d.model.name = Some(model.to_string());
+        common::write_run(
+            &mut d,
+            self.duration,
+            self.rtol,
+            self.solver,
+            &RunSettings::default(),
+            Record::EveryStep,
+        );
+        Ok(d)
     }
 }
 
@@ -254,6 +275,29 @@ impl SliderCrankParams {
 pub fn ideal_slider_position(r: f64, l: f64, theta: f64) -> f64 {
     let s = theta.sin();
     r * theta.cos() + (l * l - r * r * s * s).sqrt()
+}
+
+/// The model and run settings that [`run`] simulates: [`SliderCrankParams::desc`] with the end
+/// time and tolerance of `settings` (when given) written into `solver` and `output`.
+///
+/// # Errors
+/// Invalid parameters or run settings.
+pub fn run_desc(
+    model: &str,
+    p: &SliderCrankParams,
+    settings: &RunSettings,
+) -> Result<ModelDesc, ModelsError> {
+    common::check_settings(model, settings)?;
+    let mut d = p.desc(model)?;
+    common::write_run(
+        &mut d,
+        p.duration,
+        p.rtol,
+        p.solver,
+        settings,
+        Record::EveryStep,
+    );
+    Ok(d)
 }
 
 /// Simulate and compute the metrics: peak contact force, peak slider acceleration,
@@ -267,9 +311,7 @@ pub fn run(
     p: &SliderCrankParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    common::check_settings(model, settings)?;
-    let mut m = p.build(model)?;
-    let opts = common::options(p.duration, p.rtol, p.solver, settings, true, 0);
+    let (mut m, opts) = common::compile_run(model, &run_desc(model, p, settings)?)?;
     let mut res = common::simulate(&mut m, &opts, settings, model)?;
     if let Some(cb) = &settings.progress {
         cb(opts.t_end);
