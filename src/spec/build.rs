@@ -2,8 +2,11 @@
 
 use std::collections::HashMap;
 
-use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
+use clr_contact::{FrictionLaw, NormalLaw};
+use clr_mbd::desc::laws::{FRICTION_LAWS, NORMAL_LAWS};
+use clr_mbd::desc::MaterialDesc;
 use clr_mbd::{Anchor, Model, ModelBuilder, RevoluteClearanceSpec, RigidBody, SimOptions};
+use clr_mbd::{FrictionLawDesc, NormalLawDesc};
 use clr_mbd::{SolverKind, TranslationalClearanceSpec, GROUND};
 
 use super::file::{
@@ -255,138 +258,68 @@ fn vec2(v: &toml::Value) -> Option<[f64; 2]> {
     Some([num(&a[0])?, num(&a[1])?])
 }
 
+/// A function of time as written: the clr-mbd `TimeFn` table (`type` and its fields), read by
+/// its serde form and checked by `TimeFn::validate`.
 fn time_fn(v: &V, path: &FieldPath, t: &Option<toml::Table>) -> Result<TimeFn, SpecError> {
     let t = v.req(
         path,
         t,
         "a function of time, e.g. { type = \"linear\", initial = 0.0, rate = 10.0 }",
     )?;
-    let kind = match t.get("type") {
-        Some(toml::Value::String(s)) => s.clone(),
-        _ => {
-            return Err(v.err(
-                &path.key("type"),
-                format!(
-                    "missing value: give the function type, one of {}",
-                    TIME_FN_KINDS.join(", ")
-                ),
-            ))
-        }
-    };
-    let fields: &[&str] = match kind.as_str() {
-        "constant" => &["value"],
-        "linear" => &["initial", "rate"],
-        "ramp" => &["initial", "rate", "duration"],
-        "sine" => &["offset", "amplitude", "omega", "phase"],
-        "polynomial" => &["coefficients"],
-        _ => {
-            return Err(v.err(
-                &path.key("type"),
-                format!(
-                    "unknown function type `{kind}`; {}",
-                    suggestion(&kind, TIME_FN_KINDS)
-                ),
-            ))
-        }
-    };
-    for k in t.keys() {
-        if k != "type" && !fields.contains(&k.as_str()) {
-            return Err(v.err(
-                &path.key(k),
-                format!(
-                    "unknown field `{k}` for a `{kind}` function; {}",
-                    suggestion(k, fields.iter().copied())
-                ),
-            ));
-        }
+    if !t.contains_key("type") {
+        return Err(v.err(
+            &path.key("type"),
+            format!(
+                "missing value: give the function type, one of {}",
+                TIME_FN_KINDS.join(", ")
+            ),
+        ));
     }
-    let get = |k: &str, default: Option<f64>| -> Result<f64, SpecError> {
-        match t.get(k) {
-            Some(x) => num(x)
-                .ok_or_else(|| v.err(&path.key(k), "expected a number"))
-                .and_then(|x| v.finite(&path.key(k), x)),
-            None => default.ok_or_else(|| {
-                v.err(
-                    &path.key(k),
-                    format!(
-                        "missing value: a `{kind}` function needs {}",
-                        fields.join(", ")
-                    ),
-                )
-            }),
-        }
-    };
-    Ok(match kind.as_str() {
-        "constant" => TimeFn::Constant {
-            value: get("value", None)?,
-        },
-        "linear" => TimeFn::Linear {
-            initial: get("initial", Some(0.0))?,
-            rate: get("rate", None)?,
-        },
-        "ramp" => TimeFn::Ramp {
-            initial: get("initial", Some(0.0))?,
-            rate: get("rate", None)?,
-            duration: v.positive(&path.key("duration"), get("duration", None)?, "s")?,
-        },
-        "sine" => TimeFn::Sine {
-            offset: get("offset", Some(0.0))?,
-            amplitude: get("amplitude", None)?,
-            omega: get("omega", None)?,
-            phase: get("phase", Some(0.0))?,
-        },
-        _ => {
-            let p = path.key("coefficients");
-            let c = t
-                .get("coefficients")
-                .ok_or_else(|| v.err(&p, "missing value: give coefficients = [c0, c1, ...]"))?;
-            let c: Option<Vec<f64>> = c.as_array().and_then(|a| a.iter().map(num).collect());
-            let c = c
-                .filter(|c| !c.is_empty())
-                .ok_or_else(|| v.err(&p, "expected a non-empty list of numbers [c0, c1, ...]"))?;
-            for &x in &c {
-                v.finite(&p, x)?;
-            }
-            TimeFn::Polynomial { coefficients: c }
-        }
-    })
+    let f: TimeFn = toml::Value::Table(t)
+        .try_into()
+        .map_err(|e: toml::de::Error| v.err(path, e.message().trim().to_string()))?;
+    f.validate("")
+        .map_err(|e| v.err(&sub_path(path, &e.path), e.message))?;
+    Ok(f)
 }
 
-fn material(v: &V, path: &FieldPath, m: &Option<MaterialFile>) -> Result<Material, SpecError> {
-    let m = v.req(
-        path,
-        m,
-        "a material { youngs_modulus = 2.07e11, poisson_ratio = 0.3 } (Pa, –)",
-    )?;
-    let e = v.positive(
-        &path.key("youngs_modulus"),
-        v.req(
+/// A contact material as written, both fields required when the table is there.
+fn material(
+    v: &V,
+    path: &FieldPath,
+    m: &Option<MaterialFile>,
+) -> Result<Option<MaterialDesc>, SpecError> {
+    let Some(m) = m else { return Ok(None) };
+    Ok(Some(MaterialDesc {
+        youngs_modulus: v.req(
             &path.key("youngs_modulus"),
             &m.youngs_modulus,
             "Young's modulus in Pa",
         )?,
-        "Pa",
-    )?;
-    let nu = v.req(
-        &path.key("poisson_ratio"),
-        &m.poisson_ratio,
-        "Poisson's ratio",
-    )?;
-    Material::new(e, nu).map_err(|e| v.err(&path.key("poisson_ratio"), e.to_string()))
+        poisson_ratio: v.req(
+            &path.key("poisson_ratio"),
+            &m.poisson_ratio,
+            "Poisson's ratio",
+        )?,
+    }))
 }
 
-const ELASTIC_LAWS: [&str; 9] = [
-    "hertz",
-    "power",
-    "linear",
-    "hertz-internal-cylinder",
-    "liu",
-    "bai-zhao",
-    "johnson",
-    "pereira",
-    "preset",
-];
+/// `base` extended by a clr-mbd relative field path (`.bearing_material.youngs_modulus`,
+/// `.supports[2].node`).
+fn sub_path(base: &FieldPath, rel: &str) -> FieldPath {
+    let mut out = base.clone();
+    for part in rel.split('.').filter(|p| !p.is_empty()) {
+        let mut pieces = part.split('[');
+        out = out.key(pieces.next().unwrap_or(""));
+        for i in pieces.filter_map(|i| i.trim_end_matches(']').parse().ok()) {
+            out = out.index(i);
+        }
+    }
+    out
+}
 
+/// The normal-force law of a clearance: the file's table as a clr-mbd `NormalLawDesc`, which
+/// checks and builds it (one definition of the laws by name for files and descriptions).
 fn normal_law(
     v: &V,
     path: &FieldPath,
@@ -399,165 +332,58 @@ fn normal_law(
         "a normal-force law, e.g. normal = { law = \"hertz\", stiffness = 1e10, damping = \
          \"lankarani-nikravesh\", restitution = 0.9 }",
     )?;
-    let law = v.kind(&path.key("law"), &n.law, &ELASTIC_LAWS, "normal-force law")?;
-    let Some((rb, rj)) = radii.or_else(|| {
-        ["hertz", "power", "linear"]
-            .contains(&law)
-            .then_some((f64::NAN, f64::NAN))
-    }) else {
-        return Err(v.err(
+    let desc = NormalLawDesc {
+        law: v.req(
             &path.key("law"),
-            format!(
-                "the `{law}` law needs a journal and a bearing; a translational clearance takes \
-                 `hertz`, `power` or `linear` with a stiffness"
-            ),
-        ));
-    };
-    let c_e = v.req(
-        &path.key("restitution"),
-        &n.restitution,
-        "the coefficient of restitution c_e in (0, 1]",
-    )?;
-    if !(c_e > 0.0 && c_e <= 1.0) {
-        return Err(v.err(
+            &n.law,
+            &format!("the normal-force law, one of {}", NORMAL_LAWS.join(", ")),
+        )?,
+        damping: n.damping.clone(),
+        restitution: v.req(
             &path.key("restitution"),
-            format!("c_e = {c_e} must be in (0, 1]"),
-        ));
-    }
-    let cont = |e: clr_contact::ContactError, field: &str| v.err(&path.key(field), e.to_string());
-    let clearance = rb - rj;
-    let stiff = |v2: &V| -> Result<f64, SpecError> {
-        let p = path.key("stiffness");
-        v2.positive(&p, v2.req(&p, &n.stiffness, "the stiffness K")?, "N/m^n")
+            &n.restitution,
+            "the coefficient of restitution c_e in (0, 1]",
+        )?,
+        stiffness: n.stiffness,
+        exponent: n.exponent,
+        length: n.length,
+        bearing_material: material(v, &path.key("bearing_material"), &n.bearing_material)?,
+        journal_material: material(v, &path.key("journal_material"), &n.journal_material)?,
+        preset: n.preset.clone(),
+        min_impact_velocity: n.min_impact_velocity,
+        ..NormalLawDesc::default()
     };
-    let length = |v2: &V| -> Result<f64, SpecError> {
-        let p = path.key("length");
-        v2.positive(&p, v2.req(&p, &n.length, "the axial length L in m")?, "m")
-    };
-    let e_star = |v2: &V| -> Result<f64, SpecError> {
-        let b = material(v2, &path.key("bearing_material"), &n.bearing_material)?;
-        let j = material(v2, &path.key("journal_material"), &n.journal_material)?;
-        b.try_composite_modulus(&j)
-            .map_err(|e| cont(e, "bearing_material"))
-    };
-    let law_obj = if law == "preset" {
-        let label = v.req(
-            &path.key("preset"),
-            &n.preset,
-            "the preset label (Hertz, LN, Gonthier, Bai, Wang, Modified)",
-        )?;
-        if !clr_contact::normal::FLAP_PRESETS
-            .iter()
-            .any(|p| p.eq_ignore_ascii_case(&label))
-        {
-            return Err(v.err(
-                &path.key("preset"),
-                format!(
-                    "unknown preset `{label}`; {}",
-                    suggestion(&label, clr_contact::normal::FLAP_PRESETS)
-                ),
-            ));
-        }
-        if n.damping.is_some() {
-            return Err(v.err(
-                &path.key("damping"),
-                "a preset fixes its damping factor; remove `damping`",
-            ));
-        }
-        let jb = JournalBearing {
-            bearing: material(v, &path.key("bearing_material"), &n.bearing_material)?,
-            journal: material(v, &path.key("journal_material"), &n.journal_material)?,
-            r_bearing: rb,
-            r_journal: rj,
-            length: length(v)?,
-        };
-        NormalLaw::preset(&label, &jb, c_e).map_err(|e| cont(e, "preset"))?
-    } else {
-        let elastic = match law {
-            "hertz" => ElasticLaw::hertz(stiff(v)?),
-            "linear" => ElasticLaw::linear(stiff(v)?),
-            "power" => {
-                let p = path.key("exponent");
-                let ex = v.positive(&p, v.req(&p, &n.exponent, "the exponent n")?, "")?;
-                ElasticLaw::power(stiff(v)?, ex)
-            }
-            "hertz-internal-cylinder" => {
-                let b = material(v, &path.key("bearing_material"), &n.bearing_material)?;
-                let j = material(v, &path.key("journal_material"), &n.journal_material)?;
-                ElasticLaw::hertz_internal_cylinder(&b, rb, &j, rj)
-            }
-            "liu" => ElasticLaw::liu(e_star(v)?, clearance, length(v)?),
-            "bai-zhao" => ElasticLaw::bai_zhao(e_star(v)?, clearance),
-            "johnson" => ElasticLaw::johnson(e_star(v)?, clearance, length(v)?),
-            _ => ElasticLaw::pereira_internal(e_star(v)?, clearance, length(v)?),
-        }
-        .map_err(|e| cont(e, "law"))?;
-        let dname = v.req(
-            &path.key("damping"),
-            &n.damping,
-            "the damping factor name (e.g. lankarani-nikravesh, flores, gonthier, none)",
-        )?;
-        let damping = DampingFactor::from_name(&dname).map_err(|_| {
-            v.err(
-                &path.key("damping"),
-                format!(
-                    "unknown damping factor `{dname}`; {}",
-                    suggestion(&dname, DampingFactor::ALL.iter().map(|d| d.name()))
-                ),
-            )
-        })?;
-        NormalLaw::new(elastic, damping, c_e).map_err(|e| cont(e, "restitution"))?
-    };
-    match n.min_impact_velocity {
-        Some(m) => law_obj
-            .with_min_impact_velocity(m)
-            .map_err(|e| cont(e, "min_impact_velocity")),
-        None => Ok(law_obj),
-    }
+    desc.build("", radii)
+        .map_err(|e| v.err(&sub_path(path, &e.path), e.message))
 }
 
-const FRICTION_LAWS: [&str; 6] = [
-    "none",
-    "coulomb",
-    "ambrosio",
-    "ambrosio-smooth",
-    "threlfall",
-    "stribeck",
-];
-
+/// The friction law of a clearance (absent: frictionless), through clr-mbd's
+/// `FrictionLawDesc`.
 fn friction_law(
     v: &V,
     path: &FieldPath,
     f: &Option<FrictionFile>,
 ) -> Result<FrictionLaw, SpecError> {
-    let none = || FrictionLaw::coulomb(0.0, 1.0);
-    let Some(f) = f else {
-        return none().map_err(|e| v.err(path, e.to_string()));
+    let desc = match f {
+        None => FrictionLawDesc::none(),
+        Some(f) => FrictionLawDesc {
+            law: v.req(
+                &path.key("law"),
+                &f.law,
+                &format!("the friction law, one of {}", FRICTION_LAWS.join(", ")),
+            )?,
+            mu: f.mu,
+            v_reg: f.v_reg,
+            v0: f.v0,
+            v1: f.v1,
+            mu_s: f.mu_s,
+            mu_d: f.mu_d,
+            v_s: f.v_s,
+            v_d: f.v_d,
+        },
     };
-    let law = v.kind(&path.key("law"), &f.law, &FRICTION_LAWS, "friction law")?;
-    let g = |k: &str, x: &Option<f64>| -> Result<f64, SpecError> {
-        v.req(
-            &path.key(k),
-            x,
-            &format!("`{k}` for the {law} friction law"),
-        )
-    };
-    let r = match law {
-        "none" => none(),
-        "coulomb" => FrictionLaw::coulomb(g("mu", &f.mu)?, f.v_reg.unwrap_or(1e-4)),
-        "ambrosio" => FrictionLaw::ambrosio(g("mu", &f.mu)?, g("v0", &f.v0)?, g("v1", &f.v1)?),
-        "ambrosio-smooth" => {
-            FrictionLaw::ambrosio_smooth(g("mu", &f.mu)?, g("v0", &f.v0)?, g("v1", &f.v1)?)
-        }
-        "threlfall" => FrictionLaw::threlfall(g("mu", &f.mu)?, g("v0", &f.v0)?),
-        _ => FrictionLaw::stribeck(
-            g("mu_s", &f.mu_s)?,
-            g("mu_d", &f.mu_d)?,
-            g("v_s", &f.v_s)?,
-            g("v_d", &f.v_d)?,
-        ),
-    };
-    r.map_err(|e| v.err(path, e.to_string()))
+    desc.build("")
+        .map_err(|e| v.err(&sub_path(path, &e.path), e.message))
 }
 
 impl ModelSpec {
@@ -1030,41 +856,27 @@ impl ModelSpec {
     /// A field path of a clr-mbd message (`joint[2].axis`, or `crank_drive.motion.rate` with
     /// an item name first) as a path in the file.
     fn desc_path(&self, path: &str) -> FieldPath {
-        let mut out = FieldPath::root();
-        for (k, part) in path.split('.').enumerate() {
-            let mut pieces = part.split('[');
-            let key = pieces.next().unwrap_or("");
-            let indices: Vec<usize> = pieces
-                .filter_map(|i| i.trim_end_matches(']').parse().ok())
-                .collect();
-            const SECTIONS: [&str; 11] = [
-                "model",
-                "body",
-                "point",
-                "beam",
-                "flexible_body",
-                "joint",
-                "driver",
-                "force",
-                "clearance",
-                "solver",
-                "output",
-            ];
-            let item = (k == 0 && indices.is_empty() && !SECTIONS.contains(&key))
-                .then(|| self.path_of(key))
-                .flatten();
-            match item {
-                // an item name first: its place in its section
-                Some(item) => out = item,
-                None => {
-                    out = out.key(key);
-                    for i in indices {
-                        out = out.index(i);
-                    }
-                }
+        const SECTIONS: [&str; 11] = [
+            "model",
+            "body",
+            "point",
+            "beam",
+            "flexible_body",
+            "joint",
+            "driver",
+            "force",
+            "clearance",
+            "solver",
+            "output",
+        ];
+        let (first, rest) = path.split_once('.').unwrap_or((path, ""));
+        if !first.contains('[') && !SECTIONS.contains(&first) {
+            // an item name first: its place in its section
+            if let Some(item) = self.path_of(first) {
+                return sub_path(&item, rest);
             }
         }
-        out
+        sub_path(&FieldPath::root(), path)
     }
 
     /// Set the end time (s).
@@ -1349,7 +1161,6 @@ fn beam_model(
     p: &FieldPath,
     bm: &BeamFile,
 ) -> Result<(clr_mbd::BeamMesh, usize), SpecError> {
-    use clr_beam::{BeamModel, Section, Support};
     use clr_mbd::desc::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
     let start = v.finite2(
         &p.key("start"),
@@ -1380,8 +1191,6 @@ fn beam_model(
     let e = v.positive(&mp.key("youngs_modulus"), e, "Pa")?;
     let rho = v.req(&mp.key("density"), &mf.density, "the density in kg/m³")?;
     let rho = v.positive(&mp.key("density"), rho, "kg/m³")?;
-    let mat = clr_beam::Material::new(e, rho, mf.poisson_ratio.unwrap_or(0.3))
-        .map_err(|e| v.err(&mp.key("poisson_ratio"), e.to_string()))?;
     let sp = p.key("section");
     let sf: SectionFile = v.req(
         &sp,
@@ -1428,23 +1237,7 @@ fn beam_model(
             }
         }
     };
-    let section = match section_desc {
-        SectionDesc::Rectangular { width, depth } => Section::rectangular(width, depth),
-        SectionDesc::Circular { diameter } => Section::circular(diameter),
-        SectionDesc::Tube {
-            outer_diameter,
-            wall,
-        } => Section::tube(outer_diameter, wall),
-        SectionDesc::General {
-            area,
-            second_moment,
-            depth,
-        } => Section::new(area, second_moment, depth),
-    }
-    .map_err(|e| v.err(&sp, e.to_string()))?;
     let mut supports = Vec::new();
-    let mut model = BeamModel::straight(start, end, n as usize, mat, section)
-        .map_err(|e| v.err(p, e.to_string()))?;
     let nodes = n as usize + 1;
     for (k, s) in bm.supports.iter().enumerate() {
         let q = p.key("supports").index(k);
@@ -1464,27 +1257,21 @@ fn beam_model(
             &["clamped", "pinned", "roller_x", "roller_y"],
             "support",
         )?;
-        let (support, sk) = match kind {
-            "clamped" => (Support::Clamped, SupportKind::Clamped),
-            "pinned" => (Support::Pinned, SupportKind::Pinned),
-            "roller_x" => (Support::RollerX, SupportKind::RollerX),
-            _ => (Support::RollerY, SupportKind::RollerY),
-        };
         supports.push(SupportDesc {
             node: node as usize,
-            kind: sk,
+            kind: match kind {
+                "clamped" => SupportKind::Clamped,
+                "pinned" => SupportKind::Pinned,
+                "roller_x" => SupportKind::RollerX,
+                _ => SupportKind::RollerY,
+            },
         });
-        model
-            .support(node as usize, support)
-            .map_err(|e| v.err(&q, e.to_string()))?;
     }
     if let Some([a, b]) = bm.rayleigh {
         let q = p.key("rayleigh");
         v.non_negative(&q, a, "1/s")?;
         v.non_negative(&q, b, "s")?;
-        model.set_rayleigh(a, b);
     }
-    let _ = model;
     let mass = v.kind(
         &p.key("mass"),
         &bm.mass.clone().or(Some("consistent".into())),
@@ -1509,6 +1296,18 @@ fn beam_model(
             MassKindDesc::Consistent
         },
     };
+    // what clr-beam itself refuses (Poisson's ratio, section proportions), at its field
+    mesh.build("").map_err(|e| {
+        let field = e.path.trim_start_matches('.');
+        let at = match field.split(['.', '[']).next().unwrap_or("") {
+            "material" => mp.key("poisson_ratio"),
+            "section" => sp.clone(),
+            "supports" => p.key("supports"),
+            "rayleigh" => p.key("rayleigh"),
+            _ => p.clone(),
+        };
+        v.err(&at, e.message)
+    })?;
     Ok((mesh, nodes))
 }
 

@@ -11,7 +11,7 @@ use clr_beam::BeamModel;
 use crate::error::MbdError;
 
 /// A nodal load on a beam: `f(t) -> [F_x (N), F_y (N), M (N·m)]` at a node, global axes.
-pub(crate) type NodalLoadFn = Box<dyn Fn(f64) -> [f64; 3] + Send + Sync>;
+pub type NodalLoadFn = std::sync::Arc<dyn Fn(f64) -> [f64; 3] + Send + Sync>;
 
 pub(crate) struct FlexBeam {
     pub(crate) name: String,

@@ -4,6 +4,8 @@
 //! so elements and the assembly both build on them (description → elements → assembly →
 //! integration).
 
+use std::sync::Arc;
+
 use clr_contact::BodyState;
 use nalgebra::Vector2;
 
@@ -60,12 +62,13 @@ impl RigidBody {
     }
 }
 
-/// Runtime applied force: `f(t, state of the body) -> (F_x, F_y)` in N.
-pub(crate) type ForceFn = Box<dyn Fn(f64, &BodyState) -> Vector2<f64> + Send + Sync>;
-/// Runtime applied torque: `f(t, state of the body) -> τ` in N·m.
-pub(crate) type TorqueFn = Box<dyn Fn(f64, &BodyState) -> f64 + Send + Sync>;
-/// Runtime torque between two bodies: +τ on body j, −τ on body i, N·m.
-pub(crate) type PairTorqueFn = Box<dyn Fn(f64, &BodyState, &BodyState) -> f64 + Send + Sync>;
+/// Applied force on a body: `f(t, state of the body) -> (F_x, F_y)` in N.
+pub type ForceFn = Arc<dyn Fn(f64, &BodyState) -> Vector2<f64> + Send + Sync>;
+/// Applied torque on a body: `f(t, state of the body) -> τ` in N·m.
+pub type TorqueFn = Arc<dyn Fn(f64, &BodyState) -> f64 + Send + Sync>;
+/// Torque between two bodies: `f(t, state of body i, state of body j) -> τ` in N·m, +τ on body
+/// j and −τ on body i.
+pub type PairTorqueFn = Arc<dyn Fn(f64, &BodyState, &BodyState) -> f64 + Send + Sync>;
 
 #[derive(Debug, Clone, Copy)]
 pub(crate) enum ConKind {

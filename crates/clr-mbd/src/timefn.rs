@@ -16,6 +16,13 @@ use crate::desc::FieldError;
 #[derive(Clone)]
 pub struct UserFn(pub Arc<dyn Fn(f64) -> [f64; 3] + Send + Sync>);
 
+/// Closures compare by identity (the same `Arc`).
+impl PartialEq for UserFn {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
 impl fmt::Debug for UserFn {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str("UserFn(<closure>)")
@@ -25,7 +32,7 @@ impl fmt::Debug for UserFn {
 /// A function of time f(t) with its first two derivatives, in the unit of what it drives
 /// (rad, m, N or N·m). In a model file: a table with `type` and the fields of the variant, e.g.
 /// `{ type = "linear", initial = 0.0, rate = 10.0 }`.
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
 pub enum TimeFn {
     /// f = value.
@@ -107,17 +114,6 @@ pub enum TimeFn {
     /// A Rust closure (opt-in; cannot be written to a model file).
     #[serde(skip)]
     Custom(UserFn),
-}
-
-impl PartialEq for TimeFn {
-    fn eq(&self, other: &Self) -> bool {
-        // closures compare by identity; data compares by value (through the serde form)
-        match (self, other) {
-            (TimeFn::Custom(a), TimeFn::Custom(b)) => Arc::ptr_eq(&a.0, &b.0),
-            (TimeFn::Custom(_), _) | (_, TimeFn::Custom(_)) => false,
-            _ => format!("{self:?}") == format!("{other:?}"),
-        }
-    }
 }
 
 /// The names of [`TimeFn`] kinds as written in files.

@@ -6,7 +6,9 @@ use std::path::Path;
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
 use clr_mbd::desc::{MaterialDesc, OutputSettings, SolverMethod};
 use clr_mbd::SolverKind;
-use clr_mbd::{FrictionLawDesc, MbdError, Model, ModelDesc, NormalLawDesc, Results, SimOptions};
+use clr_mbd::{
+    FrictionLawDesc, MbdError, Model, ModelBuilder, ModelDesc, NormalLawDesc, Results, SimOptions,
+};
 use serde::{Deserialize, Serialize};
 
 use crate::{Metric, ModelsError, RunOutput, RunSettings};
@@ -318,30 +320,30 @@ pub(crate) fn simulate(
 }
 
 /// How a built-in run records its rows.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) enum Record {
     /// After every accepted step (peaks of impact forces are missed by coarse output grids).
     EveryStep,
-    /// At n + 1 equally spaced times over [0, t_end] (n ≥ 1).
-    Intervals(usize),
+    /// About every `dt` s over [0, t_end]: round(t_end/dt) intervals, at least one.
+    Every(f64),
 }
 
-/// Write the run settings of a built-in model into `desc.solver` and `desc.output`: the
-/// model's default end time `t_end` (s) and relative tolerance `rtol` unless `settings`
-/// overrides them, absolute tolerance rtol·10⁻³, the integrator `solver`, no step bound, a
-/// budget of 10⁶ steps, no projection, located contact onsets, and the recording `record` from
-/// t = 0. The Baumgarte coefficients recorded in the description are kept. Compiling the
-/// description and simulating with [`ModelDesc::sim_options`] is the built-in run.
-pub(crate) fn write_run(
-    desc: &mut ModelDesc,
+/// A built-in's description from its builder: the model's name in `[model]` and its default
+/// run in `solver` and `output`: end time `t_end` (s), relative tolerance `rtol`, absolute
+/// tolerance rtol·10⁻³, the integrator `solver`, no step bound, a budget of 10⁶ steps, no
+/// projection, located contact onsets, every accepted step recorded from t = 0. The Baumgarte
+/// coefficients recorded in the description are kept. Compiling it and simulating with
+/// [`ModelDesc::sim_options`] is the built-in run without run settings.
+pub(crate) fn finish_desc(
+    b: ModelBuilder,
+    model: &str,
     t_end: f64,
     rtol: f64,
     solver: Solver,
-    settings: &RunSettings,
-    record: Record,
-) {
-    let rtol = settings.rtol.unwrap_or(rtol);
-    let s = &mut desc.solver;
+) -> ModelDesc {
+    let mut d = b.into_desc();
+    d.model.name = Some(model.to_string());
+    let s = &mut d.solver;
     s.method = solver.into();
     s.rtol = rtol;
     s.atol = rtol * 1e-3;
@@ -349,15 +351,46 @@ pub(crate) fn write_run(
     s.max_steps = 1_000_000;
     s.projection = None;
     s.contact_events = true;
-    desc.output = OutputSettings {
+    d.output = OutputSettings {
         t_start: 0.0,
-        t_end: Some(settings.t_end.unwrap_or(t_end)),
-        intervals: match record {
-            Record::EveryStep => 0,
-            Record::Intervals(n) => n.max(1),
-        },
-        every_step: record == Record::EveryStep,
+        t_end: Some(t_end),
+        intervals: 0,
+        every_step: true,
     };
+    d
+}
+
+/// The run a built-in simulates: its description from `desc` (see [`finish_desc`]) with the
+/// end time and tolerance of `settings` when given (atol = rtol·10⁻³ as in the default run) and
+/// the recording `record`.
+///
+/// # Errors
+/// Invalid run settings, or the error of `desc`.
+pub(crate) fn run_desc(
+    model: &str,
+    settings: &RunSettings,
+    record: Record,
+    desc: impl FnOnce() -> Result<ModelDesc, ModelsError>,
+) -> Result<ModelDesc, ModelsError> {
+    check_settings(model, settings)?;
+    let mut d = desc()?;
+    if let Some(t) = settings.t_end {
+        d.output.t_end = Some(t);
+    }
+    if let Some(r) = settings.rtol {
+        d.solver.rtol = r;
+        d.solver.atol = r * 1e-3;
+    }
+    let intervals = match record {
+        Record::EveryStep => 0,
+        Record::Every(dt) => {
+            let t_end = d.output.t_end.unwrap_or(0.0);
+            ((t_end / dt).round() as usize).max(1)
+        }
+    };
+    d.output.intervals = intervals;
+    d.output.every_step = record == Record::EveryStep;
+    Ok(d)
 }
 
 /// Compile a description into the runtime model ([`ModelsError::Build`] on failure).
@@ -677,15 +710,7 @@ mod tests {
             progress: Some(Box::new(move |t| s2.lock().unwrap().push(t))),
             ..Default::default()
         };
-        let mut desc = p.desc("t").unwrap();
-        write_run(
-            &mut desc,
-            p.duration,
-            p.rtol,
-            p.solver,
-            &settings,
-            Record::EveryStep,
-        );
+        let desc = p.desc("t").unwrap();
         let (mut m, mut opts) = compile_run("t", &desc).unwrap();
         let full = simulate(&mut m, &opts, &settings, "t").unwrap();
         let seen = seen.lock().unwrap().clone();

@@ -278,15 +278,8 @@ impl DualGuideParams {
     }
 
     /// A clamped-free straight guide from `a` to `b` of depth `h` and `elements` elements.
-    fn guide_beam(
-        &self,
-        model: &str,
-        a: [f64; 2],
-        b: [f64; 2],
-        h: f64,
-        elements: usize,
-    ) -> Result<BeamMesh, ModelsError> {
-        let mesh = BeamMesh {
+    fn guide_beam(&self, a: [f64; 2], b: [f64; 2], h: f64, elements: usize) -> BeamMesh {
+        BeamMesh {
             start: a,
             end: b,
             elements,
@@ -305,11 +298,7 @@ impl DualGuideParams {
             }],
             rayleigh: [self.rayleigh_alpha, 0.0],
             mass: Default::default(),
-        };
-        // built once here for the parameter-level message (the model builds it again)
-        mesh.build("guide")
-            .map_err(|e| common::invalid(model, e.message))?;
-        Ok(mesh)
+        }
     }
 
     /// The stage-2 guide in its own frame (root at the origin, along +x) and its cantilever
@@ -318,8 +307,8 @@ impl DualGuideParams {
     /// # Errors
     /// Invalid parameters.
     pub fn stage2_guide(&self, model: &str) -> Result<(BeamModel, ReducedModel), ModelsError> {
-        let mesh = self.stage2_mesh(model)?;
-        let beam = mesh
+        let beam = self
+            .stage2_mesh()
             .build("stage-2 guide")
             .map_err(|e| common::invalid(model, e.message))?;
         let red = beam
@@ -329,9 +318,8 @@ impl DualGuideParams {
     }
 
     /// The stage-2 guide mesh in its own frame (root at the origin, along +x).
-    fn stage2_mesh(&self, model: &str) -> Result<BeamMesh, ModelsError> {
+    fn stage2_mesh(&self) -> BeamMesh {
         self.guide_beam(
-            model,
             [0.0, 0.0],
             [self.guide2_length, 0.0],
             self.guide2_depth,
@@ -445,12 +433,11 @@ impl DualGuideParams {
         );
         for &(s, y) in &rows {
             let beam = self.guide_beam(
-                model,
                 [0.0, y],
                 [self.guide1_length, y],
                 self.guide1_depth,
                 self.elements1,
-            )?;
+            );
             b.flexible_beam(&format!("g1{s}"), beam);
             pads(&mut b, 1, s, y, self.guide1_depth);
         }
@@ -472,7 +459,7 @@ impl DualGuideParams {
                 ),
             );
             for &(s, y) in &rows {
-                let mesh = self.stage2_mesh(model)?;
+                let mesh = self.stage2_mesh();
                 let g = format!("g2{s}");
                 b.floating_beam(
                     &g,
@@ -506,17 +493,13 @@ impl DualGuideParams {
             TimeFn::constant(0.0),
             TimeFn::constant(-load),
         );
-        let mut d = b.into_desc();
-        d.model.name = Some(model.to_string());
-        common::write_run(
-            &mut d,
+        Ok(common::finish_desc(
+            b,
+            model,
             self.duration,
             self.rtol,
             self.solver,
-            &RunSettings::default(),
-            Record::EveryStep,
-        );
-        Ok(d)
+        ))
     }
 }
 
@@ -538,17 +521,7 @@ pub fn run_desc(
     p: &DualGuideParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::check_settings(model, settings)?;
-    let mut d = p.desc(model)?;
-    common::write_run(
-        &mut d,
-        p.duration,
-        p.rtol,
-        p.solver,
-        settings,
-        Record::EveryStep,
-    );
-    Ok(d)
+    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
 }
 
 /// Simulate and compute the metrics (docs/models/dual_guide.md): lateral displacement of the
@@ -874,15 +847,13 @@ mod tests {
     #[test]
     fn unloaded_accelerated_stages_follow_newton() {
         let p = DualGuideParams::newton_check();
-        let mut d = p.desc("t").unwrap();
-        common::write_run(
-            &mut d,
-            p.duration,
-            p.rtol,
-            p.solver,
+        let d = common::run_desc(
+            "t",
             &RunSettings::default(),
-            Record::Intervals(4),
-        );
+            Record::Every(p.duration / 4.0),
+            || p.desc("t"),
+        )
+        .unwrap();
         let (mut m, opts) = common::compile_run("t", &d).unwrap();
         let res = m.simulate(&opts).unwrap();
         for pad in ["s1a_up", "s1b_lo", "s2a_up", "s2b_lo"] {

@@ -734,37 +734,14 @@ impl FlapParams {
         // hinge moment −(M0 + k(θ − θ0)): a constant torque plus a rotational spring to ground
         m.torque("hinge", hinge_body, TimeFn::constant(-m0))
             .rotational_spring_damper("hinge_stiffness", "ground", hinge_body, k, 0.0, th0);
-        let mut d = m.into_desc();
-        d.model.name = Some(model.to_string());
-        common::write_run(
-            &mut d,
+        Ok(common::finish_desc(
+            m,
+            model,
             self.duration,
             self.rtol,
             self.solver,
-            &RunSettings::default(),
-            Record::EveryStep,
-        );
-        Ok(d)
+        ))
     }
-}
-
-/// The model of one configuration with its run settings: every accepted step, or with
-/// `uniform` every `reference_interval` s.
-fn sim_desc(
-    model: &str,
-    p: &FlapParams,
-    settings: &RunSettings,
-    uniform: bool,
-) -> Result<ModelDesc, ModelsError> {
-    let mut d = p.desc(model)?;
-    let record = if uniform {
-        let t_end = settings.t_end.unwrap_or(p.duration);
-        Record::Intervals(((t_end / p.reference_interval).round() as usize).max(1))
-    } else {
-        Record::EveryStep
-    };
-    common::write_run(&mut d, p.duration, p.rtol, p.solver, settings, record);
-    Ok(d)
 }
 
 /// The model and run settings of the clearance run of [`run`] (the run it returns; [`run`]
@@ -779,8 +756,7 @@ pub fn run_desc(
     p: &FlapParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::check_settings(model, settings)?;
-    sim_desc(model, p, settings, false)
+    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
 }
 
 /// Simulate one configuration; appends `flap.angle` (rad, from the initial position) and
@@ -791,7 +767,14 @@ pub(crate) fn simulate(
     settings: &RunSettings,
     uniform: bool,
 ) -> Result<Results, ModelsError> {
-    let (mut m, opts) = common::compile_run(model, &sim_desc(model, p, settings, uniform)?)?;
+    // the clearance run records every step, the reference run every `reference_interval` s
+    let record = if uniform {
+        Record::Every(p.reference_interval)
+    } else {
+        Record::EveryStep
+    };
+    let desc = common::run_desc(model, settings, record, || p.desc(model))?;
+    let (mut m, opts) = common::compile_run(model, &desc)?;
     let mut res = common::simulate(&mut m, &opts, settings, model)?;
     // the flap angle: the rigid auxiliary lever arm's, or the flap body's when that arm is
     // flexible (the flap is then a rigid body fixed to the arm's pivot node, starting at 0)

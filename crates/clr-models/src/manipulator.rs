@@ -284,40 +284,17 @@ impl ManipulatorParams {
             b.motor_torque(t_sh, "base", inner, TimeFn::harmonic(0.0, a_sh, w, 0.0))
                 .motor_torque(t_el, inner, outer, TimeFn::harmonic(0.0, a_el, w, 0.0));
         }
-        let mut d = b.into_desc();
-        d.model.name = Some(model.to_string());
-        common::write_run(
-            &mut d,
+        Ok(common::finish_desc(
+            b,
+            model,
             self.duration,
             self.rtol,
             self.solver,
-            &RunSettings::default(),
-            Record::EveryStep,
-        );
-        Ok(d)
+        ))
     }
 }
 
 const BODIES: [&str; 5] = ["base", "arm1", "arm2", "arm3", "arm4"];
-
-/// The model of one configuration with its run settings: every accepted step, or with
-/// `uniform` every `reference_interval` s.
-fn sim_desc(
-    model: &str,
-    p: &ManipulatorParams,
-    settings: &RunSettings,
-    uniform: bool,
-) -> Result<ModelDesc, ModelsError> {
-    let mut d = p.desc(model)?;
-    let record = if uniform {
-        let t_end = settings.t_end.unwrap_or(p.duration);
-        Record::Intervals(((t_end / p.reference_interval).round() as usize).max(1))
-    } else {
-        Record::EveryStep
-    };
-    common::write_run(&mut d, p.duration, p.rtol, p.solver, settings, record);
-    Ok(d)
-}
 
 /// The model and run settings of the clearance run of [`run`] (the run it returns; [`run`]
 /// also simulates the same system with ideal joints as its reference):
@@ -331,8 +308,7 @@ pub fn run_desc(
     p: &ManipulatorParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::check_settings(model, settings)?;
-    sim_desc(model, p, settings, false)
+    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
 }
 
 /// Simulate one configuration and append the derived columns: end-effector positions
@@ -345,7 +321,14 @@ fn simulate(
     settings: &RunSettings,
     uniform: bool,
 ) -> Result<(Results, [f64; 2]), ModelsError> {
-    let (mut m, opts) = common::compile_run(model, &sim_desc(model, p, settings, uniform)?)?;
+    // the clearance run records every step, the reference run every `reference_interval` s
+    let record = if uniform {
+        Record::Every(p.reference_interval)
+    } else {
+        Record::EveryStep
+    };
+    let desc = common::run_desc(model, settings, record, || p.desc(model))?;
+    let (mut m, opts) = common::compile_run(model, &desc)?;
     let mut res = common::simulate(&mut m, &opts, settings, model)?;
     let n = res.len();
     let (mut px, mut py, mut lz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);

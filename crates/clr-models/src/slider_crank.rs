@@ -256,17 +256,13 @@ impl SliderCrankParams {
                 friction,
             },
         );
-        let mut d = b.into_desc();
-        d.model.name = Some(model.to_string());
-        common::write_run(
-            &mut d,
+        Ok(common::finish_desc(
+            b,
+            model,
             self.duration,
             self.rtol,
             self.solver,
-            &RunSettings::default(),
-            Record::EveryStep,
-        );
-        Ok(d)
+        ))
     }
 }
 
@@ -287,17 +283,7 @@ pub fn run_desc(
     p: &SliderCrankParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::check_settings(model, settings)?;
-    let mut d = p.desc(model)?;
-    common::write_run(
-        &mut d,
-        p.duration,
-        p.rtol,
-        p.solver,
-        settings,
-        Record::EveryStep,
-    );
-    Ok(d)
+    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
 }
 
 /// Simulate and compute the metrics: peak contact force, peak slider acceleration,

@@ -171,37 +171,56 @@ pub struct Point {
     pub node: Option<usize>,
 }
 
-/// The closest of `known` to `name` as a "did you mean" phrase, else the list.
-pub fn suggestion<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> String {
-    let known: Vec<&str> = known.into_iter().collect();
-    let best = known
-        .iter()
-        .map(|k| {
-            (
-                edit_distance(&name.to_ascii_lowercase(), &k.to_ascii_lowercase()),
-                *k,
-            )
-        })
-        .min();
-    match best {
-        Some((d, k)) if d <= 2.max(name.len() / 3) => format!("did you mean `{k}`?"),
-        _ => format!("valid: {}", known.join(", ")),
+/// Levenshtein edit distance between two strings (characters, not bytes).
+pub fn edit_distance(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut prev = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let cur = row[j + 1];
+            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
+            prev = cur;
+        }
     }
+    row[b.len()]
 }
 
-fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut prev: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut cur = vec![i + 1; b.len() + 1];
-        for (j, cb) in b.iter().enumerate() {
-            cur[j + 1] = (prev[j] + usize::from(ca != *cb))
-                .min(prev[j + 1] + 1)
-                .min(cur[j] + 1);
+/// The candidate closest to `name` by edit distance, when it is close enough to be a likely
+/// typo (distance ≤ max(2, len/3)) or one contains the other.
+pub fn closest<'a, I: IntoIterator<Item = &'a str>>(name: &str, candidates: I) -> Option<&'a str> {
+    let lower = name.to_ascii_lowercase();
+    let mut best: Option<(usize, &str)> = None;
+    for c in candidates {
+        let d = edit_distance(&lower, &c.to_ascii_lowercase());
+        if best.is_none_or(|(bd, _)| d < bd) {
+            best = Some((d, c));
         }
-        prev = cur;
     }
-    prev[b.len()]
+    let (d, c) = best?;
+    let limit = (name.chars().count() / 3).max(2);
+    let contains = !lower.is_empty()
+        && (c.to_ascii_lowercase().contains(&lower) || lower.contains(&c.to_ascii_lowercase()));
+    (d <= limit || contains).then_some(c)
+}
+
+/// `"; did you mean `x`?"` when a close candidate exists, else the list of valid names.
+pub fn suggestion<'a, I>(name: &str, candidates: I) -> String
+where
+    I: IntoIterator<Item = &'a str> + Clone,
+{
+    match closest(name, candidates.clone()) {
+        Some(c) => format!("did you mean `{c}`?"),
+        None => {
+            let all: Vec<&str> = candidates.into_iter().collect();
+            if all.is_empty() {
+                "none is defined".to_string()
+            } else {
+                format!("valid: {}", all.join(", "))
+            }
+        }
+    }
 }
 
 impl ModelDesc {

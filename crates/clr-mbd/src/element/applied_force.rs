@@ -42,7 +42,7 @@ impl Element for AppliedForce {
             i,
             si,
             state_free: true,
-            f: Box::new(move |t, _| Vector2::new(fx.eval(t)[0], fy.eval(t)[0])),
+            f: std::sync::Arc::new(move |t, _| Vector2::new(fx.eval(t)[0], fy.eval(t)[0])),
         });
         Ok(())
     }

@@ -31,7 +31,7 @@ impl Element for AppliedTorque {
             name: self.name.clone(),
             i,
             state_free: true,
-            f: Box::new(move |t, _| f.eval(t)[0]),
+            f: std::sync::Arc::new(move |t, _| f.eval(t)[0]),
         });
         Ok(())
     }

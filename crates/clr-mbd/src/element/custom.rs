@@ -3,24 +3,14 @@
 //! written to a model file.
 
 use std::fmt;
-use std::sync::Arc;
-
-use clr_contact::BodyState;
-use nalgebra::Vector2;
 
 use super::{ground_load, Anchor, Compiler, Element};
 use crate::error::MbdError;
 use crate::runtime::{ForceEl, GROUND_ID};
 
-/// Applied force on a body: `f(t, state of the body) -> (F_x, F_y)` in N.
-pub type ForceFn = Arc<dyn Fn(f64, &BodyState) -> Vector2<f64> + Send + Sync>;
-/// Applied torque on a body: `f(t, state of the body) -> τ` in N·m.
-pub type TorqueFn = Arc<dyn Fn(f64, &BodyState) -> f64 + Send + Sync>;
-/// Torque between two bodies: `f(t, state of body i, state of body j) -> τ` in N·m, +τ on body
-/// j and −τ on body i.
-pub type PairTorqueFn = Arc<dyn Fn(f64, &BodyState, &BodyState) -> f64 + Send + Sync>;
 /// A nodal load on a beam: `f(t) -> [F_x (N), F_y (N), M (N·m)]`, global axes.
-pub type NodalFn = Arc<dyn Fn(f64) -> [f64; 3] + Send + Sync>;
+pub use crate::flexible::NodalLoadFn as NodalFn;
+pub use crate::runtime::{ForceFn, PairTorqueFn, TorqueFn};
 
 /// What a custom load acts on.
 #[derive(Clone)]
@@ -71,7 +61,7 @@ impl Element for CustomForce {
                     i,
                     si,
                     state_free: false,
-                    f: Box::new(move |t, s| f(t, s)),
+                    f,
                 }
             }
             CustomLoad::Torque(body, f) => {
@@ -84,7 +74,7 @@ impl Element for CustomForce {
                     name,
                     i,
                     state_free: false,
-                    f: Box::new(move |t, s| f(t, s)),
+                    f,
                 }
             }
             CustomLoad::PairTorque(bi, bj, f) => {
@@ -97,12 +87,11 @@ impl Element for CustomForce {
                     i,
                     j,
                     state_free: false,
-                    f: Box::new(move |t, a, b| f(t, a, b)),
+                    f,
                 }
             }
             CustomLoad::Nodal(beam, node, f) => {
-                let f = f.clone();
-                return super::nodal_load::attach(c, &name, beam, *node, Box::new(move |t| f(t)));
+                return super::nodal_load::attach(c, &name, beam, *node, f.clone());
             }
         };
         c.forces.push(el);

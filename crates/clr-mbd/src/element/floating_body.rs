@@ -30,14 +30,10 @@ pub struct FlexibleBody {
 impl FlexibleBody {
     /// Build and reduce the beam; `path` names this entry in messages.
     pub(crate) fn compile(&self, path: &str) -> Result<FloatingBody, MbdError> {
-        let model = self.mesh_model(path)?;
+        let model = self.beam.build(&format!("{path}.beam"))?;
         let red = self
             .reduction
             .reduce(&model, &format!("{path}.reduction"))?;
         FloatingBody::new(&self.name, &model, &red, self.pose, self.velocity)
-    }
-
-    fn mesh_model(&self, path: &str) -> Result<clr_beam::BeamModel, MbdError> {
-        Ok(self.beam.build(&format!("{path}.beam"))?)
     }
 }

@@ -9,6 +9,9 @@ use crate::error::MbdError;
 use crate::flexible::FlexBeam;
 
 /// `[[beam]]`: a name and the fields of a [`BeamMesh`], in world coordinates.
+///
+/// The mesh fields are repeated here rather than `#[serde(flatten)]`ed because serde ignores
+/// `deny_unknown_fields` through a flatten, and a misspelt beam field must be refused.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct GroundBeam {

@@ -69,7 +69,7 @@ impl Element for NodalLoad {
             &self.name,
             &self.beam,
             self.node,
-            Box::new(move |t| [fx.eval(t)[0], fy.eval(t)[0], m.eval(t)[0]]),
+            std::sync::Arc::new(move |t| [fx.eval(t)[0], fy.eval(t)[0], m.eval(t)[0]]),
         )
     }
     fn has_closure(&self) -> bool {

@@ -33,7 +33,7 @@ impl Element for TorqueBetween {
             i,
             j,
             state_free: true,
-            f: Box::new(move |t, _, _| f.eval(t)[0]),
+            f: std::sync::Arc::new(move |t, _, _| f.eval(t)[0]),
         });
         Ok(())
     }
