@@ -109,3 +109,34 @@ fn mutated_model_files_never_panic() {
         failures.join("\n")
     );
 }
+
+/// A file of the older format (a clearance joint without `type`) still reads, into the same
+/// description as the current form, and the upgrade is reported as a note; `--rtol` also sets
+/// `atol` = 1e-3·rtol as the built-in models do, and says so.
+#[test]
+fn older_files_are_upgraded_and_every_change_is_noted() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data");
+    let text = std::fs::read_to_string(dir.join("slider_crank.toml")).unwrap();
+    let old = text.replacen("name = \"B\"\ntype = \"revolute\"\n", "name = \"B\"\n", 1);
+    assert_ne!(old, text, "the clearance's type line was not found");
+    let read = |t: &str| match load_str("f.toml", t, &[]) {
+        Ok(Loaded::Generic(s)) => s,
+        other => panic!("{other:?}"),
+    };
+    let (new, upgraded) = (read(&text), read(&old));
+    assert!(new.notes.is_empty(), "{:?}", new.notes);
+    assert_eq!(upgraded.notes.len(), 1, "{:?}", upgraded.notes);
+    assert!(
+        upgraded.notes[0].contains("clearance[0]"),
+        "{:?}",
+        upgraded.notes
+    );
+    assert_eq!(
+        toml::to_string(new.desc()).unwrap(),
+        toml::to_string(upgraded.desc()).unwrap()
+    );
+    let mut s = read(&text);
+    s.set_rtol(1e-6).unwrap();
+    assert_eq!((s.options.rtol, s.options.atol), (1e-6, 1e-9));
+    assert!(s.notes.iter().any(|n| n.contains("atol")), "{:?}", s.notes);
+}

@@ -57,6 +57,9 @@ pub(crate) fn run_command(args: &RunArgs, out: &Path) -> Result<(), CliError> {
     let progress = Progress::new(args.quiet);
     let rec = execute(&job, args.t_end, args.rtol, Some(&progress))?;
     progress.finish();
+    for n in &rec.notes {
+        eprintln!("clr: note: {n}");
+    }
     output::write_run(out, &rec, args.t_end, args.rtol, !args.no_figures)?;
     if !args.quiet {
         eprintln!(

@@ -89,7 +89,9 @@ pub(crate) fn sweep_command(
         Some(s) => parse_shard(s)?,
         None => (0, 1),
     };
-    // resolve every point first: bad input stops the sweep before anything runs
+    // the target is read once; every point clones it and applies its values, so bad input
+    // stops the sweep before anything runs
+    let base_job = resolve(&args.target, &base, args.t_end, args.rtol)?;
     let mut points: Vec<(usize, Vec<String>, Job)> = Vec::new();
     for k in (0..total).filter(|k| k % sn == si) {
         let idx = combination(k, &varies);
@@ -98,18 +100,25 @@ pub(crate) fn sweep_command(
             .zip(&idx)
             .map(|(v, &i)| v.values[i].clone())
             .collect();
-        let mut sets = base.clone();
-        for (v, val) in varies.iter().zip(&values) {
-            sets.push(Assignment {
+        let sets: Vec<Assignment> = varies
+            .iter()
+            .zip(&values)
+            .map(|(v, val)| Assignment {
                 path: v.name.clone(),
                 value: overrides_value(val),
-            });
-        }
-        let job = resolve(&args.target, &sets, args.t_end, args.rtol).map_err(|e| match e {
-            CliError::Input(m) => CliError::Input(format!("sweep point {k}: {m}")),
-            other => other,
-        })?;
+            })
+            .collect();
+        let job = base_job
+            .with_overrides(&sets, args.t_end, args.rtol)
+            .map_err(|e| CliError::Input(format!("sweep point {k}: {e}")))?;
         points.push((k, values, job));
+    }
+    if !args.quiet {
+        if let Job::Generic(s) = &base_job {
+            for n in &s.notes {
+                eprintln!("clr: note: {n}");
+            }
+        }
     }
     std::fs::create_dir_all(out)
         .map_err(|e| CliError::Input(format!("cannot create {}: {e}", out.display())))?;

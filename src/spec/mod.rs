@@ -3,33 +3,33 @@
 //!
 //! Two forms (field by field in `docs/model-file.md`):
 //!
-//! - a **generic model**: `[model]`, `[[body]]`, `[[point]]`, `[[beam]]`, `[[flexible_body]]`,
-//!   `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`, `[output]`; a file
-//!   that reads as a `clr_mbd::ModelDesc` (what `clr export <name>` writes) is compiled as is,
-//!   any other is checked by the validator; [`load`] does either and [`ModelSpec::build`] turns
-//!   the result into a `clr_mbd::Model` and its `SimOptions`;
+//! - a **generic model**: the file *is* a `clr_mbd::ModelDesc` (`[model]`, `[[body]]`,
+//!   `[[point]]`, `[[beam]]`, `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`,
+//!   `[[clearance]]`, `[solver]`, `[output]`; what `clr export` writes). [`load`] reads it
+//!   straight into the description (files of older versions of the format are upgraded, each
+//!   change reported), compiles it once to check it, and [`ModelSpec::build`] hands over the
+//!   `clr_mbd::Model` with its `SimOptions`;
 //! - a **built-in model**: `[model] builtin = "<name>"` and a `[parameters]` table merged over
 //!   the catalog defaults (`clr_models::catalog`).
 //!
 //! Every error is a [`SpecError`] that names the file, line and field and says what to change;
 //! a malformed file never panics. SI units everywhere, angles in radians.
 
-mod build;
-mod file;
+mod builtin;
 pub mod locate;
+mod model;
 mod overrides;
+mod parse;
 pub mod run;
-mod timefn;
 
 use std::path::Path;
 
-pub use build::{Built, ModelSpec};
-pub use file::ModelFile;
+pub use clr_mbd::timefn::TimeFn;
 pub use locate::FieldPath;
+pub use model::{Built, ModelSpec};
 pub use overrides::{
     apply_json_override, parse_assignment, parse_value as overrides_value, Assignment,
 };
-pub use timefn::TimeFn;
 
 /// An error in a model file or a command-line override, with its place.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -65,18 +65,28 @@ impl SpecError {
 
     /// An error at `path` in the text `src` of `file` (line found from the path).
     pub fn at(file: &str, src: &str, path: &FieldPath, message: impl Into<String>) -> Self {
-        let (line, column) = match locate::locate(src, path) {
-            Some(off) => {
-                let (l, c) = locate::line_col(src, off);
-                (Some(l), Some(c))
-            }
-            None => (None, None),
-        };
+        Self {
+            field: path.to_string(),
+            ..Self::at_offset(file, src, locate::locate(src, path), message)
+        }
+    }
+
+    /// An error at the byte `offset` of `src` (line and column from it), without a field.
+    pub(crate) fn at_offset(
+        file: &str,
+        src: &str,
+        offset: Option<usize>,
+        message: impl Into<String>,
+    ) -> Self {
+        let (line, column) = offset.map_or((None, None), |off| {
+            let (l, c) = locate::line_col(src, off);
+            (Some(l), Some(c))
+        });
         Self {
             file: file.to_string(),
             line,
             column,
-            field: path.to_string(),
+            field: String::new(),
             message: message.into(),
         }
     }
@@ -124,52 +134,28 @@ pub fn load(path: &Path, overrides: &[Assignment]) -> Result<Loaded, SpecError> 
 /// # Errors
 /// [`SpecError`] with file, line and field.
 pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loaded, SpecError> {
-    // a model description (`clr_mbd::ModelDesc`, e.g. written by `clr export`) is used as is;
-    // anything else goes through the validator of model files. A description that does not
-    // compile gets the validator's message (placed at the field, written for files) when the
-    // validator reads the file and rejects it too, else its own (placed at the item or field)
-    if let Some(desc) = read_desc(src, overrides) {
-        return match ModelSpec::from_desc(file, src, desc?) {
-            Ok(spec) => Ok(Loaded::Generic(Box::new(spec))),
-            Err(e) if file::parse(file, src).is_ok() => {
-                Err(load_generic(file, src, overrides).err().unwrap_or(e))
-            }
-            Err(e) => Err(e),
-        };
+    let mut root = parse::table(file, src)?;
+    if let Some(name) = builtin::name(file, src, &root)? {
+        return builtin::builtin(file, src, &root, &name, overrides);
     }
-    load_generic(file, src, overrides)
-}
-
-/// The text as a model description with the overrides applied, when it is one: it parses as
-/// `clr_mbd::ModelDesc` and has at least one body, beam or flexible body (a file without any
-/// is left to the validator, which says what is missing). An override that does not apply, or
-/// leaves something that is no description, is an error.
-fn read_desc(src: &str, overrides: &[Assignment]) -> Option<Result<clr_mbd::ModelDesc, SpecError>> {
-    let desc: clr_mbd::ModelDesc = toml::from_str(src).ok()?;
+    let mut notes = parse::upgrade(&mut root);
+    for a in overrides {
+        overrides::set_toml(&mut root, a)?;
+    }
+    if !overrides.is_empty() {
+        // an override may bring an old form back (a clearance `type` removed by --set)
+        notes.extend(parse::upgrade(&mut root));
+    }
+    let desc = parse::desc(file, src, root)?;
     if desc.bodies.is_empty() && desc.beams.is_empty() && desc.flexible_bodies.is_empty() {
-        return None;
+        return Err(SpecError::plain(
+            file,
+            "",
+            "the file defines nothing that moves: give at least one [[body]], [[beam]] or \
+             [[flexible_body]], or `[model] builtin = \"<name>\"` for a built-in model \
+             (`clr list` names them)",
+        ));
     }
-    if overrides.is_empty() {
-        return Some(Ok(desc));
-    }
-    Some(overrides::apply_to_table(src, overrides).and_then(|v| {
-        v.try_into().map_err(|e: toml::de::Error| {
-            SpecError::plain("--set", "", format!("after the overrides: {}", e.message()))
-        })
-    }))
-}
-
-/// [`load_str`] through the model-file validator.
-fn load_generic(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loaded, SpecError> {
-    let parsed = file::parse(file, src)?;
-    if let Some(name) = parsed.model.as_ref().and_then(|m| m.builtin.clone()) {
-        return file::builtin(file, src, &parsed, &name, overrides);
-    }
-    let parsed = if overrides.is_empty() {
-        parsed
-    } else {
-        overrides::apply_toml_overrides(file, src, overrides)?
-    };
-    let spec = ModelSpec::validate(file, src, parsed)?;
+    let spec = ModelSpec::from_desc(file, src, desc, notes)?;
     Ok(Loaded::Generic(Box::new(spec)))
 }

@@ -1,6 +1,5 @@
 //! `name=value` overrides from the command line (`--set`, `--vary`).
 
-use super::file::ModelFile;
 use super::locate::suggestion;
 use super::SpecError;
 
@@ -171,37 +170,12 @@ pub fn apply_json_override(
     Ok(())
 }
 
-/// Apply the assignments to the TOML text of a generic model and deserialize the result.
-pub(crate) fn apply_toml_overrides(
-    file: &str,
-    src: &str,
-    overrides: &[Assignment],
-) -> Result<ModelFile, SpecError> {
-    let mut root: toml::Table =
-        toml::from_str(src).map_err(|e| super::file::de_error(file, src, &e))?;
-    for a in overrides {
-        set_toml(&mut root, a)?;
-    }
-    toml::Value::Table(root)
-        .try_into::<ModelFile>()
-        .map_err(|e| SpecError::plain("--set", "", format!("after the overrides: {}", e.message())))
-}
-
-/// The TOML text with the assignments applied, as a TOML value (for a text that parses; a parse
-/// error is a [`SpecError`] without a place).
-pub(crate) fn apply_to_table(
-    src: &str,
-    overrides: &[Assignment],
-) -> Result<toml::Value, SpecError> {
-    let mut root: toml::Table =
-        toml::from_str(src).map_err(|e| SpecError::plain("", "", e.message().to_string()))?;
-    for a in overrides {
-        set_toml(&mut root, a)?;
-    }
-    Ok(toml::Value::Table(root))
-}
-
-fn set_toml(root: &mut toml::Table, a: &Assignment) -> Result<(), SpecError> {
+/// Set one assignment in a model file's table (array items by `name` or index; missing keys
+/// are added, and the description then refuses the ones it does not know).
+///
+/// # Errors
+/// [`SpecError`] naming the part of the path that does not exist.
+pub(crate) fn set_toml(root: &mut toml::Table, a: &Assignment) -> Result<(), SpecError> {
     let err = |m: String| SpecError::plain("--set", &a.path, m);
     let parts: Vec<&str> = a.path.split('.').collect();
     let (last, init) = parts.split_last().expect("paths are non-empty");

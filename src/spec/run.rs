@@ -55,6 +55,9 @@ pub struct Outcome {
     pub error: Option<String>,
     /// Clearance joints that get no orbit figure (translational ones).
     pub no_orbit: Vec<String>,
+    /// What reading the model changed on its own (an older file format upgraded, `atol` set
+    /// with `--rtol`), one sentence each.
+    pub notes: Vec<String>,
 }
 
 /// True when `target` names a model file rather than a built-in model.
@@ -120,6 +123,42 @@ pub fn resolve(
 }
 
 impl Job {
+    /// This job with more assignments (a sweep point): a built-in's parameters or a model
+    /// file's description are cloned and changed, not read again; then `t_end` (s) and `rtol`
+    /// as in [`resolve`].
+    ///
+    /// # Errors
+    /// [`RunError`] for an assignment that does not apply or a value that is refused.
+    pub fn with_overrides(
+        &self,
+        overrides: &[Assignment],
+        t_end: Option<f64>,
+        rtol: Option<f64>,
+    ) -> Result<Job, RunError> {
+        Ok(match self {
+            Job::Builtin { name, parameters } => {
+                let mut parameters = parameters.clone();
+                for a in overrides {
+                    apply_json_override(&mut parameters, a)?;
+                }
+                Job::Builtin {
+                    name: name.clone(),
+                    parameters,
+                }
+            }
+            Job::Generic(s) => {
+                let mut s = s.with_overrides(overrides)?;
+                if let Some(t) = t_end {
+                    s.set_t_end(t)?;
+                }
+                if let Some(r) = rtol {
+                    s.set_rtol(r)?;
+                }
+                Job::Generic(Box::new(s))
+            }
+        })
+    }
+
     /// The simulated span [t0, t_end] (s) of this job run with the `t_end` of [`resolve`]: a
     /// model file's output span, or for a built-in model [0, t_end] with the override or the
     /// model's duration (its `duration` parameter, or the guide's stroke over speed); `None`
@@ -165,6 +204,7 @@ impl Outcome {
             parameters: o.parameters,
             error,
             no_orbit: Vec::new(),
+            notes: Vec::new(),
         }
     }
 
@@ -194,6 +234,7 @@ impl Outcome {
                 .filter(|(_, radial)| radial.is_none())
                 .map(|(n, _)| n.clone())
                 .collect(),
+            notes: s.notes.clone(),
         }
     }
 
@@ -215,6 +256,7 @@ impl Outcome {
             parameters,
             error: Some(error),
             no_orbit: Vec::new(),
+            notes: Vec::new(),
         }
     }
 }

@@ -25,7 +25,11 @@ pub enum BeamError {
     )]
     ZeroLength(usize, usize),
     /// A node index does not exist.
-    #[error("node {node} does not exist (the model has {count} nodes); add the node first")]
+    #[error(
+        "node {node} does not exist: the model has {count} nodes (nodes 0 to {}); give one \
+         of those (or add the node first)",
+        count.saturating_sub(1)
+    )]
     NoSuchNode {
         /// Requested node.
         node: usize,

@@ -12,11 +12,13 @@ use crate::sim::Results;
 pub enum MbdError {
     /// An item refers to a body that was never defined.
     #[error(
-        "{item}: unknown body `{body}`; define it with ModelBuilder::body first (known bodies: \
-         ground, {known})"
+        "{item}: unknown {} `{body}`; {}",
+        body_kind(item),
+        hint(body, known, body_kind(item))
     )]
     UnknownBody {
-        /// The item (joint, driver, force, point, contact) that refers to the body.
+        /// The item (joint, driver, force, point, contact) that refers to the body, with the
+        /// field that names it (`pin.b.body`) when known.
         item: String,
         /// The name that was not found.
         body: String,
@@ -24,12 +26,15 @@ pub enum MbdError {
         known: String,
     },
     /// An item refers to a point that was never defined.
-    #[error("{item}: unknown point `{point}`; define it with ModelBuilder::point first")]
+    #[error("{item}: unknown point `{point}`; {}", hint(point, known, "point"))]
     UnknownPoint {
-        /// The item that refers to the point.
+        /// The item that refers to the point, with the field that names it (`pin.a`) when
+        /// known.
         item: String,
         /// The name that was not found.
         point: String,
+        /// The points that exist, comma-separated.
+        known: String,
     },
     /// Two items share a name (all names share one namespace; `ground` is reserved).
     #[error("duplicate name `{name}` (a {first} and a {second}); give every item its own name")]
@@ -144,6 +149,34 @@ pub enum MbdError {
     /// Writing output failed.
     #[error("writing output: {0}")]
     Io(#[from] std::io::Error),
+}
+
+/// `beam` when the field names a beam (`tip_load.beam`), else `body`.
+fn body_kind(item: &str) -> &'static str {
+    if item.ends_with(".beam") {
+        "beam"
+    } else {
+        "body"
+    }
+}
+
+/// "did you mean `x`?" or the list of valid names, and how to define a new one.
+fn hint(name: &str, known: &str, what: &str) -> String {
+    let ground = (what == "body").then_some(crate::runtime::GROUND);
+    let all: Vec<&str> = ground
+        .into_iter()
+        .chain(known.split(", ").filter(|s| !s.is_empty()))
+        .collect();
+    let define = match what {
+        "body" => "a [[body]] (ModelBuilder::body)",
+        "beam" => "a [[beam]] or [[flexible_body]] (ModelBuilder::flexible_beam)",
+        _ => "a [[point]] (ModelBuilder::point)",
+    };
+    match crate::desc::closest(name, all.iter().copied()) {
+        Some(c) => format!("did you mean `{c}`? (or define {define})"),
+        None if all.is_empty() => format!("none is defined; define {define}"),
+        None => format!("valid: {}; or define {define}", all.join(", ")),
+    }
 }
 
 /// ` (N rows recorded up to t = T s)`, or nothing without rows.

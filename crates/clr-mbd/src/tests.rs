@@ -151,7 +151,7 @@ fn builder_reports_typed_errors() {
     let mut b = base();
     b.revolute("j", ("a", [0.0, 0.0]), ("nope", [0.0, 0.0]));
     assert!(
-        matches!(b.build(), Err(MbdError::UnknownBody { item, body, .. }) if item == "j" && body == "nope")
+        matches!(b.build(), Err(MbdError::UnknownBody { item, body, .. }) if item == "j.b.body" && body == "nope")
     );
     let mut b = base();
     b.body("a", RigidBody::new(1.0, 0.1));
@@ -167,10 +167,12 @@ fn builder_reports_typed_errors() {
     assert!(matches!(b.build(), Err(MbdError::SameBody { item, .. }) if item == "self"));
     let mut b = base();
     b.drive_angle("motor", "ghost", Motion::linear(0.0, 1.0));
-    assert!(matches!(b.build(), Err(MbdError::UnknownBody { item, .. }) if item == "motor"));
+    assert!(matches!(b.build(), Err(MbdError::UnknownBody { item, .. }) if item == "motor.body"));
     let mut b = base();
     b.revolute("j", "p", ("a", [0.0, 0.0]));
-    assert!(matches!(b.build(), Err(MbdError::UnknownPoint { point, .. }) if point == "p"));
+    assert!(
+        matches!(b.build(), Err(MbdError::UnknownPoint { item, point, .. }) if point == "p" && item == "j.a")
+    );
     let mut b = base();
     b.translational("t", ("ground", [0.0, 0.0]), ("a", [0.0, 0.0]), [0.0, 0.0]);
     assert!(matches!(b.build(), Err(MbdError::InvalidParameter { item, .. }) if item == "t"));

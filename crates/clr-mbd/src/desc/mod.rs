@@ -171,6 +171,62 @@ pub struct Point {
     pub node: Option<usize>,
 }
 
+impl ModelDesc {
+    /// Read a description from a parsed TOML document (a model file), with the path of the
+    /// offending field on error (`clearance[0].normal.restitution`) and serde's message
+    /// (`unknown field`, `missing field`, `invalid type`, `unknown variant`).
+    ///
+    /// # Errors
+    /// [`FieldError`] at the offending field.
+    pub fn from_toml_table(table: toml::Table) -> Result<Self, FieldError> {
+        let value = toml::Value::Table(table);
+        let e = match serde_path_to_error::deserialize::<_, Self>(value.clone()) {
+            Ok(d) => return Ok(d),
+            Err(e) => e,
+        };
+        let path = e.path().to_string();
+        let fallback = FieldError::new(path.clone(), e.inner().message().to_string());
+        // an item of a section tagged by `type`: serde buffers it and loses the inner path,
+        // so read that item again on its own
+        let Some((section, k)) = section_item(&path) else {
+            return Err(fallback);
+        };
+        let Some(item) = value
+            .get(section)
+            .and_then(|s| s.as_array())
+            .and_then(|a| a.get(k))
+            .cloned()
+        else {
+            return Err(fallback);
+        };
+        let inner = match section {
+            "joint" => Joint::from_toml(item).err(),
+            "driver" => Driver::from_toml(item).err(),
+            "force" => Force::from_toml(item).err(),
+            _ => Clearance::from_toml(item).err(),
+        };
+        Err(match inner {
+            Some(FieldError { path: rel, message }) if rel.is_empty() => {
+                FieldError::new(path, message)
+            }
+            Some(FieldError { path: rel, message }) => {
+                FieldError::new(format!("{section}[{k}].{rel}"), message)
+            }
+            None => fallback,
+        })
+    }
+}
+
+/// `("joint", 2)` for the path `joint[2]` of an item in a section tagged by `type`.
+fn section_item(path: &str) -> Option<(&'static str, usize)> {
+    let (name, rest) = path.split_once('[')?;
+    let section = ["joint", "driver", "force", "clearance"]
+        .into_iter()
+        .find(|s| *s == name)?;
+    let k = rest.strip_suffix(']')?.parse().ok()?;
+    Some((section, k))
+}
+
 /// Levenshtein edit distance between two strings (characters, not bytes).
 pub fn edit_distance(a: &str, b: &str) -> usize {
     let b: Vec<char> = b.chars().collect();

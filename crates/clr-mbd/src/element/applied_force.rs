@@ -30,7 +30,7 @@ pub(crate) fn zero() -> TimeFn {
 
 impl Element for AppliedForce {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let (i, si) = c.anchor(&self.name, &self.at)?;
+        let (i, si) = c.anchor(&self.name, "at", &self.at)?;
         if i == GROUND_ID {
             return Err(ground_load(&self.name));
         }

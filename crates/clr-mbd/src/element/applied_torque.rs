@@ -21,7 +21,7 @@ pub struct AppliedTorque {
 
 impl Element for AppliedTorque {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let i = c.body(&self.name, &self.body)?;
+        let i = c.body(&self.name, "body", &self.body)?;
         if i == GROUND_ID {
             return Err(ground_load(&self.name));
         }

@@ -61,11 +61,12 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     }
     let g = desc.model.gravity;
     if !(g[0].is_finite() && g[1].is_finite()) {
-        return Err(MbdError::InvalidParameter {
-            item: "gravity".into(),
-            what: "gravitational acceleration (m/s²)",
-            value: f64::NAN,
-            requirement: "both components must be finite",
+        return Err(MbdError::Invalid {
+            path: "model.gravity".into(),
+            message: format!(
+                "gravitational acceleration [{}, {}] m/s²: both components must be finite",
+                g[0], g[1]
+            ),
         });
     }
     for (f, node, col) in std::mem::take(&mut c.ties) {
@@ -207,7 +208,7 @@ impl Compiler {
                     requirement: "give `body` and `at` (or `beam` and `node`)",
                 })?;
             let at = p.at.unwrap_or([0.0, 0.0]);
-            let (id, s) = self.local(&p.name, body, at)?;
+            let (id, s) = self.local(&format!("{}.body", p.name), body, at)?;
             self.points.insert(p.name.clone(), (id, s));
             self.point_list.push((p.name.clone(), id, s));
         }
@@ -321,10 +322,13 @@ impl Compiler {
             return Ok(());
         }
         let Some(fb) = self.beams.iter().find(|b| b.name == beam) else {
+            let known: Vec<&str> = (self.beams.iter().map(|b| b.name.as_str()))
+                .chain(self.floating.iter().map(|f| f.name.as_str()))
+                .collect();
             return Err(MbdError::UnknownBody {
                 item: name.to_string(),
                 body: beam.to_string(),
-                known: "(beams) ".to_string() + &self.known,
+                known: known.join(", "),
             });
         };
         if node >= fb.nodes.len() {
@@ -358,8 +362,14 @@ impl Compiler {
         self.bodies.len()
     }
 
-    /// Frame index of a body (rigid or floating) by name; the ground is [`GROUND_ID`].
-    pub(crate) fn body(&self, item: &str, name: &str) -> Result<usize, MbdError> {
+    /// Frame index of a body (rigid or floating) by name; the ground is [`GROUND_ID`]. `field`
+    /// is the item's field that names it (`body_i`), for the error's path.
+    pub(crate) fn body(&self, item: &str, field: &str, name: &str) -> Result<usize, MbdError> {
+        self.body_at(&format!("{item}.{field}"), name)
+    }
+
+    /// [`Compiler::body`] with the field's whole path (`crank_drive.body`).
+    fn body_at(&self, path: &str, name: &str) -> Result<usize, MbdError> {
         if name == GROUND {
             return Ok(GROUND_ID);
         }
@@ -367,34 +377,42 @@ impl Compiler {
             .get(name)
             .copied()
             .ok_or_else(|| MbdError::UnknownBody {
-                item: item.to_string(),
+                item: path.to_string(),
                 body: name.to_string(),
                 known: self.known.clone(),
             })
     }
 
-    /// A body-local point in the body's drawing frame → (frame, arm from the centre of mass).
+    /// A body-local point in the body's drawing frame → (frame, arm from the centre of mass);
+    /// `path` is the field naming the body (`pin.b.body`).
     fn local(
         &self,
-        item: &str,
+        path: &str,
         body: &str,
         l: [f64; 2],
     ) -> Result<(usize, Vector2<f64>), MbdError> {
         if !(l[0].is_finite() && l[1].is_finite()) {
             return Err(MbdError::InvalidParameter {
-                item: item.to_string(),
+                item: path.trim_end_matches(".body").to_string(),
                 what: "local anchor coordinates (m)",
                 value: if l[0].is_finite() { l[1] } else { l[0] },
                 requirement: "must be finite",
             });
         }
-        let id = self.body(item, body)?;
+        let id = self.body_at(path, body)?;
         let com = self.com.get(id).copied().unwrap_or_else(Vector2::zeros);
         Ok((id, Vector2::new(l[0], l[1]) - com))
     }
 
     /// Resolve an anchor into (frame index, local arm in m from the frame's reference point).
-    pub(crate) fn anchor(&self, item: &str, a: &Anchor) -> Result<(usize, Vector2<f64>), MbdError> {
+    /// `field` is the item's field holding the anchor (`bearing`), for the error's path.
+    pub(crate) fn anchor(
+        &self,
+        item: &str,
+        field: &str,
+        a: &Anchor,
+    ) -> Result<(usize, Vector2<f64>), MbdError> {
+        let path = format!("{item}.{field}");
         match a {
             Anchor::Point(p) => {
                 if let Some(&k) = self.node_points.get(p) {
@@ -407,11 +425,12 @@ impl Compiler {
                     .get(p)
                     .copied()
                     .ok_or_else(|| MbdError::UnknownPoint {
-                        item: item.to_string(),
+                        item: path,
                         point: p.clone(),
+                        known: self.point_names(),
                     })
             }
-            Anchor::Local(b, l) => self.local(item, b, *l),
+            Anchor::Local(b, l) => self.local(&format!("{path}.body"), b, *l),
             Anchor::BeamNode(b, k) => {
                 if let Some(&a) = self.float_nodes.get(&(b.clone(), *k)) {
                     return Ok(a);
@@ -420,12 +439,25 @@ impl Compiler {
                     .get(&(b.clone(), *k))
                     .map(|&f| (f, Vector2::zeros()))
                     .ok_or_else(|| MbdError::UnknownBody {
-                        item: item.to_string(),
+                        item: format!("{path}.beam"),
                         body: b.clone(),
                         known: self.known.clone(),
                     })
             }
         }
+    }
+
+    /// Every named point, comma-separated (for messages).
+    fn point_names(&self) -> String {
+        let mut all: Vec<&str> = self
+            .points
+            .keys()
+            .chain(self.node_points.keys())
+            .chain(self.float_points.keys())
+            .map(String::as_str)
+            .collect();
+        all.sort_unstable();
+        all.join(", ")
     }
 
     /// Error when an element connects a frame to itself.

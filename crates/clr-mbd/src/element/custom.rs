@@ -51,7 +51,7 @@ impl Element for CustomForce {
         let name = self.name.clone();
         let el = match &self.load {
             CustomLoad::Force(at, f) => {
-                let (i, si) = c.anchor(&name, at)?;
+                let (i, si) = c.anchor(&name, "at", at)?;
                 if i == GROUND_ID {
                     return Err(ground_load(&name));
                 }
@@ -65,7 +65,7 @@ impl Element for CustomForce {
                 }
             }
             CustomLoad::Torque(body, f) => {
-                let i = c.body(&name, body)?;
+                let i = c.body(&name, "body", body)?;
                 if i == GROUND_ID {
                     return Err(ground_load(&name));
                 }
@@ -78,8 +78,8 @@ impl Element for CustomForce {
                 }
             }
             CustomLoad::PairTorque(bi, bj, f) => {
-                let i = c.body(&name, bi)?;
-                let j = c.body(&name, bj)?;
+                let i = c.body(&name, "body_i", bi)?;
+                let j = c.body(&name, "body_j", bj)?;
                 c.distinct(&name, i, j)?;
                 let f = f.clone();
                 ForceEl::PairTorque {

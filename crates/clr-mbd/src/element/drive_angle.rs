@@ -33,9 +33,15 @@ pub struct DriveRelativeAngle {
     pub motion: TimeFn,
 }
 
-fn compile(c: &mut Compiler, name: &str, bi: &str, bj: &str, f: &TimeFn) -> Result<(), MbdError> {
-    let i = c.body(name, bi)?;
-    let j = c.body(name, bj)?;
+/// Compile θ_j − θ_i = f(t); `fields` name the body fields (for error paths).
+fn compile(
+    c: &mut Compiler,
+    name: &str,
+    [(fi, bi), (fj, bj)]: [(&str, &str); 2],
+    f: &TimeFn,
+) -> Result<(), MbdError> {
+    let i = c.body(name, fi, bi)?;
+    let j = c.body(name, fj, bj)?;
     c.distinct(name, i, j)?;
     f.validate(&format!("{name}.motion"))?;
     let m = c.motion(f);
@@ -45,7 +51,12 @@ fn compile(c: &mut Compiler, name: &str, bi: &str, bj: &str, f: &TimeFn) -> Resu
 
 impl Element for DriveAngle {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        compile(c, &self.name, GROUND, &self.body, &self.motion)
+        compile(
+            c,
+            &self.name,
+            [("ground", GROUND), ("body", &self.body)],
+            &self.motion,
+        )
     }
     fn has_closure(&self) -> bool {
         self.motion.has_closure()
@@ -54,7 +65,12 @@ impl Element for DriveAngle {
 
 impl Element for DriveRelativeAngle {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        compile(c, &self.name, &self.body_i, &self.body_j, &self.motion)
+        compile(
+            c,
+            &self.name,
+            [("body_i", &self.body_i), ("body_j", &self.body_j)],
+            &self.motion,
+        )
     }
     fn has_closure(&self) -> bool {
         self.motion.has_closure()

@@ -26,8 +26,8 @@ pub struct DriveDisplacement {
 
 impl Element for DriveDisplacement {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let (i, si) = c.anchor(&self.name, &self.a)?;
-        let (j, sj) = c.anchor(&self.name, &self.b)?;
+        let (i, si) = c.anchor(&self.name, "a", &self.a)?;
+        let (j, sj) = c.anchor(&self.name, "b", &self.b)?;
         c.distinct(&self.name, i, j)?;
         let u = unit_axis(&self.name, self.axis)?;
         self.motion.validate(&format!("{}.motion", self.name))?;

@@ -21,8 +21,8 @@ pub struct Fixed {
 
 impl Element for Fixed {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let (i, si) = c.anchor(&self.name, &self.a)?;
-        let (j, sj) = c.anchor(&self.name, &self.b)?;
+        let (i, si) = c.anchor(&self.name, "a", &self.a)?;
+        let (j, sj) = c.anchor(&self.name, "b", &self.b)?;
         c.distinct(&self.name, i, j)?;
         c.cons.push(Con::coincide(&self.name, i, si, j, sj));
         let a0 = c.angle0(j) - c.angle0(i);

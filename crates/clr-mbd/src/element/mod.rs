@@ -50,7 +50,10 @@ pub(crate) trait Element {
 /// A section of the description: an enum of element kinds tagged by `type` in a file, with
 /// name, kind and dispatch to the kind's module.
 macro_rules! section {
-    ($(#[$m:meta])* $enum:ident { $($(#[$vm:meta])* $var:ident($ty:ty) = $tag:literal,)* }) => {
+    ($(#[$m:meta])* $enum:ident {
+        $($(#[$vm:meta])* $var:ident($ty:ty) = $tag:literal,)*
+        $(@code $(#[$cm:meta])* $cvar:ident($cty:ty) = $ctag:literal,)?
+    }) => {
         $(#[$m])*
         // element descriptions are few and read once at compile: their size does not matter
         #[allow(clippy::large_enum_variant)]
@@ -58,30 +61,89 @@ macro_rules! section {
         #[serde(tag = "type")]
         pub enum $enum {
             $($(#[$vm])* #[serde(rename = $tag)] $var($ty),)*
+            $($(#[$cm])* #[serde(skip)] $cvar($cty),)?
         }
         impl $enum {
+            /// The kinds a file can give as `type`.
+            pub const KINDS: &'static [&'static str] = &[$($tag,)*];
             /// The element's name.
             pub fn name(&self) -> &str {
-                match self { $(Self::$var(e) => &e.name,)* }
+                match self { $(Self::$var(e) => &e.name,)* $(Self::$cvar(e) => &e.name,)? }
             }
             /// The element's kind as written in a file (`type`).
             pub fn kind(&self) -> &'static str {
-                match self { $(Self::$var(_) => $tag,)* }
+                match self { $(Self::$var(_) => $tag,)* $(Self::$cvar(_) => $ctag,)? }
             }
             /// True when it holds a Rust closure.
             pub fn has_closure(&self) -> bool {
-                match self { $(Self::$var(e) => e.has_closure(),)* }
+                match self {
+                    $(Self::$var(e) => e.has_closure(),)*
+                    $(Self::$cvar(e) => e.has_closure(),)?
+                }
+            }
+            /// Read one item of a file (a table with its `type`), with the path of the
+            /// offending field relative to the item on error (`normal.restitution`): serde's
+            /// internally tagged enums buffer the item and lose that path.
+            ///
+            /// # Errors
+            /// [`FieldError`](crate::desc::FieldError) with the relative path and serde's
+            /// message.
+            pub fn from_toml(item: toml::Value) -> Result<Self, crate::desc::FieldError> {
+                let mut table = match item {
+                    toml::Value::Table(t) => t,
+                    other => {
+                        return Err(crate::desc::FieldError::new(
+                            "",
+                            format!("expected a table, got `{other}`"),
+                        ))
+                    }
+                };
+                let tag = match table.remove("type") {
+                    Some(toml::Value::String(s)) => s,
+                    Some(other) => {
+                        return Err(crate::desc::FieldError::new(
+                            "type",
+                            format!("expected a string, got `{other}`"),
+                        ))
+                    }
+                    None => return Err(crate::desc::FieldError::new("type", "missing field `type`")),
+                };
+                let body = toml::Value::Table(table);
+                let err = |e: serde_path_to_error::Error<toml::de::Error>| {
+                    let path = e.path().to_string();
+                    let path = if path == "." { String::new() } else { path };
+                    crate::desc::FieldError::new(path, e.inner().message().to_string())
+                };
+                match tag.as_str() {
+                    $($tag => serde_path_to_error::deserialize::<_, $ty>(body)
+                        .map(Self::$var)
+                        .map_err(err),)*
+                    other => Err(crate::desc::FieldError::new(
+                        "type",
+                        format!("unknown variant `{other}`, expected one of {}",
+                            Self::KINDS.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")),
+                    )),
+                }
             }
             pub(crate) fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-                match self { $(Self::$var(e) => e.compile(c),)* }
+                match self {
+                    $(Self::$var(e) => e.compile(c),)*
+                    $(Self::$cvar(e) => e.compile(c),)?
+                }
             }
             pub(crate) fn anchors(&self) -> Vec<&Anchor> {
-                match self { $(Self::$var(e) => e.anchors(),)* }
+                match self {
+                    $(Self::$var(e) => e.anchors(),)*
+                    $(Self::$cvar(e) => e.anchors(),)?
+                }
             }
         }
         $(impl From<$ty> for $enum {
             fn from(e: $ty) -> Self { Self::$var(e) }
         })*
+        $(impl From<$cty> for $enum {
+            fn from(e: $cty) -> Self { Self::$cvar(e) }
+        })?
     };
 }
 
@@ -124,8 +186,8 @@ section! {
         TorqueBetween(torque_between::TorqueBetween) = "torque_between",
         /// Nodal load on a beam.
         NodalLoad(nodal_load::NodalLoad) = "nodal_load",
+        @code
         /// A Rust closure (opt-in; not in files).
-        #[serde(skip)]
         Custom(custom::CustomForce) = "custom",
     }
 }
@@ -161,6 +223,19 @@ pub(crate) fn ground_load(item: &str) -> MbdError {
         what: "body index",
         value: f64::NAN,
         requirement: "a load on the ground does nothing; attach it to a moving body",
+    }
+}
+
+/// `Ok` when `v` is positive and finite, else an error at the field `{item}.{field}` (m for
+/// the lengths this checks).
+pub(crate) fn positive_length(item: &str, field: &str, v: f64) -> Result<(), MbdError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(())
+    } else {
+        Err(MbdError::Invalid {
+            path: format!("{item}.{field}"),
+            message: format!("{v} m must be positive and finite"),
+        })
     }
 }
 

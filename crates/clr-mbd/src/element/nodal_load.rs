@@ -39,10 +39,11 @@ pub(crate) fn attach(
     f: NodalLoadFn,
 ) -> Result<(), MbdError> {
     let Some(fb) = c.beams.iter_mut().find(|b| b.name == beam) else {
+        let known: Vec<&str> = c.beams.iter().map(|b| b.name.as_str()).collect();
         return Err(MbdError::UnknownBody {
-            item: name.to_string(),
+            item: format!("{name}.beam"),
             body: beam.to_string(),
-            known: "(ground-fixed beams)".to_string(),
+            known: known.join(", "),
         });
     };
     if 3 * node + 2 >= fb.n_dof_full {

@@ -20,8 +20,8 @@ pub struct Revolute {
 
 impl Element for Revolute {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let (i, si) = c.anchor(&self.name, &self.a)?;
-        let (j, sj) = c.anchor(&self.name, &self.b)?;
+        let (i, si) = c.anchor(&self.name, "a", &self.a)?;
+        let (j, sj) = c.anchor(&self.name, "b", &self.b)?;
         c.distinct(&self.name, i, j)?;
         c.cons.push(Con::coincide(&self.name, i, si, j, sj));
         Ok(())

@@ -5,7 +5,7 @@
 use clr_contact::RevoluteClearance as Geometry;
 use serde::{Deserialize, Serialize};
 
-use super::{Anchor, Compiler, Element};
+use super::{positive_length, Anchor, Compiler, Element};
 use crate::clearance::{Clearance as Runtime, ClearanceKind};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
@@ -34,10 +34,22 @@ pub struct RevoluteClearance {
 impl Element for RevoluteClearance {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
         let name = &self.name;
-        let (i, si) = c.anchor(name, &self.bearing)?;
-        let (j, sj) = c.anchor(name, &self.journal)?;
+        let (i, si) = c.anchor(name, "bearing", &self.bearing)?;
+        let (j, sj) = c.anchor(name, "journal", &self.journal)?;
         c.distinct(name, i, j)?;
         let (rb, rj) = (self.bearing_radius, self.journal_radius);
+        positive_length(name, "bearing_radius", rb)?;
+        positive_length(name, "journal_radius", rj)?;
+        if rj >= rb {
+            return Err(MbdError::Invalid {
+                path: format!("{name}.journal_radius"),
+                message: format!(
+                    "the radial clearance bearing_radius − journal_radius = {:e} m must be \
+                     positive: make journal_radius smaller than bearing_radius = {rb} m",
+                    rb - rj
+                ),
+            });
+        }
         let geometry = Geometry::new(rb, rj, si, sj).map_err(|source| MbdError::Contact {
             item: name.clone(),
             source,

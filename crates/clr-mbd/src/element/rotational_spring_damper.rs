@@ -31,8 +31,8 @@ pub struct RotationalSpringDamper {
 impl Element for RotationalSpringDamper {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
         let name = &self.name;
-        let i = c.body(name, &self.body_i)?;
-        let j = c.body(name, &self.body_j)?;
+        let i = c.body(name, "body_i", &self.body_i)?;
+        let j = c.body(name, "body_j", &self.body_j)?;
         c.distinct(name, i, j)?;
         non_negative(name, "stiffness k (N·m/rad)", self.stiffness)?;
         non_negative(name, "damping c (N·m·s/rad)", self.damping)?;

@@ -71,7 +71,7 @@ pub struct SliderOnBeam {
 impl Element for SliderOnBeam {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
         let name = &self.name;
-        let (j, sj) = c.anchor(name, &self.slider)?;
+        let (j, sj) = c.anchor(name, "slider", &self.slider)?;
         if j == GROUND_ID || j >= c.n_rigid() {
             return Err(MbdError::InvalidParameter {
                 item: name.clone(),
@@ -103,10 +103,13 @@ impl Element for SliderOnBeam {
                 }),
         };
         let Some((guide_beam, guide_frame, path, nfull)) = found else {
+            let known: Vec<&str> = (c.beams.iter().map(|b| b.name.as_str()))
+                .chain(c.floating.iter().map(|f| f.name.as_str()))
+                .collect();
             return Err(MbdError::UnknownBody {
-                item: name.clone(),
+                item: format!("{name}.beam"),
                 body: self.beam.clone(),
-                known: "(beams and flexible bodies)".to_string(),
+                known: known.join(", "),
             });
         };
         let Some(path) = path else {

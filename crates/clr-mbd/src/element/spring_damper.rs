@@ -31,8 +31,8 @@ pub struct SpringDamper {
 impl Element for SpringDamper {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
         let name = &self.name;
-        let (i, si) = c.anchor(name, &self.a)?;
-        let (j, sj) = c.anchor(name, &self.b)?;
+        let (i, si) = c.anchor(name, "a", &self.a)?;
+        let (j, sj) = c.anchor(name, "b", &self.b)?;
         c.distinct(name, i, j)?;
         non_negative(name, "stiffness k (N/m)", self.stiffness)?;
         non_negative(name, "damping c (N·s/m)", self.damping)?;

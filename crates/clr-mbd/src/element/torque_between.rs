@@ -23,8 +23,8 @@ pub struct TorqueBetween {
 
 impl Element for TorqueBetween {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let i = c.body(&self.name, &self.body_i)?;
-        let j = c.body(&self.name, &self.body_j)?;
+        let i = c.body(&self.name, "body_i", &self.body_i)?;
+        let j = c.body(&self.name, "body_j", &self.body_j)?;
         c.distinct(&self.name, i, j)?;
         self.torque.validate(&format!("{}.torque", self.name))?;
         let f = self.torque.clone();

@@ -25,8 +25,8 @@ pub struct Translational {
 
 impl Element for Translational {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let (i, si) = c.anchor(&self.name, &self.a)?;
-        let (j, sj) = c.anchor(&self.name, &self.b)?;
+        let (i, si) = c.anchor(&self.name, "a", &self.a)?;
+        let (j, sj) = c.anchor(&self.name, "b", &self.b)?;
         c.distinct(&self.name, i, j)?;
         let u = unit_axis(&self.name, self.axis)?;
         let w = Vector2::new(-u.y, u.x);

@@ -5,7 +5,7 @@
 use clr_contact::TranslationalClearance as Geometry;
 use serde::{Deserialize, Serialize};
 
-use super::{slider_shape, Anchor, Compiler, Element};
+use super::{positive_length, slider_shape, Anchor, Compiler, Element};
 use crate::clearance::{Clearance as Runtime, ClearanceKind};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
@@ -42,9 +42,27 @@ pub struct TranslationalClearance {
 impl Element for TranslationalClearance {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
         let name = &self.name;
-        let (i, gi) = c.anchor(name, &self.guide)?;
-        let (j, sj) = c.anchor(name, &self.slider)?;
+        let (i, gi) = c.anchor(name, "guide", &self.guide)?;
+        let (j, sj) = c.anchor(name, "slider", &self.slider)?;
         c.distinct(name, i, j)?;
+        for (field, v) in [
+            ("guide_width", self.guide_width),
+            ("slider_length", self.slider_length),
+            ("slider_height", self.slider_height),
+        ] {
+            positive_length(name, field, v)?;
+        }
+        if self.slider_height >= self.guide_width {
+            return Err(MbdError::Invalid {
+                path: format!("{name}.slider_height"),
+                message: format!(
+                    "the clearance guide_width − slider_height = {:e} m must be positive: make \
+                     slider_height smaller than guide_width = {} m",
+                    self.guide_width - self.slider_height,
+                    self.guide_width
+                ),
+            });
+        }
         let shape = slider_shape(
             name,
             [self.slider_length, self.slider_height],
