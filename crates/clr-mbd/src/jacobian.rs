@@ -336,8 +336,14 @@ impl Model {
                     k,
                     c,
                     l0,
+                    push,
                     ..
-                } => self.spring_jacobian(q, qd, (*i, *si), (*j, *sj), [*k, *c, *l0], jac),
+                } => {
+                    // an actuator's pushing force lowers the tension (its u(q) still turns)
+                    let pushing = push.as_ref().map_or(0.0, |f| f(t));
+                    let kcl = [*k, *c, *l0, pushing];
+                    self.spring_jacobian(q, qd, (*i, *si), (*j, *sj), kcl, jac);
+                }
                 ForceEl::RotSpring { i, j, k, c, .. } => {
                     // τ_j = −k(θ_j − θ_i − θ0) − c(ω_j − ω_i), τ_i = −τ_j
                     let mut sq = Sink {
@@ -395,7 +401,7 @@ impl Model {
         qd: &[f64],
         (i, si): (usize, Vector2<f64>),
         (j, sj): (usize, Vector2<f64>),
-        [k, c, l0]: [f64; 3],
+        [k, c, l0, pushing]: [f64; 4],
         jac: &mut Jacobians,
     ) {
         let n = self.n;
@@ -411,7 +417,7 @@ impl Model {
         let v = bj.velocity + bj.angular_velocity * perp(aj)
             - bi.velocity
             - bi.angular_velocity * perp(ai);
-        let tension = k * (l - l0) + c * u.dot(&v);
+        let tension = k * (l - l0) + c * u.dot(&v) - pushing;
         let proj = (Matrix2::identity() - u * u.transpose()) / l;
         // ∂(T u)/∂d and ∂(T u)/∂v
         let dt_dd = k * u + c * proj * v;

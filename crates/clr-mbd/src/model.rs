@@ -319,6 +319,30 @@ impl ModelBuilder {
         self
     }
 
+    /// A point-to-point actuator between anchors `a` and `b`: axial force F(t) in N along the
+    /// line between them (positive pushes them apart, extending the actuator) and viscous
+    /// damping c·l̇ in N·s/m of the extension rate.
+    pub fn actuator(
+        &mut self,
+        name: &str,
+        a: impl Into<Anchor>,
+        b: impl Into<Anchor>,
+        force: TimeFn,
+        damping: f64,
+    ) -> &mut Self {
+        self.desc.forces.push(
+            el::actuator::Actuator {
+                name: name.into(),
+                a: a.into(),
+                b: b.into(),
+                force,
+                damping,
+            }
+            .into(),
+        );
+        self
+    }
+
     /// A rotational spring–damper: torque on body j τ = −k(θ_j − θ_i − θ0) − c(ω_j − ω_i), −τ on
     /// body i (k in N·m/rad, c in N·m·s/rad, θ0 in rad); body i may be the ground.
     pub fn rotational_spring_damper(

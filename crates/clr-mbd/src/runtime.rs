@@ -62,6 +62,9 @@ impl RigidBody {
     }
 }
 
+/// An axial force of time (N), positive pushing apart (actuators).
+pub(crate) type PushFn = Arc<dyn Fn(f64) -> f64 + Send + Sync>;
+
 /// Applied force on a body: `f(t, state of the body) -> (F_x, F_y)` in N.
 pub type ForceFn = Arc<dyn Fn(f64, &BodyState) -> Vector2<f64> + Send + Sync>;
 /// Applied torque on a body: `f(t, state of the body) -> τ` in N·m.
@@ -210,6 +213,8 @@ pub(crate) enum ForceEl {
         k: f64,
         c: f64,
         l0: f64,
+        /// Axial pushing force of time (N; actuators), subtracted from the tension.
+        push: Option<PushFn>,
     },
     RotSpring {
         name: String,
@@ -277,6 +282,7 @@ impl ForceEl {
                 k,
                 c,
                 l0,
+                push,
                 ..
             } => {
                 let bi = body_state(frames, *i, q, qd);
@@ -292,7 +298,8 @@ impl ForceEl {
                     - bi.velocity
                     - bi.angular_velocity * perp(ai);
                 let ldot = u.dot(&vrel);
-                let tension = k * (l - l0) + c * ldot;
+                let pushing = push.as_ref().map_or(0.0, |f| f(t));
+                let tension = k * (l - l0) + c * ldot - pushing;
                 p_diss += c * ldot * ldot;
                 add_force(frames, qf, *i, ai, tension * u);
                 add_force(frames, qf, *j, aj, -tension * u);

@@ -3,6 +3,7 @@
 //! registration in a section enum below (see docs/architecture.md, "How to add an element
 //! kind").
 
+pub mod actuator;
 pub mod anchor;
 pub mod applied_force;
 pub mod applied_torque;
@@ -178,6 +179,8 @@ section! {
         SpringDamper(spring_damper::SpringDamper) = "spring_damper",
         /// Rotational spring–damper.
         RotationalSpringDamper(rotational_spring_damper::RotationalSpringDamper) = "rotational_spring_damper",
+        /// Point-to-point actuator (axial force of time).
+        Actuator(actuator::Actuator) = "actuator",
         /// Applied force.
         Force(applied_force::AppliedForce) = "force",
         /// Applied torque.

@@ -46,6 +46,7 @@ impl Element for SpringDamper {
             k: self.stiffness,
             c: self.damping,
             l0: self.free_length,
+            push: None,
         });
         Ok(())
     }
