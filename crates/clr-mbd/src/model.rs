@@ -319,6 +319,29 @@ impl ModelBuilder {
         self
     }
 
+    /// A linear bushing from the ground point `a` to the body point `b`: F = −K(r_b − r_a) − C ṙ_b
+    /// with K = diag(k_x, k_y) in N/m and C = diag(c_x, c_y) in N·s/m along the world axes.
+    pub fn bushing(
+        &mut self,
+        name: &str,
+        a: impl Into<Anchor>,
+        b: impl Into<Anchor>,
+        stiffness: [f64; 2],
+        damping: [f64; 2],
+    ) -> &mut Self {
+        self.desc.forces.push(
+            el::bushing::Bushing {
+                name: name.into(),
+                a: a.into(),
+                b: b.into(),
+                stiffness,
+                damping,
+            }
+            .into(),
+        );
+        self
+    }
+
     /// A point-to-point actuator between anchors `a` and `b`: axial force F(t) in N along the
     /// line between them (positive pushes them apart, extending the actuator) and viscous
     /// damping c·l̇ in N·s/m of the extension rate.

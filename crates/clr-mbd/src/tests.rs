@@ -1166,3 +1166,18 @@ fn actuator_pushes_a_block_as_the_closed_form_says() {
         }
     }
 }
+
+/// A description holding a Rust closure still compiles, but cannot be written to a file:
+/// `to_toml` fails and names the item, and says how to make it data.
+#[test]
+fn a_closure_is_refused_by_to_toml_with_its_name() {
+    let mut b = ModelBuilder::new();
+    b.body("m", RigidBody::new(1.0, 0.1))
+        .applied_force("push", ("m", [0.0, 0.0]), |_, s| {
+            nalgebra::Vector2::new(-s.position.x, 0.0)
+        });
+    let desc = b.desc().clone();
+    assert!(desc.compile().is_ok());
+    let err = desc.to_toml().unwrap_err();
+    assert!(err.contains("push"), "{err}");
+}

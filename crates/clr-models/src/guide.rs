@@ -13,7 +13,6 @@ use std::path::Path;
 use clr_beam::Face;
 use clr_mbd::desc::{BeamMaterial, BeamMesh, SectionDesc, SupportDesc, SupportKind};
 use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, ModelDesc, Results, RigidBody, TimeFn};
-use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, FrictionParams, Record, Solver};
@@ -243,9 +242,8 @@ impl GuideParams {
     /// `guide` (x from 0 at the clamped root), slider `slider` centred on the guide axis,
     /// contact elements `upper` (slider's upper pad on the guide's upper face) and `lower`,
     /// actuator `actuator` (axial displacement driver), lateral load `load`; with
-    /// `lateral_support_stiffness` > 0 also the closure force `support`, which a model file
-    /// cannot hold (`ModelDesc::to_toml` then fails naming it). `model` names the model in
-    /// errors and in `[model]`.
+    /// `lateral_support_stiffness` > 0 also the bushing `support` (−k·y on the slider centre).
+    /// `model` names the model in errors and in `[model]`.
     ///
     /// # Errors
     /// Invalid parameters.
@@ -311,9 +309,14 @@ impl GuideParams {
             );
         let k = self.lateral_support_stiffness;
         if k > 0.0 {
-            b.applied_force("support", ("slider", [0.0, 0.0]), move |_, s| {
-                Vector2::new(0.0, -k * s.position.y)
-            });
+            // −k·y on the slider centre: a bushing to the guide axis, axially free
+            b.bushing(
+                "support",
+                ("ground", [0.0, 0.0]),
+                ("slider", [0.0, 0.0]),
+                [0.0, k],
+                [0.0, 0.0],
+            );
         }
         Ok(common::finish_desc(
             b,

@@ -8,6 +8,7 @@ pub mod anchor;
 pub mod applied_force;
 pub mod applied_torque;
 mod body;
+pub mod bushing;
 mod compiler;
 pub mod custom;
 pub mod drive_angle;
@@ -181,6 +182,8 @@ section! {
         RotationalSpringDamper(rotational_spring_damper::RotationalSpringDamper) = "rotational_spring_damper",
         /// Point-to-point actuator (axial force of time).
         Actuator(actuator::Actuator) = "actuator",
+        /// Linear bushing from a ground point to a body point.
+        Bushing(bushing::Bushing) = "bushing",
         /// Applied force.
         Force(applied_force::AppliedForce) = "force",
         /// Applied torque.
