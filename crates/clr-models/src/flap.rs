@@ -694,6 +694,29 @@ impl FlapParams {
             ("J3", r_j3, l_j3),
             ("J4", r_j4, a_j4),
         ];
+        self.add_joints(&mut m, model, joints, &friction)?;
+        let (m0, k) = (self.hinge_moment, self.hinge_stiffness);
+        // hinge moment −(M0 + k(θ − θ0)): a constant torque plus a rotational spring to ground
+        m.torque("hinge", hinge_body, TimeFn::constant(-m0))
+            .rotational_spring_damper("hinge_stiffness", "ground", hinge_body, k, 0.0, th0);
+        Ok(common::finish_desc(
+            m,
+            model,
+            self.duration,
+            self.rtol,
+            self.solver,
+        ))
+    }
+
+    /// Joints J1..J4 (name, bearing anchor, journal anchor): a revolute clearance joint where
+    /// [`FlapParams::clearances`] gives a clearance, else an ideal revolute joint.
+    fn add_joints(
+        &self,
+        m: &mut ModelBuilder,
+        model: &str,
+        joints: [JointSpec; 4],
+        friction: &clr_mbd::FrictionLawDesc,
+    ) -> Result<(), ModelsError> {
         for (k, (name, bi, bj)) in joints.into_iter().enumerate() {
             let cl = self.clearances[k];
             if cl > 0.0 {
@@ -730,17 +753,7 @@ impl FlapParams {
                 m.revolute(name, bi, bj);
             }
         }
-        let (m0, k) = (self.hinge_moment, self.hinge_stiffness);
-        // hinge moment −(M0 + k(θ − θ0)): a constant torque plus a rotational spring to ground
-        m.torque("hinge", hinge_body, TimeFn::constant(-m0))
-            .rotational_spring_damper("hinge_stiffness", "ground", hinge_body, k, 0.0, th0);
-        Ok(common::finish_desc(
-            m,
-            model,
-            self.duration,
-            self.rtol,
-            self.solver,
-        ))
+        Ok(())
     }
 }
 

@@ -434,6 +434,17 @@ fn compare(
             &format!("time RMS of the end-effector path error of manipulator {arm}"),
         ));
     }
+    base_metrics(res, ideal, &mut metrics);
+    contact_metrics(p, res, &mut metrics);
+    momentum_metrics(p, res, scales, &mut metrics);
+    common::append_columns(res, errs);
+    metrics
+}
+
+/// Base motion and its deviation from the ideal case.
+fn base_metrics(res: &Results, ideal: &Results, metrics: &mut Vec<Metric>) {
+    let t = col(res, "t");
+    let ti = col(ideal, "t");
     // base position and attitude
     let (bx, by, bth) = (
         col(res, "base.x"),
@@ -484,6 +495,11 @@ fn compare(
         "m",
         "base centre y at the end of the run",
     ));
+}
+
+/// Peak contact force and contact time fraction of each clearance joint.
+fn contact_metrics(p: &ManipulatorParams, res: &Results, metrics: &mut Vec<Metric>) {
+    let t = col(res, "t");
     // contact forces
     for (k, j) in ["J1", "J2", "J3", "J4"].iter().enumerate() {
         if p.clearances[k] > 0.0 {
@@ -501,6 +517,17 @@ fn compare(
             ));
         }
     }
+}
+
+/// Momentum drifts against their scales, and the friction-offset angular impulse.
+fn momentum_metrics(
+    p: &ManipulatorParams,
+    res: &Results,
+    scales: [f64; 2],
+    metrics: &mut Vec<Metric>,
+) {
+    let t = col(res, "t");
+    let last = t.len().saturating_sub(1);
     // momentum
     let drift = |name: &str| {
         let v = col(res, name);
@@ -557,8 +584,6 @@ fn compare(
         "kg*m^2/s",
         "max over the run of Σ (|I_k ω_k| + m_k|r_k × v_k|)",
     ));
-    common::append_columns(res, errs);
-    metrics
 }
 
 /// Simulate the manipulator and its ideal counterpart (same parameters, all joints ideal) and
