@@ -3,7 +3,7 @@
 use clr_contact::ContactError;
 use clr_ode::OdeError;
 
-use crate::sim::Results;
+use crate::results::Results;
 
 /// Everything that can go wrong when building or running a multibody model.
 ///
@@ -172,7 +172,7 @@ fn hint(name: &str, known: &str, what: &str) -> String {
         "beam" => "a [[beam]] or [[flexible_body]] (ModelBuilder::flexible_beam)",
         _ => "a [[point]] (ModelBuilder::point)",
     };
-    match crate::desc::closest(name, all.iter().copied()) {
+    match crate::field::closest(name, all.iter().copied()) {
         Some(c) => format!("did you mean `{c}`? (or define {define})"),
         None if all.is_empty() => format!("none is defined; define {define}"),
         None => format!("valid: {}; or define {define}", all.join(", ")),
@@ -192,8 +192,8 @@ fn rows_note(r: &Results) -> String {
     }
 }
 
-impl From<crate::desc::FieldError> for MbdError {
-    fn from(e: crate::desc::FieldError) -> Self {
+impl From<crate::field::FieldError> for MbdError {
+    fn from(e: crate::field::FieldError) -> Self {
         MbdError::Invalid {
             path: e.path,
             message: e.message,

@@ -581,7 +581,7 @@ fn positive_definite(a: &[f64], n: usize) -> bool {
 
 #[cfg(test)]
 mod tests {
-    use crate::desc::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
+    use crate::desc::beam::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
     use crate::{BeamMesh, MbdError, ModelBuilder, Reduction, SimOptions, SolverKind};
 
     /// A 1 m arm of 4 elements, section 0.01 × 0.01 m, of `material`, with `supports`.

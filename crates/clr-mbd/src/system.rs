@@ -26,7 +26,6 @@ use clr_ode::linalg::DenseLu;
 use clr_ode::{Direction, OdeSystem};
 use nalgebra::Vector2;
 
-use crate::element::Compiler;
 use crate::error::MbdError;
 use crate::runtime::{
     add_gen, body_state, perp, put, rot, Con, ConKind, ForceEl, Frame, RigidBody, GROUND_ID,
@@ -82,7 +81,7 @@ pub struct Model {
     pub(crate) n: usize,
     pub(crate) m: usize,
     // workspace (sized in `assemble`, reused by every evaluation)
-    lu: DenseLu,
+    pub(crate) lu: DenseLu,
     pub(crate) phi: Vec<f64>,
     /// Φ_q, row-major m × n.
     pub(crate) phiq: Vec<f64>,
@@ -98,91 +97,6 @@ pub struct Model {
 }
 
 impl Model {
-    /// The runtime model from the compiled elements (rows, coordinates, contact memory and
-    /// the preallocated workspace).
-    pub(crate) fn assemble(c: Compiler, gravity: Vector2<f64>) -> Result<Self, MbdError> {
-        let Compiler {
-            bodies,
-            beams,
-            floating,
-            frames,
-            point_list: points,
-            mut cons,
-            motions,
-            forces,
-            mut clearances,
-            ..
-        } = c;
-        let mut m = 0;
-        for c in cons.iter_mut() {
-            c.row = m;
-            m += c.rows();
-        }
-        let n = 3 * bodies.len()
-            + beams.iter().map(FlexBeam::n_free).sum::<usize>()
-            + floating
-                .iter()
-                .map(|f| f.n_coords() + 3 * f.ties.len())
-                .sum::<usize>();
-        if n == 0 {
-            return Err(MbdError::InvalidParameter {
-                item: "model".into(),
-                what: "number of bodies",
-                value: 0.0,
-                requirement: "define at least one rigid body or flexible beam",
-            });
-        }
-        let mut mem = 0;
-        for c in clearances.iter_mut() {
-            c.mem = mem;
-            mem += c.points();
-        }
-        let min_v = clearances
-            .iter()
-            .map(|c| c.normal.min_impact_velocity())
-            .fold(
-                clr_contact::NormalLaw::DEFAULT_MIN_IMPACT_VELOCITY,
-                f64::min,
-            );
-        let memory = ContactMemory::new(mem, min_v).map_err(|source| MbdError::Contact {
-            item: "contact memory".into(),
-            source,
-        })?;
-        let mut lu = DenseLu::default();
-        lu.resize(n + m);
-        let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
-        let nc = clearances.len();
-        Ok(Model {
-            body_names,
-            bodies,
-            beams,
-            floating,
-            frames,
-            points,
-            cons,
-            motions,
-            forces,
-            clearances,
-            gravity,
-            memory,
-            alpha: DEFAULT_BAUMGARTE_ALPHA,
-            beta: DEFAULT_BAUMGARTE_BETA,
-            events_on: true,
-            n,
-            m,
-            lu,
-            phi: vec![0.0; m],
-            phiq: vec![0.0; m * n],
-            phid: vec![0.0; m],
-            gamma: vec![0.0; m],
-            qf: vec![0.0; n],
-            sol: vec![0.0; n + m],
-            contacts: vec![ContactReport::default(); nc],
-            solve_ok: true,
-            p_diss: 0.0,
-        })
-    }
-
     /// Number of coordinates n = 3 × (number of rigid bodies).
     pub fn n_coordinates(&self) -> usize {
         self.n

@@ -10,7 +10,7 @@ use std::sync::Arc;
 
 use serde::{Deserialize, Serialize};
 
-use crate::desc::FieldError;
+use crate::field::FieldError;
 
 /// A user closure returning [f(t), f′(t), f″(t)] (see [`TimeFn::custom`]).
 #[derive(Clone)]

@@ -4,7 +4,7 @@
 use clr_beam::{BeamModel, MassKind, Material, ReducedModel, Section, Support};
 use serde::{Deserialize, Serialize};
 
-use super::FieldError;
+use crate::field::FieldError;
 
 /// A straight beam of `elements` equal Euler–Bernoulli frame elements from `start` to `end`
 /// (clr-beam `BeamModel::straight`), with supports, Rayleigh damping and mass kind. Coordinates

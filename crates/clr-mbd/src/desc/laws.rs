@@ -9,7 +9,7 @@ use clr_contact::{
 };
 use serde::{Deserialize, Serialize};
 
-use super::{suggestion, FieldError};
+use crate::field::{suggestion, FieldError};
 
 /// An isotropic contact material.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

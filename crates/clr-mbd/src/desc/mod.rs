@@ -8,7 +8,9 @@
 //! element): a description holding one still compiles and runs but cannot be written to a file.
 
 pub mod beam;
+mod compile;
 pub mod laws;
+pub mod parts;
 mod settings;
 
 use serde::{Deserialize, Serialize};
@@ -17,30 +19,12 @@ pub use beam::{
     BeamMaterial, BeamMesh, MassKindDesc, Reduction, SectionDesc, SupportDesc, SupportKind,
 };
 pub use laws::{FrictionLawDesc, MaterialDesc, NormalLawDesc};
+pub use parts::{Body, ForceApplicationDesc, ModelInfo, Point};
 pub use settings::{OutputSettings, SolverMethod, SolverSettings};
 
+pub use crate::field::{closest, edit_distance, suggestion, FieldError};
+
 use crate::element::{Clearance, Driver, Force, Joint};
-
-/// A field-level error of a description: the path of the field (`joint[2].axis`) and what to
-/// change.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("field `{path}`: {message}")]
-pub struct FieldError {
-    /// Path of the offending field, e.g. `clearance[0].normal.restitution`.
-    pub path: String,
-    /// What is wrong and what to change.
-    pub message: String,
-}
-
-impl FieldError {
-    /// An error at `path`.
-    pub fn new(path: impl Into<String>, message: impl Into<String>) -> Self {
-        Self {
-            path: path.into(),
-            message: message.into(),
-        }
-    }
-}
 
 /// A whole model as data. Sections in a file: `[model]`, `[[body]]`, `[[point]]`, `[[beam]]`,
 /// `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`,
@@ -86,89 +70,6 @@ pub struct ModelDesc {
     /// Time span and output times.
     #[serde(default)]
     pub output: OutputSettings,
-}
-
-/// `[model]`: name, description and model-wide settings.
-#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ModelInfo {
-    /// Model name (used in reports).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub name: Option<String>,
-    /// One-line description.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub description: Option<String>,
-    /// Gravitational acceleration (g_x, g_y), m/s² (default none).
-    #[serde(default)]
-    pub gravity: [f64; 2],
-    /// Where the force pair of every revolute clearance joint acts: `common_point` (default,
-    /// collinear action and reaction) or `contact_points` (Flores et al. 2004).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub clearance_force_application: Option<ForceApplicationDesc>,
-}
-
-/// Where a revolute clearance joint's force pair acts (clr-contact `ForceApplication`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ForceApplicationDesc {
-    /// Action and reaction collinear through the journal centre's contact normal.
-    CommonPoint,
-    /// At the contact points of each body (the published Flores et al. 2004 form).
-    ContactPoints,
-}
-
-/// A rigid body. Its frame is at `position` with angle `angle`; the centre of mass sits at
-/// `centre_of_mass` in that frame (default the frame origin). Anchors and points on the body are
-/// given in this frame. The model's coordinates (and result columns) are those of the centre
-/// of mass.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Body {
-    /// Unique name.
-    pub name: String,
-    /// Mass, kg (> 0).
-    pub mass: f64,
-    /// Moment of inertia about the centre of mass, kg·m² (> 0).
-    pub inertia: f64,
-    /// Initial position of the body frame's origin, m.
-    #[serde(default)]
-    pub position: [f64; 2],
-    /// Initial angle, rad.
-    #[serde(default)]
-    pub angle: f64,
-    /// Initial velocity of the body frame's origin, m/s.
-    #[serde(default)]
-    pub velocity: [f64; 2],
-    /// Initial angular velocity, rad/s.
-    #[serde(default)]
-    pub angular_velocity: f64,
-    /// Centre of mass in the body frame, m (default [0, 0]).
-    #[serde(default, skip_serializing_if = "is_zero2")]
-    pub centre_of_mass: [f64; 2],
-}
-
-fn is_zero2(v: &[f64; 2]) -> bool {
-    v[0] == 0.0 && v[1] == 0.0
-}
-
-/// A named point: on a body (`body`, `at`) or at a beam node (`beam`, `node`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct Point {
-    /// Unique name.
-    pub name: String,
-    /// Body (or `ground`).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub body: Option<String>,
-    /// Local coordinates in the body frame, m.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub at: Option<[f64; 2]>,
-    /// Beam (ground-fixed or floating) whose node this point is.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub beam: Option<String>,
-    /// Node index on `beam`.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub node: Option<usize>,
 }
 
 impl ModelDesc {
@@ -227,58 +128,6 @@ fn section_item(path: &str) -> Option<(&'static str, usize)> {
     Some((section, k))
 }
 
-/// Levenshtein edit distance between two strings (characters, not bytes).
-pub fn edit_distance(a: &str, b: &str) -> usize {
-    let b: Vec<char> = b.chars().collect();
-    let mut row: Vec<usize> = (0..=b.len()).collect();
-    for (i, ca) in a.chars().enumerate() {
-        let mut prev = row[0];
-        row[0] = i + 1;
-        for (j, &cb) in b.iter().enumerate() {
-            let cur = row[j + 1];
-            row[j + 1] = (prev + usize::from(ca != cb)).min(row[j] + 1).min(cur + 1);
-            prev = cur;
-        }
-    }
-    row[b.len()]
-}
-
-/// The candidate closest to `name` by edit distance, when it is close enough to be a likely
-/// typo (distance ≤ max(2, len/3)) or one contains the other.
-pub fn closest<'a, I: IntoIterator<Item = &'a str>>(name: &str, candidates: I) -> Option<&'a str> {
-    let lower = name.to_ascii_lowercase();
-    let mut best: Option<(usize, &str)> = None;
-    for c in candidates {
-        let d = edit_distance(&lower, &c.to_ascii_lowercase());
-        if best.is_none_or(|(bd, _)| d < bd) {
-            best = Some((d, c));
-        }
-    }
-    let (d, c) = best?;
-    let limit = (name.chars().count() / 3).max(2);
-    let contains = !lower.is_empty()
-        && (c.to_ascii_lowercase().contains(&lower) || lower.contains(&c.to_ascii_lowercase()));
-    (d <= limit || contains).then_some(c)
-}
-
-/// `"; did you mean `x`?"` when a close candidate exists, else the list of valid names.
-pub fn suggestion<'a, I>(name: &str, candidates: I) -> String
-where
-    I: IntoIterator<Item = &'a str> + Clone,
-{
-    match closest(name, candidates.clone()) {
-        Some(c) => format!("did you mean `{c}`?"),
-        None => {
-            let all: Vec<&str> = candidates.into_iter().collect();
-            if all.is_empty() {
-                "none is defined".to_string()
-            } else {
-                format!("valid: {}", all.join(", "))
-            }
-        }
-    }
-}
-
 impl ModelDesc {
     /// An empty description (only the ground), no gravity, default settings.
     pub fn new() -> Self {
@@ -291,7 +140,7 @@ impl ModelDesc {
     /// # Errors
     /// A typed [`MbdError`](crate::MbdError) naming the item (and for field errors the path).
     pub fn compile(&self) -> Result<crate::Model, crate::MbdError> {
-        crate::element::compile(self)
+        compile::compile(self)
     }
 
     /// The simulation options of `solver` and `output`.

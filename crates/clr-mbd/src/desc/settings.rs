@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use super::FieldError;
+use crate::field::FieldError;
 use crate::sim::{SimOptions, SolverKind};
 
 /// Integrator of a run.
@@ -50,8 +50,8 @@ impl Default for SolverSettings {
             atol: 1e-8,
             h_max: None,
             max_steps: 1_000_000,
-            baumgarte_alpha: crate::DEFAULT_BAUMGARTE_ALPHA,
-            baumgarte_beta: crate::DEFAULT_BAUMGARTE_BETA,
+            baumgarte_alpha: crate::system::DEFAULT_BAUMGARTE_ALPHA,
+            baumgarte_beta: crate::system::DEFAULT_BAUMGARTE_BETA,
             projection: None,
             contact_events: true,
         }

@@ -2,7 +2,7 @@
 
 use nalgebra::Vector2;
 
-use crate::desc::Body;
+use crate::desc::parts::Body;
 use crate::error::MbdError;
 use crate::runtime::{rot, RigidBody};
 

@@ -4,17 +4,20 @@
 
 use std::collections::HashMap;
 
-use clr_contact::ForceApplication;
+use clr_contact::{ContactMemory, ForceApplication};
+use clr_ode::linalg::DenseLu;
 use nalgebra::Vector2;
 
 use super::anchor::Anchor;
+use super::floating_body::FlexibleBody;
+use super::ground_beam::GroundBeam;
 use crate::clearance::Clearance;
-use crate::desc::{ForceApplicationDesc, ModelDesc};
+use crate::desc::parts::{Body, ForceApplicationDesc, ModelInfo, Point};
 use crate::error::MbdError;
 use crate::flexible::FlexBeam;
 use crate::floating::FloatingBody;
 use crate::runtime::{Con, ConKind, ForceEl, Frame, RigidBody, GROUND, GROUND_ID};
-use crate::system::Model;
+use crate::system::{ContactReport, Model, DEFAULT_BAUMGARTE_ALPHA, DEFAULT_BAUMGARTE_BETA};
 use crate::timefn::TimeFn;
 
 /// Everything resolved so far, and the runtime forms collected from the elements.
@@ -43,80 +46,22 @@ pub(crate) struct Compiler {
     pub(crate) force_application: ForceApplication,
 }
 
-/// Validate `desc` and build the runtime model.
-pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
-    claim_names(desc)?;
-    let mut c = Compiler::new(desc)?;
-    for j in &desc.joints {
-        j.compile(&mut c)?;
-    }
-    for d in &desc.drivers {
-        d.compile(&mut c)?;
-    }
-    for f in &desc.forces {
-        f.compile(&mut c)?;
-    }
-    for cl in &desc.clearances {
-        cl.compile(&mut c)?;
-    }
-    let g = desc.model.gravity;
-    if !(g[0].is_finite() && g[1].is_finite()) {
-        return Err(MbdError::Invalid {
-            path: "model.gravity".into(),
-            message: format!(
-                "gravitational acceleration [{}, {}] m/s²: both components must be finite",
-                g[0], g[1]
-            ),
-        });
-    }
-    for (f, node, col) in std::mem::take(&mut c.ties) {
-        c.floating[f].ties.push((node, col));
-    }
-    let mut model = Model::assemble(c, Vector2::new(g[0], g[1]))?;
-    model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
-    model.set_contact_events(desc.solver.contact_events);
-    Ok(model)
-}
-
-/// One namespace for every named thing; `ground` is reserved.
-fn claim_names(desc: &ModelDesc) -> Result<(), MbdError> {
-    let mut names: HashMap<&str, &'static str> = HashMap::new();
-    names.insert(GROUND, "ground");
-    let all = desc
-        .bodies
-        .iter()
-        .map(|b| (b.name.as_str(), "body"))
-        .chain(
-            desc.flexible_bodies
-                .iter()
-                .map(|f| (f.name.as_str(), "floating flexible body")),
-        )
-        .chain(
-            desc.beams
-                .iter()
-                .map(|b| (b.name.as_str(), "flexible beam")),
-        )
-        .chain(desc.points.iter().map(|p| (p.name.as_str(), "point")))
-        .chain(desc.joints.iter().map(|e| (e.name(), e.kind())))
-        .chain(desc.drivers.iter().map(|e| (e.name(), e.kind())))
-        .chain(desc.forces.iter().map(|e| (e.name(), e.kind())))
-        .chain(desc.clearances.iter().map(|e| (e.name(), e.kind())));
-    for (name, kind) in all {
-        if let Some(first) = names.get(name) {
-            return Err(MbdError::DuplicateName {
-                name: name.to_string(),
-                first,
-                second: kind,
-            });
-        }
-        names.insert(name, kind);
-    }
-    Ok(())
+/// What the compiler needs of a description before its element sections: `[model]`, bodies,
+/// points, beams, floating bodies, and the anchors of every element (beam-node anchors get
+/// their node frames first).
+pub(crate) struct Inputs<'a> {
+    pub(crate) model: &'a ModelInfo,
+    pub(crate) bodies: &'a [Body],
+    pub(crate) points: &'a [Point],
+    pub(crate) beams: &'a [GroundBeam],
+    pub(crate) flexible_bodies: &'a [FlexibleBody],
+    /// (element name, its anchors) for every element of every section.
+    pub(crate) anchors: Vec<(&'a str, Vec<&'a Anchor>)>,
 }
 
 impl Compiler {
     /// Bodies, flexible bodies, beams, points and the node frames every anchor needs.
-    fn new(desc: &ModelDesc) -> Result<Self, MbdError> {
+    pub(crate) fn new(desc: &Inputs) -> Result<Self, MbdError> {
         let mut c = Compiler {
             bodies: Vec::new(),
             com: Vec::new(),
@@ -184,8 +129,8 @@ impl Compiler {
         Ok(c)
     }
 
-    fn body_points(&mut self, desc: &ModelDesc) -> Result<(), MbdError> {
-        for p in &desc.points {
+    fn body_points(&mut self, desc: &Inputs) -> Result<(), MbdError> {
+        for p in desc.points {
             if p.beam.is_some() || p.node.is_some() {
                 if p.body.is_some() || p.at.is_some() {
                     return Err(MbdError::InvalidParameter {
@@ -216,9 +161,9 @@ impl Compiler {
     }
 
     /// Node frames for beam points and beam-node anchors, in definition order.
-    fn node_frames_of(&mut self, desc: &ModelDesc) -> Result<(), MbdError> {
+    fn node_frames_of(&mut self, desc: &Inputs) -> Result<(), MbdError> {
         let mut wanted: Vec<(String, String, usize, Option<String>)> = Vec::new();
-        for p in &desc.points {
+        for p in desc.points {
             if let (Some(b), Some(n)) = (&p.beam, p.node) {
                 wanted.push((p.name.clone(), b.clone(), n, Some(p.name.clone())));
             } else if p.beam.is_some() || p.node.is_some() {
@@ -230,13 +175,7 @@ impl Compiler {
                 });
             }
         }
-        let anchors = desc
-            .joints
-            .iter()
-            .map(|e| (e.name(), e.anchors()))
-            .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))
-            .chain(desc.forces.iter().map(|e| (e.name(), e.anchors())))
-            .chain(desc.clearances.iter().map(|e| (e.name(), e.anchors())));
+        let anchors = desc.anchors.iter().map(|(n, l)| (*n, l.clone()));
         for (name, list) in anchors {
             for a in list {
                 if let Anchor::BeamNode(beam, node) = a {
@@ -355,6 +294,95 @@ impl Compiler {
             self.node_points.insert(p.clone(), self.frames.len() - 1);
         }
         Ok(())
+    }
+
+    /// The runtime model from everything compiled: floating bodies get their node ties,
+    /// constraints their rows, contacts their memory slots, and the model its preallocated
+    /// workspace.
+    pub(crate) fn finish(mut self, gravity: Vector2<f64>) -> Result<Model, MbdError> {
+        for (f, node, col) in std::mem::take(&mut self.ties) {
+            self.floating[f].ties.push((node, col));
+        }
+        let Compiler {
+            bodies,
+            beams,
+            floating,
+            frames,
+            point_list: points,
+            mut cons,
+            motions,
+            forces,
+            mut clearances,
+            ..
+        } = self;
+        let mut m = 0;
+        for c in cons.iter_mut() {
+            c.row = m;
+            m += c.rows();
+        }
+        let n = 3 * bodies.len()
+            + beams.iter().map(FlexBeam::n_free).sum::<usize>()
+            + floating
+                .iter()
+                .map(|f| f.n_coords() + 3 * f.ties.len())
+                .sum::<usize>();
+        if n == 0 {
+            return Err(MbdError::InvalidParameter {
+                item: "model".into(),
+                what: "number of bodies",
+                value: 0.0,
+                requirement: "define at least one rigid body or flexible beam",
+            });
+        }
+        let mut mem = 0;
+        for c in clearances.iter_mut() {
+            c.mem = mem;
+            mem += c.points();
+        }
+        let min_v = clearances
+            .iter()
+            .map(|c| c.normal.min_impact_velocity())
+            .fold(
+                clr_contact::NormalLaw::DEFAULT_MIN_IMPACT_VELOCITY,
+                f64::min,
+            );
+        let memory = ContactMemory::new(mem, min_v).map_err(|source| MbdError::Contact {
+            item: "contact memory".into(),
+            source,
+        })?;
+        let mut lu = DenseLu::default();
+        lu.resize(n + m);
+        let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
+        let nc = clearances.len();
+        Ok(Model {
+            body_names,
+            bodies,
+            beams,
+            floating,
+            frames,
+            points,
+            cons,
+            motions,
+            forces,
+            clearances,
+            gravity,
+            memory,
+            alpha: DEFAULT_BAUMGARTE_ALPHA,
+            beta: DEFAULT_BAUMGARTE_BETA,
+            events_on: true,
+            n,
+            m,
+            lu,
+            phi: vec![0.0; m],
+            phiq: vec![0.0; m * n],
+            phid: vec![0.0; m],
+            gamma: vec![0.0; m],
+            qf: vec![0.0; n],
+            sol: vec![0.0; n + m],
+            contacts: vec![ContactReport::default(); nc],
+            solve_ok: true,
+            p_diss: 0.0,
+        })
     }
 
     /// Number of rigid bodies.

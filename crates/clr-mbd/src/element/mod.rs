@@ -31,7 +31,7 @@ use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
 pub use anchor::Anchor;
-pub(crate) use compiler::{compile, Compiler};
+pub(crate) use compiler::{Compiler, Inputs};
 
 use crate::error::MbdError;
 
@@ -88,13 +88,13 @@ macro_rules! section {
             /// internally tagged enums buffer the item and lose that path.
             ///
             /// # Errors
-            /// [`FieldError`](crate::desc::FieldError) with the relative path and serde's
+            /// [`FieldError`](crate::field::FieldError) with the relative path and serde's
             /// message.
-            pub fn from_toml(item: toml::Value) -> Result<Self, crate::desc::FieldError> {
+            pub fn from_toml(item: toml::Value) -> Result<Self, crate::field::FieldError> {
                 let mut table = match item {
                     toml::Value::Table(t) => t,
                     other => {
-                        return Err(crate::desc::FieldError::new(
+                        return Err(crate::field::FieldError::new(
                             "",
                             format!("expected a table, got `{other}`"),
                         ))
@@ -103,24 +103,24 @@ macro_rules! section {
                 let tag = match table.remove("type") {
                     Some(toml::Value::String(s)) => s,
                     Some(other) => {
-                        return Err(crate::desc::FieldError::new(
+                        return Err(crate::field::FieldError::new(
                             "type",
                             format!("expected a string, got `{other}`"),
                         ))
                     }
-                    None => return Err(crate::desc::FieldError::new("type", "missing field `type`")),
+                    None => return Err(crate::field::FieldError::new("type", "missing field `type`")),
                 };
                 let body = toml::Value::Table(table);
                 let err = |e: serde_path_to_error::Error<toml::de::Error>| {
                     let path = e.path().to_string();
                     let path = if path == "." { String::new() } else { path };
-                    crate::desc::FieldError::new(path, e.inner().message().to_string())
+                    crate::field::FieldError::new(path, e.inner().message().to_string())
                 };
                 match tag.as_str() {
                     $($tag => serde_path_to_error::deserialize::<_, $ty>(body)
                         .map(Self::$var)
                         .map_err(err),)*
-                    other => Err(crate::desc::FieldError::new(
+                    other => Err(crate::field::FieldError::new(
                         "type",
                         format!("unknown variant `{other}`, expected one of {}",
                             Self::KINDS.iter().map(|k| format!("`{k}`")).collect::<Vec<_>>().join(", ")),

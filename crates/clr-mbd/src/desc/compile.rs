@@ -1,0 +1,92 @@
+//! Compiling a description: names claimed in one namespace, the compiler's inputs, every
+//! section's elements in order (joints, drivers, forces, clearances), then assembly.
+
+use std::collections::HashMap;
+
+use nalgebra::Vector2;
+
+use super::ModelDesc;
+use crate::element::{Compiler, Inputs};
+use crate::error::MbdError;
+use crate::runtime::GROUND;
+use crate::system::Model;
+
+/// Validate `desc` and build the runtime model.
+pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
+    claim_names(desc)?;
+    let anchors = (desc.joints.iter().map(|e| (e.name(), e.anchors())))
+        .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))
+        .chain(desc.forces.iter().map(|e| (e.name(), e.anchors())))
+        .chain(desc.clearances.iter().map(|e| (e.name(), e.anchors())))
+        .collect();
+    let mut c = Compiler::new(&Inputs {
+        model: &desc.model,
+        bodies: &desc.bodies,
+        points: &desc.points,
+        beams: &desc.beams,
+        flexible_bodies: &desc.flexible_bodies,
+        anchors,
+    })?;
+    for j in &desc.joints {
+        j.compile(&mut c)?;
+    }
+    for d in &desc.drivers {
+        d.compile(&mut c)?;
+    }
+    for f in &desc.forces {
+        f.compile(&mut c)?;
+    }
+    for cl in &desc.clearances {
+        cl.compile(&mut c)?;
+    }
+    let g = desc.model.gravity;
+    if !(g[0].is_finite() && g[1].is_finite()) {
+        return Err(MbdError::Invalid {
+            path: "model.gravity".into(),
+            message: format!(
+                "gravitational acceleration [{}, {}] m/s²: both components must be finite",
+                g[0], g[1]
+            ),
+        });
+    }
+    let mut model = c.finish(Vector2::new(g[0], g[1]))?;
+    model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
+    model.set_contact_events(desc.solver.contact_events);
+    Ok(model)
+}
+
+/// One namespace for every named thing; `ground` is reserved.
+fn claim_names(desc: &ModelDesc) -> Result<(), MbdError> {
+    let mut names: HashMap<&str, &'static str> = HashMap::new();
+    names.insert(GROUND, "ground");
+    let all = desc
+        .bodies
+        .iter()
+        .map(|b| (b.name.as_str(), "body"))
+        .chain(
+            desc.flexible_bodies
+                .iter()
+                .map(|f| (f.name.as_str(), "floating flexible body")),
+        )
+        .chain(
+            desc.beams
+                .iter()
+                .map(|b| (b.name.as_str(), "flexible beam")),
+        )
+        .chain(desc.points.iter().map(|p| (p.name.as_str(), "point")))
+        .chain(desc.joints.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.drivers.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.forces.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.clearances.iter().map(|e| (e.name(), e.kind())));
+    for (name, kind) in all {
+        if let Some(first) = names.get(name) {
+            return Err(MbdError::DuplicateName {
+                name: name.to_string(),
+                first,
+                second: kind,
+            });
+        }
+        names.insert(name, kind);
+    }
+    Ok(())
+}

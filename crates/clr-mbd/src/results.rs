@@ -1,0 +1,79 @@
+//! The recorded output of a run (below the integration driver, so that errors can carry the
+//! partial results without depending on it).
+
+use std::io::Write;
+use std::path::Path;
+
+use clr_ode::Stats;
+
+/// Recorded output: one row per output point, named columns; arrays via [`Results::column`].
+///
+/// Columns, in order: `t`; per body `B.x B.y B.theta B.vx B.vy B.omega B.ax B.ay B.alpha`; per
+/// flexible beam its free nodal displacements `beam.n<node>.<u|v|theta>` (m, rad); per
+/// joint or driver `J.Fx J.Fy J.M` (reaction on its second body, or on its first when the second
+/// is the ground, about that body's centre of mass); per clearance joint `C.penetration
+/// C.rate C.normal_force C.friction_force C.contact C.ex C.ey` (eccentricity in the bearing
+/// body's frame); `energy.kinetic energy.potential energy.elastic energy.total
+/// energy.dissipated` (energy dissipated since t0 by dampers, contact damping and friction);
+/// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Results {
+    /// Column names.
+    pub columns: Vec<String>,
+    /// Row-major values, `columns.len()` per row.
+    pub data: Vec<f64>,
+    /// Solver statistics (accumulated over restarts).
+    pub stats: Stats,
+    /// Number of contact onsets located as events.
+    pub onsets: usize,
+    /// Number of projections applied.
+    pub projections: usize,
+    /// Largest ‖Φ‖∞ seen after accepted steps (before any projection), m or rad.
+    pub max_position_violation: f64,
+    /// Final state (q, q̇, dissipated energy).
+    pub y_final: Vec<f64>,
+}
+
+impl Results {
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        if self.columns.is_empty() {
+            0
+        } else {
+            self.data.len() / self.columns.len()
+        }
+    }
+    /// True without rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+    /// Index of a column by name.
+    pub fn index(&self, name: &str) -> Option<usize> {
+        self.columns.iter().position(|c| c == name)
+    }
+    /// A column as an array (`None` for unknown names).
+    pub fn column(&self, name: &str) -> Option<Vec<f64>> {
+        let k = self.index(name)?;
+        let w = self.columns.len();
+        Some(self.data.chunks_exact(w).map(|r| r[k]).collect())
+    }
+    /// Row `r`.
+    pub fn row(&self, r: usize) -> &[f64] {
+        let w = self.columns.len();
+        &self.data[r * w..(r + 1) * w]
+    }
+    /// Write all rows as CSV with a header line.
+    ///
+    /// # Errors
+    /// The I/O error of creating or writing the file.
+    pub fn write_csv(&self, path: &Path) -> std::io::Result<()> {
+        let mut f = std::io::BufWriter::new(std::fs::File::create(path)?);
+        writeln!(f, "{}", self.columns.join(","))?;
+        for r in 0..self.len() {
+            let row: Vec<String> = self.row(r).iter().map(|v| format!("{v:e}")).collect();
+            writeln!(f, "{}", row.join(","))?;
+        }
+        f.flush()?;
+        Ok(())
+    }
+}
