@@ -216,5 +216,5 @@ pub(crate) fn check_positive(
 ) -> Result<(), crate::ContactError> {
     fields
         .iter()
-        .try_for_each(|&(name, v)| crate::elastic::positive(law, name, v).map(|_| ()))
+        .try_for_each(|&(name, v)| crate::error::positive(law, name, v).map(|_| ()))
 }

@@ -15,7 +15,7 @@
 //! | [`ElasticLaw::linear`] | k δ | Kelvin–Voigt spring |
 //! | [`ElasticLaw::area`] | K_l δ^{n_l} + (E*/h) w l δ | reconstruction (this crate) |
 
-use crate::error::ContactError;
+use crate::error::{positive, ContactError};
 use crate::restitution::bracketed_newton;
 
 /// An isotropic linear-elastic material.
@@ -82,20 +82,6 @@ impl Material {
         self.validate()?;
         other.validate()?;
         Ok(self.composite_modulus(other))
-    }
-}
-
-/// Require a strictly positive finite value.
-pub(crate) fn positive(law: &'static str, name: &'static str, v: f64) -> Result<f64, ContactError> {
-    if v > 0.0 && v.is_finite() {
-        Ok(v)
-    } else {
-        Err(ContactError::invalid(
-            law,
-            name,
-            v,
-            "must be > 0 and finite",
-        ))
     }
 }
 

@@ -71,3 +71,17 @@ impl ContactError {
         }
     }
 }
+
+/// Require a strictly positive finite value.
+pub(crate) fn positive(law: &'static str, name: &'static str, v: f64) -> Result<f64, ContactError> {
+    if v > 0.0 && v.is_finite() {
+        Ok(v)
+    } else {
+        Err(ContactError::invalid(
+            law,
+            name,
+            v,
+            "must be > 0 and finite",
+        ))
+    }
+}

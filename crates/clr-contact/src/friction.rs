@@ -8,7 +8,7 @@
 //! [`FrictionLaw`] holds the stateless laws; [`LuGre`] carries one bristle state z per contact,
 //! which the caller integrates with [`LuGre::z_dot`].
 
-use crate::elastic::positive;
+use crate::error::positive;
 use crate::error::ContactError;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -472,6 +472,14 @@ impl LuGre {
     /// Largest steady-state |μ| for slips up to |v| (–): max(μ_s, μ_c) + σ₂|v|.
     pub fn mu_max(&self, v: f64) -> f64 {
         self.mu_s.max(self.mu_c) + self.sigma2 * v.abs()
+    }
+
+    /// Bound of the bristle deflection z_max = max(μ_s, μ_c)/σ₀ (m): every steady-state
+    /// deflection satisfies |z_ss(v)| ≤ z_max, and |z| stays below it when it starts below it
+    /// (Canudas de Wit et al. 1995, Property 1). The natural scale of z, e.g. for an
+    /// integrator's absolute tolerance.
+    pub fn z_max(&self) -> f64 {
+        self.mu_s.max(self.mu_c) / self.sigma0
     }
 }
 

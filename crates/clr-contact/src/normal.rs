@@ -9,7 +9,8 @@
 //! [`NormalLaw::flores_line`], [`NormalLaw::area`]).
 
 use crate::damping::DampingFactor;
-use crate::elastic::{positive, ElasticLaw, Material};
+use crate::elastic::{ElasticLaw, Material};
+use crate::error::positive;
 use crate::error::ContactError;
 use crate::restitution::{check_restitution, effective_restitution_unchecked};
 

@@ -14,8 +14,7 @@
 //! [`kelvin_voigt_restitution`] gives the restitution of the linear spring–dashpot (which depends
 //! on the mass) with the tensile-force cut-off.
 
-use crate::elastic::positive;
-use crate::error::ContactError;
+use crate::error::{positive, ContactError};
 
 /// Root of a scalar function on a bracket by Newton steps safeguarded with bisection.
 ///
