@@ -8,8 +8,8 @@
 //! | [`ode`] | `clr-ode` | NDF/BDF and Dormand–Prince integrators with events |
 //! | [`contact`] | `clr-contact` | normal-force and friction laws, clearance-joint kinematics |
 //! | [`beam`] | `clr-beam` | planar Euler–Bernoulli finite elements, modes, reduction |
-//! | [`mbd`] | `clr-mbd` | constrained multibody dynamics (planned) |
-//! | [`models`] | `clr-models` | the paper systems (planned) |
+//! | [`mbd`] | `clr-mbd` | constrained multibody dynamics |
+//! | [`models`] | `clr-models` | the paper systems |
 
 pub use clr_beam as beam;
 pub use clr_contact as contact;

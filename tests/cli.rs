@@ -615,6 +615,10 @@ fn malformed_files_exit_2_with_a_located_message() {
             &[":21:", "clearance[0].slider_height", "must be positive"],
         ),
         (
+            "anchor_typo.toml",
+            &[":65:", "clearance[0].journal.att", "did you mean `at`"],
+        ),
+        (
             "translational_liu.toml",
             &[":22:", "clearance[0].normal.law", "needs a journal"],
         ),

@@ -140,3 +140,36 @@ fn older_files_are_upgraded_and_every_change_is_noted() {
     assert_eq!((s.options.rtol, s.options.atol), (1e-6, 1e-9));
     assert!(s.notes.iter().any(|n| n.contains("atol")), "{:?}", s.notes);
 }
+
+/// A sweep point is the base model's description cloned and changed, not the file read again:
+/// after the file is gone, points still resolve, and each changes only its own copy.
+#[test]
+fn sweep_points_clone_the_description_without_reading_the_file() {
+    use clr::spec::run::{resolve, Job};
+    use clr::spec::{parse_assignment, Assignment};
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pendulum.toml");
+    let dir = std::env::temp_dir().join(format!("clr-sweep-clone-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("pendulum.toml");
+    std::fs::copy(&src, &file).unwrap();
+    let base = resolve(file.to_str().unwrap(), &[], Some(0.1), None).unwrap();
+    std::fs::remove_file(&file).unwrap();
+    let set = |text: &str| -> Vec<Assignment> { vec![parse_assignment(text).unwrap()] };
+    let mass = |j: &Job| match j {
+        Job::Generic(s) => s.desc().bodies[0].mass,
+        _ => panic!("a model file resolves to a generic job"),
+    };
+    let a = base
+        .with_overrides(&set("body.rod.mass=2"), Some(0.1), None)
+        .unwrap();
+    let b = base
+        .with_overrides(&set("body.rod.mass=3"), Some(0.1), None)
+        .unwrap();
+    assert_eq!((mass(&base), mass(&a), mass(&b)), (1.0, 2.0, 3.0));
+    // a refused value is still located and named
+    let e = base
+        .with_overrides(&set("body.rod.mas=2"), Some(0.1), None)
+        .unwrap_err();
+    assert!(e.to_string().contains("did you mean `mass`"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

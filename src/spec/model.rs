@@ -128,13 +128,8 @@ impl ModelSpec {
         }
         let mut notes = self.notes.clone();
         notes.extend(super::parse::upgrade(&mut root));
-        let desc = ModelDesc::from_toml_table(root).map_err(|e| {
-            SpecError::plain(
-                "--set",
-                &e.path,
-                format!("after the overrides: {}", e.message),
-            )
-        })?;
+        // refused values are reported as for `--set` on the command line (no file line)
+        let desc = super::parse::desc("--set", "", root)?;
         let mut spec = Self::from_desc(&self.file, &self.src, desc, notes)?;
         spec.name.clone_from(&self.name);
         Ok(spec)

@@ -60,6 +60,27 @@ pub struct Outcome {
     pub notes: Vec<String>,
 }
 
+/// Load a model file; a generic file without `[output] t_end` takes `t_end` (the `--t-end`
+/// option) instead of being refused.
+fn load_file(
+    target: &str,
+    overrides: &[Assignment],
+    t_end: Option<f64>,
+) -> Result<Loaded, SpecError> {
+    let path = Path::new(target);
+    match (super::load(path, overrides), t_end) {
+        (Err(e), Some(t)) if e.field == "output.t_end" && t.is_finite() && t > 0.0 => {
+            let mut sets = overrides.to_vec();
+            sets.push(Assignment {
+                path: "output.t_end".into(),
+                value: toml::Value::Float(t),
+            });
+            super::load(path, &sets)
+        }
+        (r, _) => r,
+    }
+}
+
 /// True when `target` names a model file rather than a built-in model.
 pub fn is_file(target: &str) -> bool {
     target.ends_with(".toml") || Path::new(target).is_file()
@@ -78,7 +99,7 @@ pub fn resolve(
     rtol: Option<f64>,
 ) -> Result<Job, RunError> {
     let mut job = if is_file(target) {
-        match super::load(Path::new(target), overrides)? {
+        match load_file(target, overrides, t_end)? {
             Loaded::Builtin { name, parameters } => Job::Builtin { name, parameters },
             Loaded::Generic(s) => Job::Generic(s),
         }
@@ -410,7 +431,7 @@ pub fn unit_of(column: &str) -> &'static str {
         return "J";
     }
     match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" => "m",
+        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" | "lugre_z" => "m",
         "theta" => "rad",
         "vx" | "vy" | "rate" => "m/s",
         "omega" => "rad/s",

@@ -26,7 +26,8 @@ pub struct ModelInfo {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ForceApplicationDesc {
-    /// Action and reaction collinear through the journal centre's contact normal.
+    /// Both forces at the midpoint of the two contact points (r_i^Q + r_j^Q)/2: collinear
+    /// action and reaction, so the joint conserves angular momentum exactly (the default).
     CommonPoint,
     /// At the contact points of each body (the published Flores et al. 2004 form).
     ContactPoints,

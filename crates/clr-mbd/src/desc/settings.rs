@@ -138,7 +138,7 @@ pub(crate) fn sim_options(
     let t_end = o.t_end.ok_or_else(|| {
         FieldError::new(
             "output.t_end",
-            "missing value: give the end time t_end in s",
+            "missing value: give the end time t_end in s (or `--t-end` on the command line)",
         )
     })?;
     if !(t_end.is_finite() && t_end > t0) {

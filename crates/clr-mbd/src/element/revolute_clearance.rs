@@ -10,7 +10,8 @@ use crate::clearance::{Clearance as Runtime, ClearanceKind};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
 
-/// `type = "revolute"` (the default clearance type).
+/// `type = "revolute"` (files of older versions without `type` are read as this, with a
+/// note).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RevoluteClearance {
