@@ -340,7 +340,7 @@ impl LuGre {
     /// (m/s).
     ///
     /// # Errors
-    /// [`ContactError::InvalidParameter`] for σ₀ ≤ 0, σ₁ or σ₂ < 0, μ_c ≤ 0, μ_s < 0 or v_s ≤ 0.
+    /// [`ContactError::InvalidParameter`] for σ₀ ≤ 0, σ₁ or σ₂ < 0, μ_c ≤ 0, μ_s ≤ 0 or v_s ≤ 0.
     pub fn new(
         sigma0: f64,
         sigma1: f64,
@@ -354,7 +354,8 @@ impl LuGre {
             sigma0: positive(LAW, "bristle stiffness σ0 (1/m)", sigma0)?,
             sigma1: coefficient(LAW, "bristle damping σ1 (s/m)", sigma1)?,
             sigma2: coefficient(LAW, "viscous coefficient σ2 (s/m)", sigma2)?,
-            mu_s: coefficient(LAW, "static coefficient μ_s (-)", mu_s)?,
+            // μ_s > 0 keeps g(v) > 0: g(0) = μ_s divides in ż (a zero would give 0/0 at rest)
+            mu_s: positive(LAW, "static coefficient μ_s (-)", mu_s)?,
             mu_c: positive(LAW, "Coulomb coefficient μ_c (-)", mu_c)?,
             v_s: positive(LAW, "Stribeck velocity v_s (m/s)", v_s)?,
         })

@@ -728,6 +728,8 @@ fn lugre_steady_state() {
     assert!(l.z_dot(0.01, z).abs() < 1e-15);
     assert_rel(l.force(0.01, z, 0.0, 1000.0), -136.78794, 1e-7);
     assert!(LuGre::new(0.0, 0.0, 0.0, 0.2, 0.1, 0.01).is_err());
+    // μ_s = 0 would make g(0) = 0 and ż = 0/0 at rest
+    assert!(LuGre::new(1e5, 0.0, 0.0, 0.0, 0.1, 0.01).is_err());
 }
 
 // ---------------------------------------------------------------- properties
