@@ -173,3 +173,73 @@ fn sweep_points_clone_the_description_without_reading_the_file() {
     assert!(e.to_string().contains("did you mean `mass`"), "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// `law = "lugre"` in a model file: `tests/data/lugre_block.toml` loads through `load_str`,
+/// builds and runs (a block pushed past breakaway: bristles deflect by about F/(σ0·m g) while it
+/// sticks, then it slides with the Coulomb level of friction), and no line deleted or number
+/// replaced by a hostile value makes it panic.
+#[test]
+fn lugre_model_file_parses_and_runs() {
+    let f = "lugre_block.toml";
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("tests/data")
+            .join(f),
+    )
+    .unwrap();
+    let spec = match load_str(f, &text, &[]) {
+        Ok(Loaded::Generic(s)) => s,
+        other => panic!("{other:?}"),
+    };
+    let mut built = spec.build().unwrap();
+    assert_eq!(built.model.n_bristle_states(), 4);
+    let r = built.model.simulate(&built.options).unwrap();
+    let col = |c: &str| r.column(c).unwrap_or_else(|| panic!("no column {c}"));
+    let (t, z, push) = (col("t"), col("guide.lugre_z"), 1.962);
+    // sticking at 10 ms (F = push/2 < μ_s m g): z follows F/(σ0 m g) within 20 % (measured
+    // −11 %: part of F goes into the bristle damping σ1·ż·F_N while loading, and the pre-sliding
+    // oscillator, ζ ≈ 0.15, rings)
+    let k = t.iter().position(|&t| (t - 0.01).abs() < 1e-9).unwrap();
+    let z_stick = 0.5 * push / (1e5 * 9.81);
+    assert!(
+        (z[k] - z_stick).abs() < 0.2 * z_stick,
+        "z = {} vs {z_stick}",
+        z[k]
+    );
+    // sliding at the end, friction at μ_c + (μ_s − μ_c)e^{−(v/v_s)²} of the normal force
+    let vx = *col("block.vx").last().unwrap();
+    let mu =
+        -col("guide.friction_force").last().unwrap() / col("guide.normal_force").last().unwrap();
+    let mu_ss = 0.10 + 0.05 * (-(vx / 1e-3).powi(2)).exp();
+    eprintln!(
+        "lugre_block: z(10 ms) = {:e} vs {z_stick:e}; final vx = {vx}, μ = {mu} vs {mu_ss}",
+        z[k]
+    );
+    assert!(vx > 1e-3, "not sliding: vx = {vx}");
+    assert!((mu - mu_ss).abs() < 1e-3, "μ = {mu} vs {mu_ss}");
+    assert!(
+        z.iter().all(|z| z.abs() <= 0.15 / 1e5 * (1.0 + 1e-9)),
+        "{z:?}"
+    );
+    // hostile edits never panic
+    let lines: Vec<&str> = text.lines().collect();
+    let mut failures = Vec::new();
+    for (i, line) in lines.iter().enumerate() {
+        let mut deleted = lines.clone();
+        deleted.remove(i);
+        if let Err(e) = check(f, &deleted.join("\n")) {
+            failures.push(format!("line {} deleted: {e}", i + 1));
+        }
+        for (s, e) in numbers(line) {
+            for h in HOSTILE {
+                let new = format!("{}{h}{}", &line[..s], &line[e..]);
+                let mut m = lines.clone();
+                m[i] = &new;
+                if let Err(e) = check(f, &m.join("\n")) {
+                    failures.push(format!("{}: `{new}`: {e}", i + 1));
+                }
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}

@@ -2,7 +2,7 @@
 //! joint (rectangular slider in a straight guide), both force elements built on clr-contact.
 
 use clr_beam::{Face, Path};
-use clr_contact::translational::TranslationalClearance;
+use clr_contact::translational::{TranslationalClearance, TranslationalForces};
 use clr_contact::{
     BodyState, ContactMemory, ForceApplication, FrictionLaw, GuideSurface, MultipointDetector,
     NormalLaw, RevoluteClearance,
@@ -153,6 +153,9 @@ pub(crate) struct Clearance {
     pub(crate) friction: FrictionLaw,
     /// First index of this element's contact points in the model's contact memory.
     pub(crate) mem: usize,
+    /// LuGre friction with bristle states (then `friction` is frictionless and the element is
+    /// evaluated by `crate::lugre::apply`, not [`Clearance::apply`]).
+    pub(crate) lugre: Option<crate::lugre::LuGreContact>,
 }
 
 /// Quantities of one contact element at the last evaluated state.
@@ -282,29 +285,44 @@ impl Clearance {
                         - f_t * pc.tangential_velocity;
                     (f_n, f_t)
                 });
-                rep.dissipated_power = power;
-                if n_active > 0 {
-                    add(self.i, f.guide.as_array());
-                    add(self.j, f.slider.as_array());
-                }
-                rep.active_points = n_active;
-                rep.normal_force = f.corner_forces.iter().map(|c| c.0).sum();
-                rep.friction_force = f.corner_forces.iter().map(|c| c.1).sum();
-                let (mut dmax, mut rate) = (f64::NEG_INFINITY, 0.0);
-                for k in 0..4 {
-                    let (d, r) = self.gap(bi, bj, k);
-                    if d > dmax {
-                        dmax = d;
-                        rate = r;
-                    }
-                }
-                rep.penetration = dmax;
-                rep.penetration_rate = rate;
+                self.report_corners(bi, bj, &f, (n_active, power), &mut rep, add);
             }
             // handled by apply_flex (it needs the beam coordinates)
             ClearanceKind::FlexGuide(_) => {}
         }
         rep
+    }
+
+    /// Scatter a translational clearance joint's corner forces `f` and fill the report: active
+    /// points and dissipated power (`(n_active, power)`, W), summed normal and friction forces,
+    /// and the deepest corner's penetration and rate.
+    pub(crate) fn report_corners(
+        &self,
+        bi: &BodyState,
+        bj: &BodyState,
+        f: &TranslationalForces,
+        (n_active, power): (usize, f64),
+        rep: &mut ContactReport,
+        mut add: impl FnMut(usize, [f64; 3]),
+    ) {
+        rep.dissipated_power = power;
+        if n_active > 0 {
+            add(self.i, f.guide.as_array());
+            add(self.j, f.slider.as_array());
+        }
+        rep.active_points = n_active;
+        rep.normal_force = f.corner_forces.iter().map(|c| c.0).sum();
+        rep.friction_force = f.corner_forces.iter().map(|c| c.1).sum();
+        let (mut dmax, mut rate) = (f64::NEG_INFINITY, 0.0);
+        for k in 0..4 {
+            let (d, r) = self.gap(bi, bj, k);
+            if d > dmax {
+                dmax = d;
+                rate = r;
+            }
+        }
+        rep.penetration = dmax;
+        rep.penetration_rate = rate;
     }
 
     /// The beam of a flexible-guide element.

@@ -40,6 +40,7 @@ mod flexible;
 pub mod floating;
 mod init;
 pub mod jacobian;
+mod lugre;
 pub mod model;
 pub mod results;
 mod runtime;
@@ -48,7 +49,7 @@ pub mod system;
 pub mod timefn;
 
 pub use clr_contact::ForceApplication;
-pub use desc::laws::{FrictionLawDesc, FrictionSpec, NormalLawDesc, NormalSpec};
+pub use desc::laws::{ContactFriction, FrictionLawDesc, FrictionSpec, NormalLawDesc, NormalSpec};
 pub use desc::{BeamMesh, Body, FieldError, ModelDesc, Reduction};
 pub use element::Anchor;
 pub use error::MbdError;

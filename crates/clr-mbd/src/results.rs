@@ -13,7 +13,10 @@ use clr_ode::Stats;
 /// joint or driver `J.Fx J.Fy J.M` (reaction on its second body, or on its first when the second
 /// is the ground, about that body's centre of mass); per clearance joint `C.penetration
 /// C.rate C.normal_force C.friction_force C.contact C.ex C.ey` (eccentricity in the bearing
-/// body's frame); `energy.kinetic energy.potential energy.elastic energy.total
+/// body's frame), followed by `C.lugre_z` for a joint with LuGre friction (its bristle deflection
+/// in m; for a translational joint the F_N-weighted mean over its loaded corners, so that
+/// σ₀·lugre_z·ΣF_N is the elastic bristle part of the friction force; the plain mean of its
+/// corners when none is loaded); `energy.kinetic energy.potential energy.elastic energy.total
 /// energy.dissipated` (energy dissipated since t0 by dampers, contact damping and friction);
 /// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞).
 #[derive(Debug, Clone, PartialEq)]
@@ -30,7 +33,8 @@ pub struct Results {
     pub projections: usize,
     /// Largest ‖Φ‖∞ seen after accepted steps (before any projection), m or rad.
     pub max_position_violation: f64,
-    /// Final state (q, q̇, dissipated energy).
+    /// Final state (q, q̇, dissipated energy, LuGre bristle states; see
+    /// [`Model::n_bristle_states`](crate::Model::n_bristle_states)).
     pub y_final: Vec<f64>,
 }
 

@@ -1,12 +1,12 @@
 //! The simulation driver and the output recorder.
 //!
-//! [`Model::simulate`] integrates y = (q, q̇) with clr-ode, one accepted step at a time: after
+//! [`Model::simulate`] integrates y = (q, q̇, E_d, z) with clr-ode, one accepted step at a time: after
 //! each step the contact memory is committed (clr-contact memory rule 1), requested output
 //! times inside the step are recorded from the dense output, the state is optionally projected
 //! onto the constraint manifold, and contact onsets located as terminal events restart the
 //! solver at the onset with δ̇⁻ equal to the penetration rate there.
 
-use clr_ode::{Control, Dopri5, Ndf, Observer, Options, Output, Stats, StopReason};
+use clr_ode::{Control, Dopri5, Ndf, Observer, OdeSystem, Options, Output, Stats, StopReason};
 
 use crate::error::MbdError;
 pub use crate::results::Results;
@@ -163,6 +163,9 @@ impl Model {
             ] {
                 c.push(format!("{}.{s}", cl.name));
             }
+            if cl.lugre.is_some() {
+                c.push(format!("{}.lugre_z", cl.name));
+            }
         }
         for s in [
             "energy.kinetic",
@@ -181,6 +184,7 @@ impl Model {
     /// Evaluate everything at (t, y) and append one output row.
     pub(crate) fn record(&mut self, t: f64, y: &[f64], out: &mut Vec<f64>) {
         let n = self.n;
+        self.load_bristles(y);
         let (q, qd) = y.split_at(n);
         self.solve_accelerations(t, q, qd);
         out.push(t);
@@ -198,7 +202,7 @@ impl Model {
         for s in self.joint_starts() {
             out.extend_from_slice(&self.reaction(s));
         }
-        for c in &self.contacts {
+        for (k, c) in self.contacts.iter().enumerate() {
             out.extend_from_slice(&[
                 c.penetration,
                 c.penetration_rate,
@@ -208,6 +212,9 @@ impl Model {
                 c.eccentricity[0],
                 c.eccentricity[1],
             ]);
+            if let Some(z) = self.bristle_output(k) {
+                out.push(z);
+            }
         }
         let e = self.energies(q, qd);
         let pv = self.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
@@ -260,8 +267,9 @@ impl Model {
         self.simulate_from_with(opts, &y0, progress)
     }
 
-    /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d) of length 2n + 1 (not modified;
-    /// project it first with [`Model::project`] if it may violate the constraints).
+    /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d, z) of length
+    /// [`OdeSystem::dim`] = 2n + 1 + [`Model::n_bristle_states`] (not modified; project it first
+    /// with [`Model::project`] if it may violate the constraints).
     ///
     /// # Errors
     /// As [`Model::simulate`].
@@ -292,21 +300,25 @@ impl Model {
                 "output times must be increasing and inside [t0, t_end]".into(),
             ));
         }
-        if y0.len() != 2 * self.n + 1 {
+        if y0.len() != self.dim() {
             return Err(MbdError::Options(format!(
-                "the initial state has {} components; the model needs 2n + 1 = {} (q, q̇, \
-                 dissipated energy)",
+                "the initial state has {} components; the model needs 2n + 1 + m = {} (q, q̇, \
+                 dissipated energy, {} LuGre bristle states)",
                 y0.len(),
-                2 * self.n + 1
+                self.dim(),
+                self.n_bristle_states()
             )));
         }
         self.events_on = opts.contact_events;
-        let ode = Options::default()
+        let mut ode = Options::default()
             .rtol(opts.rtol)
             .atol(opts.atol)
             .h_max(opts.h_max)
             .max_steps(opts.max_steps)
             .output(Output::Times(opts.times.clone()));
+        if let Some(atol) = self.bristle_atol(opts.atol, opts.rtol) {
+            ode = ode.atol_vec(atol);
+        }
         let mut solver = match opts.solver {
             SolverKind::Ndf => AnySolver::Ndf(Box::new(Ndf::new(ode))),
             SolverKind::Dopri5 => AnySolver::Dopri5(Box::new(Dopri5::new(ode))),
@@ -359,8 +371,7 @@ impl Model {
         run: &mut Run,
         progress: &dyn Fn(f64),
     ) -> Result<(), Stop> {
-        let n2 = 2 * self.n + 1;
-        let mut y_out = vec![0.0; n2];
+        let mut y_out = vec![0.0; self.dim()];
         let report_every = 0.01 * (opts.t_end - opts.t0);
         let mut last_report = opts.t0;
         self.memory.reset();
@@ -398,6 +409,14 @@ impl Model {
                 run.onsets += 1;
                 restart = true;
             }
+            // LuGre bristles: undeflected at open points and at a new contact (crate::lugre)
+            let onset = match reason {
+                StopReason::TerminalEvent(e) => Some(e),
+                _ => None,
+            };
+            if self.reset_bristles(&mut run.y, onset) {
+                restart = true;
+            }
             if let Some(tol) = opts.projection {
                 if pv > tol && t < opts.t_end {
                     self.project(t, &mut run.y, tol * 1e-3)?;
@@ -427,7 +446,7 @@ impl Model {
 struct Run {
     /// Recorded rows, row-major.
     data: Vec<f64>,
-    /// Current state (q, q̇, E_d).
+    /// Current state (q, q̇, E_d, z).
     y: Vec<f64>,
     /// Output times of the solver already recorded.
     recorded: usize,

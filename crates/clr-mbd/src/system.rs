@@ -57,9 +57,12 @@ impl Energies {
 }
 
 /// A built multibody model and its solver workspace. It is a clr-ode [`OdeSystem`] on
-/// y = (q, q̇, E_d) of dimension 2·[`Model::n_coordinates`] + 1; use [`Model::initial_state`] for a
-/// consistent start, or [`Model::simulate`](crate::Model::simulate) for the full driver. The
-/// state carries one more component, the dissipated energy (see [`OdeSystem::dim`]).
+/// y = (q, q̇, E_d, z) of dimension 2·[`Model::n_coordinates`] + 1 +
+/// [`Model::n_bristle_states`]; use [`Model::initial_state`] for a consistent start, or
+/// [`Model::simulate`](crate::Model::simulate) for the full driver. After q and q̇ the state
+/// carries the dissipated energy E_d and, with LuGre friction in clearance joints, one bristle
+/// deflection z (m, starting at 0) per LuGre contact point, element by element in definition
+/// order (1 per revolute, 4 per translational clearance joint; see [`OdeSystem::dim`]).
 pub struct Model {
     pub(crate) body_names: Vec<String>,
     pub(crate) bodies: Vec<RigidBody>,
@@ -94,6 +97,8 @@ pub struct Model {
     pub(crate) solve_ok: bool,
     /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
     pub(crate) p_diss: f64,
+    /// LuGre bristle states of the clearance joints (loaded from y by `rhs`).
+    pub(crate) bristles: crate::lugre::Bristles,
 }
 
 impl Model {
@@ -149,11 +154,11 @@ impl Model {
         self.events_on = on;
     }
 
-    /// Initial state as given to the builder (not yet consistent): y = (q, q̇, E_d) with the
-    /// dissipated energy E_d = 0.
+    /// Initial state as given to the builder (not yet consistent): y = (q, q̇, E_d, z) with the
+    /// dissipated energy E_d = 0 and undeflected LuGre bristles z = 0.
     pub fn given_state(&self) -> Vec<f64> {
         let n = self.n;
-        let mut y = vec![0.0; 2 * n + 1];
+        let mut y = vec![0.0; self.dim()];
         for (k, b) in self.bodies.iter().enumerate() {
             y[3 * k] = b.position[0];
             y[3 * k + 1] = b.position[1];
@@ -307,6 +312,17 @@ impl Model {
                 cl.apply_flex(guide, q, qd, &bj, &mut self.memory, qf, |qf, g| {
                     add_gen(frames, qf, j, g)
                 })
+            } else if let Some(lugre) = &cl.lugre {
+                crate::lugre::apply(
+                    cl,
+                    lugre,
+                    k,
+                    &bi,
+                    &bj,
+                    &mut self.memory,
+                    &mut self.bristles,
+                    |b, g| add_gen(frames, qf, b, g),
+                )
             } else {
                 cl.apply(&bi, &bj, &mut self.memory, |b, g| add_gen(frames, qf, b, g))
             };
@@ -551,19 +567,23 @@ fn guide_ref<'a>(
 }
 
 impl OdeSystem for Model {
-    /// 2n + 1: y = (q, q̇, E_d), E_d the energy dissipated by dampers, contact damping and
-    /// friction (J), integrated alongside.
+    /// 2n + 1 + m: y = (q, q̇, E_d, z_1 … z_m), E_d the energy dissipated by dampers, contact
+    /// damping and friction (J), integrated alongside, and z the bristle deflections (m) of the
+    /// m LuGre contact points ([`Model::n_bristle_states`]; the `lugre` layout in the docs of
+    /// [`Model`]).
     fn dim(&self) -> usize {
-        2 * self.n + 1
+        2 * self.n + 1 + self.bristles.len()
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
         let n = self.n;
+        self.load_bristles(y);
         let (q, qd) = (&y[..n], &y[n..2 * n]);
         self.solve_accelerations(t, q, qd);
         dydt[..n].copy_from_slice(qd);
         dydt[n..2 * n].copy_from_slice(&self.sol[..n]);
         dydt[2 * n] = self.p_diss;
+        dydt[2 * n + 1..].copy_from_slice(self.bristle_rates());
     }
 
     fn n_events(&self) -> usize {

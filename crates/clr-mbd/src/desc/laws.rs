@@ -5,7 +5,7 @@
 //! radius is given once; [`NormalLawDesc::build`] receives it from the element.
 
 use clr_contact::{
-    DampingFactor, ElasticLaw, FrictionLaw, GuideFace, JournalBearing, Material, NormalLaw,
+    DampingFactor, ElasticLaw, FrictionLaw, GuideFace, JournalBearing, LuGre, Material, NormalLaw,
 };
 use serde::{Deserialize, Serialize};
 
@@ -115,6 +115,14 @@ impl Ctx<'_> {
             Ok(x)
         } else {
             Err(self.err(field, format!("must be positive and finite, got {x}")))
+        }
+    }
+    fn non_negative(&self, field: &str, v: Option<f64>, what: &str) -> Result<f64, FieldError> {
+        let x = self.req(field, v, what)?;
+        if x.is_finite() && x >= 0.0 {
+            Ok(x)
+        } else {
+            Err(self.err(field, format!("must be ≥ 0 and finite, got {x}")))
         }
     }
     fn material(&self, field: &str, m: Option<MaterialDesc>) -> Result<Material, FieldError> {
@@ -349,7 +357,9 @@ impl NormalLawDesc {
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct FrictionLawDesc {
-    /// `none`, `coulomb`, `ambrosio`, `ambrosio-smooth`, `threlfall`, `stribeck`.
+    /// `none`, `coulomb`, `ambrosio`, `ambrosio-smooth`, `threlfall`, `stribeck`, `lugre`
+    /// (dynamic: one bristle state per contact point, revolute and translational clearance
+    /// joints only; see the `lugre` fields below).
     pub law: String,
     /// Friction coefficient μ.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -363,28 +373,55 @@ pub struct FrictionLawDesc {
     /// Upper velocity v1 (ambrosio), m/s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub v1: Option<f64>,
-    /// Static coefficient (stribeck).
+    /// Static coefficient μ_s (stribeck, lugre), –.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mu_s: Option<f64>,
     /// Dynamic coefficient (stribeck).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mu_d: Option<f64>,
-    /// Stiction velocity (stribeck), m/s.
+    /// Stiction velocity (stribeck), Stribeck velocity v_s of g(v) (lugre), m/s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub v_s: Option<f64>,
     /// Dynamic velocity (stribeck), m/s.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub v_d: Option<f64>,
+    /// Bristle stiffness σ₀ (lugre, > 0), 1/m: friction coefficient per metre of bristle
+    /// deflection z, so the pre-sliding stiffness of a contact is σ₀·F_N (N/m). Typically
+    /// 1e4–1e6 /m (z of a few µm at the breakaway force).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma0: Option<f64>,
+    /// Bristle damping σ₁ (lugre, ≥ 0), s/m: the damping of the pre-sliding spring is σ₁·F_N
+    /// (N·s/m). σ₁ż also adds up to σ₁|v_T|·F_N at the start of a slide, before z builds up:
+    /// keep σ₁|v_T| small against μ_c at the model's sliding speeds.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma1: Option<f64>,
+    /// Viscous coefficient σ₂ (lugre, ≥ 0, default 0), s/m: adds σ₂·v_T to the coefficient.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub sigma2: Option<f64>,
+    /// Coulomb (sliding) coefficient μ_c of g(v) (lugre, > 0), –.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mu_c: Option<f64>,
+}
+
+/// A friction law as a contact element uses it: stateless, or LuGre with one bristle state per
+/// contact point that the model integrates (see [`Model`](crate::Model)'s state layout).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum ContactFriction {
+    /// A stateless law F_T = μ(v_T)·F_N.
+    Static(FrictionLaw),
+    /// The LuGre law (clr-contact [`LuGre`]).
+    LuGre(LuGre),
 }
 
 /// Friction-law names accepted in `law`.
-pub const FRICTION_LAWS: [&str; 6] = [
+pub const FRICTION_LAWS: [&str; 7] = [
     "none",
     "coulomb",
     "ambrosio",
     "ambrosio-smooth",
     "threlfall",
     "stribeck",
+    "lugre",
 ];
 
 impl FrictionLawDesc {
@@ -396,11 +433,44 @@ impl FrictionLawDesc {
         }
     }
 
-    /// The clr-contact law; `path` names this table in messages.
+    /// The LuGre law (Canudas de Wit, Olsson, Åström & Lischinsky, IEEE Trans. Autom. Control
+    /// 40 (1995) 419–425) in clr-contact's friction-coefficient form μ = σ₀z + σ₁ż + σ₂v_T,
+    /// ż = v_T − σ₀|v_T|z/g(v_T), g(v) = μ_c + (μ_s − μ_c)e^{−(v/v_s)²}, F_T = −μF_N: bristle
+    /// stiffness σ₀ (1/m), bristle damping σ₁ (s/m), viscous coefficient σ₂ (s/m), static μ_s
+    /// and Coulomb μ_c coefficients (–), Stribeck velocity v_s (m/s). Revolute and
+    /// translational clearance joints only.
+    pub fn lugre(sigma0: f64, sigma1: f64, sigma2: f64, mu_s: f64, mu_c: f64, v_s: f64) -> Self {
+        Self {
+            law: "lugre".into(),
+            sigma0: Some(sigma0),
+            sigma1: Some(sigma1),
+            sigma2: Some(sigma2),
+            mu_s: Some(mu_s),
+            mu_c: Some(mu_c),
+            v_s: Some(v_s),
+            ..Self::default()
+        }
+    }
+
+    /// The clr-contact stateless law; `path` names this table in messages. A contact element
+    /// that can carry bristle states uses [`build_contact`](Self::build_contact) instead.
+    ///
+    /// # Errors
+    /// [`FieldError`] at the offending field; for `lugre` at `law` (it needs a state per
+    /// contact point that the caller does not provide).
+    pub fn build(&self, path: &str) -> Result<FrictionLaw, FieldError> {
+        match self.build_contact(path)? {
+            ContactFriction::Static(l) => Ok(l),
+            ContactFriction::LuGre(_) => Err(lugre_refused(path)),
+        }
+    }
+
+    /// The law of a contact element that can integrate LuGre bristle states (revolute and
+    /// translational clearance joints); `path` names this table in messages.
     ///
     /// # Errors
     /// [`FieldError`] at the offending field.
-    pub fn build(&self, path: &str) -> Result<FrictionLaw, FieldError> {
+    pub fn build_contact(&self, path: &str) -> Result<ContactFriction, FieldError> {
         let norm = self.law.trim().to_ascii_lowercase().replace('_', "-");
         let Some(law) = FRICTION_LAWS.iter().copied().find(|l| *l == norm) else {
             return Err(FieldError::new(
@@ -422,15 +492,23 @@ impl FrictionLawDesc {
             ("mu_d", self.mu_d.is_some()),
             ("v_s", self.v_s.is_some()),
             ("v_d", self.v_d.is_some()),
+            ("sigma0", self.sigma0.is_some()),
+            ("sigma1", self.sigma1.is_some()),
+            ("sigma2", self.sigma2.is_some()),
+            ("mu_c", self.mu_c.is_some()),
         ];
         let used: &[&str] = match law {
             "none" => &[],
             "coulomb" => &["mu", "v_reg"],
             "ambrosio" | "ambrosio-smooth" => &["mu", "v0", "v1"],
             "threlfall" => &["mu", "v0"],
+            "lugre" => &["sigma0", "sigma1", "sigma2", "mu_s", "mu_c", "v_s"],
             _ => &["mu_s", "mu_d", "v_s", "v_d"],
         };
         c.refuse(&given, used)?;
+        if law == "lugre" {
+            return self.lugre_law(&c).map(ContactFriction::LuGre);
+        }
         let g = |k: &str, x: Option<f64>| c.req(k, x, &format!("`{k}`"));
         let r = match law {
             "none" => FrictionLaw::coulomb(0.0, 1.0),
@@ -451,8 +529,45 @@ impl FrictionLawDesc {
                 g("v_d", self.v_d)?,
             ),
         };
-        r.map_err(|e| FieldError::new(path.to_string(), e.to_string()))
+        r.map(ContactFriction::Static)
+            .map_err(|e| FieldError::new(path.to_string(), e.to_string()))
     }
+
+    /// The LuGre law, each parameter checked at its own field.
+    fn lugre_law(&self, c: &Ctx) -> Result<LuGre, FieldError> {
+        let sigma0 = c.positive(
+            "sigma0",
+            self.sigma0,
+            "the bristle stiffness `sigma0` in 1/m (e.g. 1e5)",
+        )?;
+        let sigma1 = c.non_negative(
+            "sigma1",
+            self.sigma1,
+            "the bristle damping `sigma1` in s/m (e.g. 2·sqrt(sigma0·m/F_N) for critical \
+             damping of a mass m pressed by F_N)",
+        )?;
+        let sigma2 = c.non_negative(
+            "sigma2",
+            Some(self.sigma2.unwrap_or(0.0)),
+            "the viscous coefficient `sigma2` in s/m",
+        )?;
+        let mu_s = c.positive("mu_s", self.mu_s, "the static coefficient `mu_s`")?;
+        let mu_c = c.positive("mu_c", self.mu_c, "the Coulomb coefficient `mu_c`")?;
+        let v_s = c.positive("v_s", self.v_s, "the Stribeck velocity `v_s` in m/s")?;
+        LuGre::new(sigma0, sigma1, sigma2, mu_s, mu_c, v_s)
+            .map_err(|e| FieldError::new(c.path.to_string(), e.to_string()))
+    }
+}
+
+/// The error of a `lugre` law given to a contact element without bristle states.
+fn lugre_refused(path: &str) -> FieldError {
+    FieldError::new(
+        format!("{path}.law"),
+        "the `lugre` law carries one bristle state per contact point, which only revolute and \
+         translational clearance joints integrate; this contact element (a slider on a flexible \
+         guide) takes a stateless law: none, coulomb, ambrosio, ambrosio-smooth, threlfall or \
+         stribeck",
+    )
 }
 
 /// A normal-force law of a contact element: by name with parameters (data, the file form), or
@@ -476,6 +591,8 @@ pub enum FrictionSpec {
     Named(FrictionLawDesc),
     /// A prebuilt law.
     Built(FrictionLaw),
+    /// A prebuilt LuGre law (revolute and translational clearance joints only).
+    LuGre(LuGre),
 }
 
 impl From<NormalLawDesc> for NormalSpec {
@@ -496,6 +613,11 @@ impl From<FrictionLawDesc> for FrictionSpec {
 impl From<FrictionLaw> for FrictionSpec {
     fn from(l: FrictionLaw) -> Self {
         FrictionSpec::Built(l)
+    }
+}
+impl From<LuGre> for FrictionSpec {
+    fn from(l: LuGre) -> Self {
+        FrictionSpec::LuGre(l)
     }
 }
 impl Default for FrictionSpec {
@@ -526,6 +648,20 @@ impl FrictionSpec {
         match self {
             FrictionSpec::Named(d) => d.build(path),
             FrictionSpec::Built(l) => Ok(*l),
+            FrictionSpec::LuGre(_) => Err(lugre_refused(path)),
+        }
+    }
+
+    /// The law of a contact element that integrates LuGre bristle states (see
+    /// [`FrictionLawDesc::build_contact`]).
+    ///
+    /// # Errors
+    /// [`FieldError`] of a named law.
+    pub fn build_contact(&self, path: &str) -> Result<ContactFriction, FieldError> {
+        match self {
+            FrictionSpec::Named(d) => d.build_contact(path),
+            FrictionSpec::Built(l) => Ok(ContactFriction::Static(*l)),
+            FrictionSpec::LuGre(l) => Ok(ContactFriction::LuGre(*l)),
         }
     }
 }
@@ -550,7 +686,9 @@ impl Serialize for FrictionSpec {
     fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
         match self {
             FrictionSpec::Named(d) => d.serialize(s),
-            FrictionSpec::Built(_) => Err(serde::ser::Error::custom(BUILT)),
+            FrictionSpec::Built(_) | FrictionSpec::LuGre(_) => {
+                Err(serde::ser::Error::custom(BUILT))
+            }
         }
     }
 }

@@ -354,6 +354,7 @@ impl Compiler {
         lu.resize(n + m);
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
+        let bristles = crate::lugre::Bristles::assign(&mut clearances);
         Ok(Model {
             body_names,
             bodies,
@@ -382,6 +383,7 @@ impl Compiler {
             contacts: vec![ContactReport::default(); nc],
             solve_ok: true,
             p_diss: 0.0,
+            bristles,
         })
     }
 

@@ -27,7 +27,7 @@ pub struct RevoluteClearance {
     pub journal_radius: f64,
     /// Normal-force law.
     pub normal: NormalSpec,
-    /// Friction law (default none).
+    /// Friction law (default none); `lugre` adds one bristle state to the model state.
     #[serde(default)]
     pub friction: FrictionSpec,
 }
@@ -58,7 +58,9 @@ impl Element for RevoluteClearance {
         let normal = self
             .normal
             .build(&format!("{name}.normal"), Some((rb, rj)))?;
-        let friction = self.friction.build(&format!("{name}.friction"))?;
+        let (friction, lugre) = crate::lugre::LuGreContact::split(
+            self.friction.build_contact(&format!("{name}.friction"))?,
+        );
         c.clearances.push(Runtime {
             name: name.clone(),
             i,
@@ -67,6 +69,7 @@ impl Element for RevoluteClearance {
             normal,
             friction,
             mem: 0,
+            lugre,
         });
         Ok(())
     }

@@ -63,7 +63,7 @@ pub struct SliderOnBeam {
     /// over the face.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub area_normal: Option<NormalSpec>,
-    /// Friction law of each contact point (default none).
+    /// Friction law of each contact point (default none): a stateless law (`lugre` is refused).
     #[serde(default)]
     pub friction: FrictionSpec,
 }
@@ -137,6 +137,7 @@ impl Element for SliderOnBeam {
             Some(a) => Some(a.build(&format!("{name}.area_normal"), None)?),
             None => None,
         };
+        // stateless laws only: `lugre` is refused at `{name}.friction.law`
         let friction = self.friction.build(&format!("{name}.friction"))?;
         c.clearances.push(Runtime {
             name: name.clone(),
@@ -157,6 +158,7 @@ impl Element for SliderOnBeam {
             normal,
             friction,
             mem: 0,
+            lugre: None,
         });
         Ok(())
     }

@@ -34,7 +34,8 @@ pub struct TranslationalClearance {
     pub slider_angle: f64,
     /// Normal-force law of each corner contact.
     pub normal: NormalSpec,
-    /// Friction law of each corner contact (default none).
+    /// Friction law of each corner contact (default none); `lugre` adds four bristle states (one
+    /// per corner) to the model state.
     #[serde(default)]
     pub friction: FrictionSpec,
 }
@@ -77,7 +78,9 @@ impl Element for TranslationalClearance {
                 }
             })?;
         let normal = self.normal.build(&format!("{name}.normal"), None)?;
-        let friction = self.friction.build(&format!("{name}.friction"))?;
+        let (friction, lugre) = crate::lugre::LuGreContact::split(
+            self.friction.build_contact(&format!("{name}.friction"))?,
+        );
         c.clearances.push(Runtime {
             name: name.clone(),
             i,
@@ -91,6 +94,7 @@ impl Element for TranslationalClearance {
             normal,
             friction,
             mem: 0,
+            lugre,
         });
         Ok(())
     }
