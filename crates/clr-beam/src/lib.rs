@@ -45,7 +45,7 @@ pub use element::{FrameElement, MassKind};
 pub use error::BeamError;
 pub use modal::{EigenMethod, Modes};
 pub use model::{BeamModel, DofMap, Loads, SparseMatrix, StaticSolution, Support};
-pub use query::{BeamPoint, Face, LoadRow, Path, SurfacePoint};
+pub use query::{BeamPoint, Face, LoadRow, Path, ShapeRows, SurfacePoint};
 pub use reduction::{FloatingFrameInvariants, ReducedModel};
 pub use section::{Material, Section};
 pub use transient::TransientSystem;

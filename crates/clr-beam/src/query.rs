@@ -97,6 +97,38 @@ pub struct LoadRow {
     pub fy: [f64; 6],
 }
 
+/// Interpolation rows of a path at an arc length s, for Jacobians of surface queries (e.g. the
+/// derivative of a contact point on a face with respect to s and to the nodal displacements q):
+/// the centerline displacement is d = (x·q_e, y·q_e), the cross-section rotation θ = slope·q_e,
+/// with q_e = `q[dofs]` (global axes); `dx`, `dy`, `curvature` are the derivatives of `x`, `y`,
+/// `slope` with respect to s (the rows of du/ds, dv/ds and κ = d²v/ds² in global axes). On the
+/// face at offset e = ±h/2 the point is `reference + d + e n(α + θ)` with n(φ) = (−sin φ,
+/// cos φ) and α the axis angle (`axis` = (cos α, sin α) = d reference/ds), as in
+/// [`Path::surface`]. At a node the rows are those of the element [`Path::surface`] uses there.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ShapeRows {
+    /// Full DOF indices of the element's six DOF.
+    pub dofs: [usize; 6],
+    /// Undeformed centerline position at s (m).
+    pub reference: [f64; 2],
+    /// Unit axis direction (cos α, sin α) of the element (the derivative of `reference`).
+    pub axis: [f64; 2],
+    /// Global x displacement row (m per unit DOF).
+    pub x: [f64; 6],
+    /// Global y displacement row.
+    pub y: [f64; 6],
+    /// d`x`/ds (1/m).
+    pub dx: [f64; 6],
+    /// d`y`/ds (1/m).
+    pub dy: [f64; 6],
+    /// Cross-section rotation row θ = dv/ds (rad per unit DOF).
+    pub slope: [f64; 6],
+    /// d`slope`/ds: the curvature row (1/m).
+    pub curvature: [f64; 6],
+    /// Section depth h of the element (m).
+    pub depth: f64,
+}
+
 struct Local {
     k: usize,
     xi: f64,
@@ -286,23 +318,45 @@ impl Path {
         let n = el.local_shape(xi);
         let dr = el.local_derivative_rows(xi);
         let (c, s) = (el.cos, el.sin);
-        // local row r over local DOF → global DOF via T (local = T global).
-        let glob = |r: [f64; 6]| {
-            let mut g = [0.0; 6];
-            for b in [0, 3] {
-                g[b] = r[b] * c - r[b + 1] * s;
-                g[b + 1] = r[b] * s + r[b + 1] * c;
-                g[b + 2] = r[b + 2];
-            }
-            g
-        };
         let mut rx = [0.0; 6];
         let mut ry = [0.0; 6];
         for j in 0..6 {
             rx[j] = c * n[0][j] - s * n[1][j];
             ry[j] = s * n[0][j] + c * n[1][j];
         }
-        (glob(rx), glob(ry), glob(dr[1]))
+        (
+            to_global_dofs(el, rx),
+            to_global_dofs(el, ry),
+            to_global_dofs(el, dr[1]),
+        )
+    }
+
+    /// Interpolation rows at arc length s (m) and their s-derivatives ([`ShapeRows`]).
+    pub fn shape_rows(&self, s: f64) -> Result<ShapeRows, BeamError> {
+        let Local { k, xi } = self.locate(s, self.n_dof, self.n_dof)?;
+        let el = &self.elements[k];
+        let (x, y, slope) = self.global_rows(k, xi);
+        let dr = el.local_derivative_rows(xi);
+        let (c, sn) = (el.cos, el.sin);
+        // d/ds of the local (u, v) rows are the (du/dx, dv/dx) rows; rotate them as `x`, `y`
+        let mut dl = [[0.0; 6]; 2];
+        for j in 0..6 {
+            dl[0][j] = c * dr[0][j] - sn * dr[1][j];
+            dl[1][j] = sn * dr[0][j] + c * dr[1][j];
+        }
+        let p0 = self.start[k];
+        Ok(ShapeRows {
+            dofs: el.dofs(),
+            reference: [p0[0] + xi * el.length * c, p0[1] + xi * el.length * sn],
+            axis: [c, sn],
+            x,
+            y,
+            dx: to_global_dofs(el, dl[0]),
+            dy: to_global_dofs(el, dl[1]),
+            slope,
+            curvature: to_global_dofs(el, dr[2]),
+            depth: el.depth,
+        })
     }
 
     /// Shape-function rows mapping a point force on the centerline at s to generalized nodal
@@ -343,6 +397,19 @@ impl Path {
             fy,
         })
     }
+}
+
+/// A row over an element's local DOF → the same row over its global DOF via T (local = T
+/// global).
+fn to_global_dofs(el: &FrameElement, r: [f64; 6]) -> [f64; 6] {
+    let (c, s) = (el.cos, el.sin);
+    let mut g = [0.0; 6];
+    for b in [0, 3] {
+        g[b] = r[b] * c - r[b + 1] * s;
+        g[b + 1] = r[b] * s + r[b + 1] * c;
+        g[b + 2] = r[b + 2];
+    }
+    g
 }
 
 impl BeamModel {

@@ -637,3 +637,62 @@ fn craig_bampton_free_free_and_floating_interior() {
         Err(BeamError::SingularStiffness { .. })
     ));
 }
+
+/// `Path::shape_rows` reproduces `Path::surface` (reference + d + e n(α + θ)) and its `dx`,
+/// `dy`, `curvature` rows are the s-derivatives of `x`, `y`, `slope` (central differences in
+/// s inside an element, step 1e-6 m: truncation O(h²) of cubic rows, tolerance 1e-7 of the
+/// rows' scale), on an oblique beam with an arbitrary deformation.
+#[test]
+fn shape_rows_reproduce_the_surface_and_their_derivatives() {
+    let angle = 0.7f64;
+    let b = BeamModel::straight(
+        [0.1, 0.2],
+        [0.1 + angle.cos(), 0.2 + angle.sin()],
+        3,
+        mat(),
+        sec(),
+    )
+    .unwrap();
+    let path = b.path().unwrap();
+    let q: Vec<f64> = (0..b.n_dof())
+        .map(|i| 1e-3 * ((i * 7 % 11) as f64 - 5.0))
+        .collect();
+    let z = vec![0.0; b.n_dof()];
+    let s = 0.41;
+    let r = path.shape_rows(s).unwrap();
+    let dot = |row: &[f64; 6]| (0..6).map(|j| row[j] * q[r.dofs[j]]).sum::<f64>();
+    let phi = angle + dot(&r.slope);
+    let e = 0.5 * r.depth;
+    let up = path.surface(s, Face::Upper, &q, &z).unwrap();
+    let expect = [
+        r.reference[0] + dot(&r.x) - e * phi.sin(),
+        r.reference[1] + dot(&r.y) + e * phi.cos(),
+    ];
+    for k in 0..2 {
+        assert!(
+            (up.position[k] - expect[k]).abs() < 1e-14,
+            "{:?} {expect:?}",
+            up.position
+        );
+    }
+    assert!((r.axis[0] - angle.cos()).abs() < 1e-14 && (r.axis[1] - angle.sin()).abs() < 1e-14);
+    let h = 1e-6;
+    let (p, m) = (
+        path.shape_rows(s + h).unwrap(),
+        path.shape_rows(s - h).unwrap(),
+    );
+    for (row, rp, rm, scale) in [
+        (r.dx, p.x, m.x, 1.0),
+        (r.dy, p.y, m.y, 1.0),
+        (r.curvature, p.slope, m.slope, 10.0),
+    ] {
+        for j in 0..6 {
+            let fd = (rp[j] - rm[j]) / (2.0 * h);
+            assert!(
+                (row[j] - fd).abs() < 1e-7 * scale,
+                "{j}: {} vs {fd}",
+                row[j]
+            );
+        }
+    }
+}

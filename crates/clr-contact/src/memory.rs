@@ -44,11 +44,29 @@ const CLOSED: Point = Point {
 };
 
 /// Per-point storage of the impact velocity δ̇⁻ with commit / discard semantics (module docs).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, PartialEq)]
 pub struct ContactMemory {
     committed: Vec<Point>,
     tentative: Vec<Option<f64>>,
     minimum_impact_velocity: f64,
+}
+
+impl Clone for ContactMemory {
+    fn clone(&self) -> Self {
+        Self {
+            committed: self.committed.clone(),
+            tentative: self.tentative.clone(),
+            minimum_impact_velocity: self.minimum_impact_velocity,
+        }
+    }
+
+    /// Copies into the existing buffers: no allocation when the point counts match (saving and
+    /// restoring the memory around trial evaluations, e.g. for Jacobians).
+    fn clone_from(&mut self, source: &Self) {
+        self.committed.clone_from(&source.committed);
+        self.tentative.clone_from(&source.tentative);
+        self.minimum_impact_velocity = source.minimum_impact_velocity;
+    }
 }
 
 impl ContactMemory {

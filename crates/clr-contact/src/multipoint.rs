@@ -241,6 +241,17 @@ impl SliderShape {
         self.height
     }
 
+    /// Corner k (0..4, counter-clockwise from (−L/2, −h/2)) in the frame of the slider's body
+    /// (centre + A(angle)·corner), m.
+    pub fn body_corner(&self, k: usize) -> Vector2<f64> {
+        self.body_point(self.corner(k))
+    }
+
+    /// Slider-frame point → point in the frame of the slider's body, m.
+    fn body_point(&self, p: Vector2<f64>) -> Vector2<f64> {
+        self.centre + rotate(self.angle, p)
+    }
+
     /// Corner k (0..4, counter-clockwise from (−L/2, −h/2)) in the slider frame, m.
     pub(crate) fn corner(&self, k: usize) -> Vector2<f64> {
         let (a, b) = (0.5 * self.length, 0.5 * self.height);
@@ -254,7 +265,7 @@ impl SliderShape {
 
     /// Slider-frame point → world point on `body`.
     pub(crate) fn world_point(&self, body: &BodyState, p: Vector2<f64>) -> Vector2<f64> {
-        body.point(self.centre + rotate(self.angle, p))
+        body.point(self.body_point(p))
     }
 
     /// World point → slider-frame point on `body`.
@@ -413,6 +424,107 @@ impl MultipointDetector {
     /// Classification of the last [`detect`](Self::detect).
     pub fn class(&self) -> ContactClass {
         self.class
+    }
+
+    /// Number of slider candidates 4 + 4N (ids 0..4 + 4N; guide samples follow).
+    pub fn candidate_count(&self) -> usize {
+        self.warm.len()
+    }
+
+    /// Position of slider candidate `id` (< [`candidate_count`](Self::candidate_count)) in the
+    /// frame of the slider's body, m; `None` for other ids.
+    pub fn candidate_body_point(&self, id: usize) -> Option<Vector2<f64>> {
+        (id < self.warm.len()).then(|| self.shape.body_point(self.candidate(id).0))
+    }
+
+    /// Projection of slider candidate `id` at the last [`detect`](Self::detect): (arc
+    /// coordinate s* (m), signed gap (m, < 0 penetrating), active); `None` for other ids.
+    pub fn projection(&self, id: usize) -> Option<(f64, f64, bool)> {
+        self.projected.get(id).copied()
+    }
+
+    /// Partial derivatives of the tributary length of the active candidate `id` (see
+    /// [`ContactPoint::tributary_length`]) with respect to the projections of the candidates it
+    /// depends on, for Jacobians: calls `f(candidate, ∂l/∂s*, ∂l/∂gap)` once per term (a
+    /// candidate may appear several times; sum them), with s* and the signed gap of
+    /// [`projection`](Self::projection). Nothing is called for an inactive id. Returns false
+    /// (and calls nothing) when guide samples are active: the lengths then come from the
+    /// neighbour rule on the points' arcs, not from the candidates' projections.
+    ///
+    /// Per segment of the face chain between `id` (δ = −gap > 0) and a neighbour (clamped
+    /// penetration o): l += ½|Δs| when o > 0, else ½|Δs|·δ/(δ − o) (the wedge rule of
+    /// [`detect`](Self::detect)); o = min(−gap, 0) for an inactive neighbour, whose derivative is
+    /// 0 where the clamp holds.
+    pub fn tributary_partials(&self, id: usize, mut f: impl FnMut(usize, f64, f64)) -> bool {
+        if self
+            .points
+            .iter()
+            .any(|p| matches!(p.source, PointSource::GuideSample(_)))
+        {
+            return false;
+        }
+        if !self.projected.get(id).is_some_and(|p| p.2) {
+            return true;
+        }
+        let n = self.face_points;
+        for face in 0..4 {
+            let mut previous: Option<usize> = None;
+            for b in self.face_chain(face, n) {
+                if let Some(a) = previous {
+                    if a == id {
+                        self.share_partials(a, b, &mut f);
+                    }
+                    if b == id {
+                        self.share_partials(b, a, &mut f);
+                    }
+                }
+                previous = Some(b);
+            }
+        }
+        true
+    }
+
+    /// Candidates of slider face `face` in order: corner, N face points, next corner.
+    fn face_chain(&self, face: usize, n: usize) -> impl Iterator<Item = usize> {
+        core::iter::once(face)
+            .chain((0..n).map(move |i| 4 + face * n + i))
+            .chain(core::iter::once((face + 1) % 4))
+    }
+
+    /// Partials of the share of active candidate `me` from its segment to `other`.
+    fn share_partials(&self, me: usize, other: usize, f: &mut impl FnMut(usize, f64, f64)) {
+        let (sm, gm, _) = self.projected[me];
+        let (so, go, act_o) = self.projected[other];
+        let d = (so - sm).abs();
+        if !d.is_finite() {
+            return;
+        }
+        // d|s_o − s_me|/ds_o (0 where the two projections coincide)
+        let sgn = if so > sm {
+            1.0
+        } else if so < sm {
+            -1.0
+        } else {
+            0.0
+        };
+        let delta = -gm;
+        // an active neighbour's penetration, or an inactive one's clamped at 0 (its derivative
+        // is 0 where the clamp holds: a candidate past the end of the guide)
+        let (o, do_dgo) = if act_o || -go < 0.0 {
+            (-go, -1.0)
+        } else {
+            (0.0, 0.0)
+        };
+        if o > 0.0 {
+            f(other, 0.5 * sgn, 0.0);
+            f(me, -0.5 * sgn, 0.0);
+            return;
+        }
+        let w = delta / (delta - o);
+        let den = (delta - o) * (delta - o);
+        f(other, 0.5 * w * sgn, 0.5 * d * delta / den * do_dgo);
+        // ∂w/∂δ = −o/(δ − o)², ∂δ/∂gap = −1
+        f(me, -0.5 * w * sgn, 0.5 * d * o / den);
     }
 
     /// Forget the warm starts (e.g. after a jump of the slider).

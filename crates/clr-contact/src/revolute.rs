@@ -156,6 +156,16 @@ impl RevoluteClearance {
         self.bearing_radius - self.journal_radius
     }
 
+    /// Local coordinates of the bearing centre on body i, m.
+    pub fn bearing_centre(&self) -> Vector2<f64> {
+        self.bearing_centre
+    }
+
+    /// Local coordinates of the journal centre on body j, m.
+    pub fn journal_centre(&self) -> Vector2<f64> {
+        self.journal_centre
+    }
+
     /// All kinematic quantities at once (the cheap way when several are needed).
     pub fn contact(&self, bearing: &BodyState, journal: &BodyState) -> RevoluteContact {
         let pi = bearing.point(self.bearing_centre);

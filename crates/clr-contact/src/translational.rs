@@ -143,6 +143,11 @@ impl TranslationalClearance {
         self.guide_width - self.slider.height()
     }
 
+    /// The slider shape (its corners in body j's frame: [`SliderShape::body_corner`]).
+    pub fn slider(&self) -> &SliderShape {
+        &self.slider
+    }
+
     /// World positions of the four corners, counter-clockwise from (−L/2, −h/2), m.
     pub fn corners(&self, slider: &BodyState) -> [Vector2<f64>; 4] {
         [0, 1, 2, 3].map(|k| self.slider.world_point(slider, self.slider.corner(k)))

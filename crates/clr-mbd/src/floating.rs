@@ -557,6 +557,89 @@ impl crate::Model {
     }
 }
 
+/// Analytic Jacobians of the floating-frame terms (used by [`crate::Model::jacobians`]).
+impl FloatingBody {
+    /// Add ∂/∂q and ∂/∂q̇ of [`FloatingBody::forces`] (Q_v, gravity, −K_ff q_f − D_ff q̇_f; the
+    /// module docs' formulas differentiated) to the row-major n × n `dq`, `dv`. Q does not
+    /// depend on R. With a = A S̄, b = A Σ S̄_k q̇_k, (I₁ + M_ff q_f)_k = i_k:
+    /// ∂Q_R/∂θ = θ̇² Ĩa + 2θ̇ b, ∂Q_R/∂q_l = θ̇² A S̄_l, ∂Q_R/∂θ̇ = 2θ̇ a − 2Ĩb,
+    /// ∂Q_R/∂q̇_l = −2θ̇ Ĩ A S̄_l; ∂Q_θ/∂θ = −g·a, ∂Q_θ/∂q_l = g·Ĩ A S̄_l − 2θ̇ Σ_k M_kl q̇_k,
+    /// ∂Q_θ/∂θ̇ = −2 Σ i_k q̇_k, ∂Q_θ/∂q̇_l = −2θ̇ i_l; ∂Q_f,k/∂θ = g·Ĩ A S̄_k,
+    /// ∂Q_f,k/∂q_l = θ̇² M_kl − K_kl, ∂Q_f,k/∂θ̇ = 2θ̇ i_k + 2 Σ_l S̃_kl q̇_l,
+    /// ∂Q_f,k/∂q̇_l = 2θ̇ S̃_kl − D_kl (n: the number of coordinates).
+    pub(crate) fn force_jacobian(
+        &self,
+        q: &[f64],
+        qd: &[f64],
+        g: Vector2<f64>,
+        n: usize,
+        [dq, dv]: [&mut [f64]; 2],
+    ) {
+        let (o, r) = (self.offset, self.r);
+        let (th, w) = (q[o + 2], qd[o + 2]);
+        let (qf, qfd) = (&q[o + 3..o + 3 + r], &qd[o + 3..o + 3 + r]);
+        let a = rot(th, self.first_moment(qf));
+        let b = rot(
+            th,
+            self.sf
+                .iter()
+                .zip(qfd)
+                .fold(Vector2::zeros(), |s, (sk, v)| s + sk * *v),
+        );
+        let at = |i: usize, j: usize| (o + i) * n + o + j;
+        let (qr, vr) = (w * w * perp(a) + 2.0 * w * b, 2.0 * w * a - 2.0 * perp(b));
+        for d in 0..2 {
+            dq[at(d, 2)] += qr[d];
+            dv[at(d, 2)] += vr[d];
+        }
+        dq[at(2, 2)] -= g.dot(&a);
+        let mut sum_iq = 0.0;
+        for k in 0..r {
+            let ask = rot(th, self.sf[k]);
+            let ik = self.i1_mq(qf, k);
+            sum_iq += ik * qfd[k];
+            for d in 0..2 {
+                dq[at(d, 3 + k)] += w * w * ask[d];
+                dv[at(d, 3 + k)] -= 2.0 * w * perp(ask)[d];
+            }
+            let mq: f64 = (0..r).map(|l| self.mff[l * r + k] * qfd[l]).sum();
+            dq[at(2, 3 + k)] += g.dot(&perp(ask)) - 2.0 * w * mq;
+            dv[at(2, 3 + k)] -= 2.0 * w * ik;
+            dq[at(3 + k, 2)] += g.dot(&perp(ask));
+            let sq: f64 = (0..r).map(|l| self.skew[k * r + l] * qfd[l]).sum();
+            dv[at(3 + k, 2)] += 2.0 * w * ik + 2.0 * sq;
+            for l in 0..r {
+                dq[at(3 + k, 3 + l)] += w * w * self.mff[k * r + l] - self.k[k * r + l];
+                dv[at(3 + k, 3 + l)] += 2.0 * w * self.skew[k * r + l] - self.d[k * r + l];
+            }
+        }
+        dv[at(2, 2)] -= 2.0 * sum_iq;
+    }
+
+    /// (Φ_q q̇)_q of the node tie of node `node` ([`FloatingBody::tie`]) added to its 3 rows
+    /// `out` (row-major, n columns): the position rows are ṗ − Ṙ − θ̇ Ĩ A ū − A Φ_N q̇_f, so
+    /// ∂/∂θ = θ̇ A ū − Ĩ A Φ_N q̇_f and ∂/∂q_f,k = −θ̇ Ĩ A Φ_N,k; the angle row is linear in q̇
+    /// with constant coefficients (0).
+    pub(crate) fn tie_rate_jacobian(&self, node: usize, q: &[f64], qd: &[f64], out: &mut [f64]) {
+        let nq = out.len() / 3;
+        let (o, r) = (self.offset, self.r);
+        let (th, w) = (q[o + 2], qd[o + 2]);
+        let (u, _) = self.node_local(node, &q[o + 3..o + 3 + r]);
+        let (ud, _) = self.node_local_rate(node, &qd[o + 3..o + 3 + r]);
+        let d_th = w * rot(th, u) - perp(rot(th, ud));
+        for d in 0..2 {
+            out[d * nq + o + 2] += d_th[d];
+        }
+        for k in 0..r {
+            let phik = Vector2::new(self.t[3 * node * r + k], self.t[(3 * node + 1) * r + k]);
+            let dk = -w * perp(rot(th, phik));
+            for d in 0..2 {
+                out[d * nq + o + 3 + k] += dk[d];
+            }
+        }
+    }
+}
+
 /// Cholesky test of a symmetric row-major n × n matrix (build time only).
 fn positive_definite(a: &[f64], n: usize) -> bool {
     let mut l = vec![0.0; n * n];

@@ -1,19 +1,64 @@
 //! Jacobians of the generalized forces and constraints: ∂Q/∂q, ∂Q/∂q̇, Φ_q and (Φ_q q̇)_q,
 //! assembled from the elements at (t, q, q̇).
 //!
-//! Analytic where the element provides it: ideal joints and drivers (Φ_q and (Φ_q q̇)_q of
-//! Nikravesh 1988, eqs. 5.11–5.15 differentiated once more), translational and rotational
-//! spring–dampers, time-only applied loads (whose generalized torque a×F still depends on θ),
-//! gravity and ground-fixed beams (−K_ff, −C_ff). The remaining elements (clearance joints and
-//! sliders, floating-frame bodies, node ties, user closures) are differentiated by central
-//! differences of their own contribution (the fallback, listed by
-//! [`Jacobians::fallback`]); the contact memory is restored after every perturbed evaluation.
+//! Analytic:
+//! - ideal joints and drivers: Φ_q and (Φ_q q̇)_q (Nikravesh 1988, eqs. 5.11–5.15 differentiated
+//!   once more); the node ties of floating bodies ([`crate::floating`]);
+//! - translational and rotational spring–dampers, time-only applied loads (whose generalized
+//!   torque a×F still depends on θ), gravity, ground-fixed beams (−K_ff, −C_ff);
+//! - floating-frame bodies: the quadratic-velocity vector, gravity, elastic and damping forces
+//!   in the floating frame (Shabana 2020, eqs. 5.38–5.42 differentiated);
+//! - contact elements with stateless friction: the revolute clearance joint, the translational
+//!   clearance joint (corner contacts) and the slider on a flexible beam face (multipoint
+//!   contact, ground-fixed or floating beam, line and area laws). Their forces are re-evaluated
+//!   in first-order dual numbers (`dual`, `contact`, `guide`): the gradients are the exact
+//!   partial derivatives of what the model applies, the laws entering through clr-contact's
+//!   closed-form derivatives. The impact velocity δ̇⁻ of the contact memory is a constant (it is
+//!   state of the contact, not a function of q, q̇), so at a point whose onset is still
+//!   tentative (closed in the committed memory) the derivative differs from a difference
+//!   quotient, which would also vary the tentative δ̇⁻; at committed contacts the two agree.
+//!
+//! Central differences (the fallback, listed by [`Jacobians::fallback`]) for the elements
+//! without an analytic form, each over its own contribution and the columns it touches, with
+//! the contact memory restored after every perturbed evaluation:
+//! - applied loads given as Rust closures of the state (`custom` forces and torques): their
+//!   derivatives are unknown to the model;
+//! - clearance joints with LuGre friction: their forces are evaluated by `crate::lugre` with the
+//!   bristle states of the last evaluation held fixed, and that module documents them as
+//!   differenced here (an analytic form would follow the `contact` submodule with clr-contact's
+//!   `LuGre::force_with_derivatives`);
+//! - a slider on a beam face with the reverse check (guide samples > 0): a sample's arc
+//!   coordinate and its wetted length follow the corner projections through a piecewise
+//!   interpolation and the neighbour rule, whose derivatives clr-contact does not provide (the
+//!   candidates' wetted lengths it does: `MultipointDetector::tributary_partials`).
+//!
+//! The fallback's step is 10⁻⁶·max(1, |x|): coarse against the penetrations of stiff contacts
+//! (micrometres and less), so a fallback contact element is only as accurate as h/δ allows.
+//!
+//! Non-smooth points, where the analytic form gives one side's derivative and a difference
+//! quotient whose stencil straddles the point averages both: contact onset (δ = 0), the clamp
+//! F_N = 0 of the damped laws, the kinks of the regularized friction laws (see
+//! `FrictionLaw::force_with_derivatives`), a slider candidate at a beam node (the Hermite
+//! interpolation is C¹: the s-derivatives of the load rows jump there) and a projection at an
+//! end of the face.
+//!
 //! The sparsity pattern of every element is the set of coordinate columns of its frames
-//! ([`Model::element_columns`]).
+//! ([`Model::element_columns`]). [`Model::jacobians_into`] reuses its output and scratch space
+//! (no allocation in the analytic part). The independent checks: [`Model::jacobians_fd`] and
+//! [`Model::jacobians_fd_step`] difference the whole model with one step,
+//! [`Model::jacobians_fd_best`] picks the step per column from a ladder (contact states);
+//! [`Model::commit_contact_memory`] commits the impact velocities at a chosen state first, as
+//! the integrator does after an accepted step.
 
+mod contact;
+mod dual;
+mod guide;
+
+use clr_contact::{BodyState, ContactMemory};
 use nalgebra::{Matrix2, Vector2};
 
-use crate::runtime::{body_state, perp, rot, ConKind, ForceEl, Frame, GROUND_ID};
+use crate::clearance::{Clearance, ClearanceKind, ContactReport, GuideBeam, GuideRef};
+use crate::runtime::{add_gen, body_state, perp, rot, ConKind, ForceEl, Frame, GROUND_ID};
 use crate::system::Model;
 
 /// Jacobians at one state, row-major: `dq`, `dv` are n × n, `phi_q`, `phi_qqd_q` are m × n.
@@ -33,19 +78,46 @@ pub struct Jacobians {
     pub phi_qqd_q: Vec<f64>,
     /// Names of the elements differentiated by central differences (no analytic form).
     pub fallback: Vec<String>,
+    /// Scratch space of the analytic contact Jacobians, reused by [`Model::jacobians_into`].
+    ws: Workspace,
 }
 
 impl Jacobians {
     fn sized(n: usize, m: usize) -> Self {
-        Self {
-            n,
-            m,
-            dq: vec![0.0; n * n],
-            dv: vec![0.0; n * n],
-            phi_q: vec![0.0; m * n],
-            phi_qqd_q: vec![0.0; m * n],
-            fallback: Vec::new(),
+        let mut j = Self::default();
+        j.resize(n, m);
+        j
+    }
+
+    /// Size for n coordinates and m constraint rows and zero every entry (allocates only when
+    /// the sizes grow).
+    fn resize(&mut self, n: usize, m: usize) {
+        (self.n, self.m) = (n, m);
+        for (v, len) in [
+            (&mut self.dq, n * n),
+            (&mut self.dv, n * n),
+            (&mut self.phi_q, m * n),
+            (&mut self.phi_qqd_q, m * n),
+        ] {
+            v.clear();
+            v.resize(len, 0.0);
         }
+    }
+}
+
+/// Scratch space of [`Model::jacobians_into`]: the contact memory and reports saved around the
+/// evaluation, and the candidate duals of a slider on a beam. Not part of the value of a
+/// [`Jacobians`] (any two workspaces compare equal).
+#[derive(Debug, Clone, Default)]
+struct Workspace {
+    memory: Option<ContactMemory>,
+    reports: Vec<ContactReport>,
+    cands: Vec<guide::Cand>,
+}
+
+impl PartialEq for Workspace {
+    fn eq(&self, _: &Self) -> bool {
+        true
     }
 }
 
@@ -136,50 +208,189 @@ impl Model {
     /// central differences of the other elements' own contributions (see the module docs).
     /// Leaves the model's contact memory and reports as they were.
     pub fn jacobians(&mut self, t: f64, q: &[f64], qd: &[f64]) -> Jacobians {
-        let (n, m) = (self.n, self.m);
-        let mut jac = Jacobians::sized(n, m);
-        self.analytic_forces(t, q, qd, &mut jac);
-        self.eval_constraints(t, q, qd);
-        jac.phi_q.copy_from_slice(&self.phiq);
-        let float_rows = self.analytic_constraints(q, qd, &mut jac.phi_qqd_q);
-        // the rest: central differences of (Q − Q_analytic), only over the columns the
-        // non-analytic elements touch (none: nothing to difference)
-        let names = self.fallback_names();
-        let cols = self.fallback_columns(&names);
-        if !cols.is_empty() {
-            let mut qa = vec![0.0; n];
-            let mut rest = |model: &mut Model, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]| {
-                model.eval_forces(t, q, qd);
-                model.analytic_force_values(t, q, qd, &mut qa);
-                for ((o, f), a) in out.iter_mut().zip(&model.qf).zip(&qa) {
-                    *o = f - a;
-                }
-            };
-            self.central(t, q, qd, false, &cols, &mut jac.dq, &mut rest);
-            self.central(t, q, qd, true, &cols, &mut jac.dv, &mut rest);
-        }
-        if !float_rows.is_empty() {
-            let rows = |model: &mut Model, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]| {
-                model.eval_constraints(t, q, qd);
-                for (r, o) in out.iter_mut().enumerate() {
-                    *o = (0..model.n)
-                        .map(|c| model.phiq[r * model.n + c] * qd[c])
-                        .sum();
-                }
-            };
-            let fd = self.central_m(t, q, qd, rows);
-            for &r in &float_rows {
-                jac.phi_qqd_q[r * n..(r + 1) * n].copy_from_slice(&fd[r * n..(r + 1) * n]);
-            }
-        }
-        jac.fallback = names;
-        self.eval_constraints(t, q, qd);
+        let mut jac = Jacobians::default();
+        self.jacobians_into(t, q, qd, &mut jac);
         jac
     }
 
+    /// As [`Model::jacobians`], into `jac` (resized to this model): with a `jac` kept between
+    /// calls the analytic part allocates nothing (its scratch space lives in `jac`); the
+    /// fallback names are rebuilt only when the fallback is not empty.
+    pub fn jacobians_into(&mut self, t: f64, q: &[f64], qd: &[f64], jac: &mut Jacobians) {
+        let (n, m) = (self.n, self.m);
+        jac.resize(n, m);
+        self.save_contacts(&mut jac.ws);
+        // detection, reports and tentative onsets at (q, q̇): the state the derivatives are of
+        self.eval_forces(t, q, qd);
+        self.analytic_forces(t, q, qd, jac);
+        self.analytic_contacts(q, qd, jac);
+        for f in &self.floating {
+            f.force_jacobian(q, qd, self.gravity, n, [&mut jac.dq, &mut jac.dv]);
+        }
+        self.eval_constraints(t, q, qd);
+        jac.phi_q.copy_from_slice(&self.phiq);
+        self.analytic_constraints(q, qd, &mut jac.phi_qqd_q);
+        jac.fallback.clear();
+        if self.has_fallback() {
+            jac.fallback = self.fallback_names();
+            let cols = self.fallback_columns(&jac.fallback);
+            let mut rest = |model: &mut Model, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]| {
+                model.fallback_forces(t, q, qd, out);
+            };
+            self.central(t, q, qd, (false, 1e-6), &cols, &mut jac.dq, &mut rest);
+            self.central(t, q, qd, (true, 1e-6), &cols, &mut jac.dv, &mut rest);
+        }
+        self.restore_contacts(&jac.ws);
+    }
+
+    /// Commit the contact memory at the state y = (q, q̇, …) as the integration driver does after
+    /// an accepted step (clr-contact's memory rules 1 and 4): a contact open at y records its
+    /// onset (impact velocity δ̇⁻) unless it had one, a closed one is reset. For external
+    /// drivers, and to compare [`Model::jacobians`] with [`Model::jacobians_fd`] at a chosen
+    /// state: with δ̇⁻ committed it is a constant of both (module docs).
+    pub fn commit_contact_memory(&mut self, y: &[f64]) {
+        self.commit_contacts(y);
+    }
+
+    fn save_contacts(&self, ws: &mut Workspace) {
+        match &mut ws.memory {
+            Some(mem) => mem.clone_from(&self.memory),
+            None => ws.memory = Some(self.memory.clone()),
+        }
+        ws.reports.clone_from(&self.contacts);
+    }
+
+    fn restore_contacts(&mut self, ws: &Workspace) {
+        if let Some(mem) = &ws.memory {
+            self.memory.clone_from(mem);
+        }
+        self.contacts.clone_from(&ws.reports);
+    }
+
+    /// Analytic ∂Q/∂q, ∂Q/∂q̇ of the contact elements (not those on the fallback), at the state
+    /// of the last force evaluation (detectors) and (q, q̇).
+    fn analytic_contacts(&mut self, q: &[f64], qd: &[f64], jac: &mut Jacobians) {
+        let Model {
+            clearances,
+            frames,
+            beams,
+            floating,
+            memory,
+            n,
+            ..
+        } = self;
+        let mut out = contact::Out {
+            frames,
+            n: *n,
+            dq: &mut jac.dq,
+            dv: &mut jac.dv,
+        };
+        for cl in clearances.iter().filter(|c| clearance_is_analytic(c)) {
+            let bi = body_state(frames, cl.i, q, qd);
+            let bj = body_state(frames, cl.j, q, qd);
+            match &cl.kind {
+                ClearanceKind::Revolute(g, app) => {
+                    contact::revolute(cl, g, *app, [&bi, &bj], memory, &mut out)
+                }
+                ClearanceKind::Translational {
+                    geometry,
+                    origin,
+                    angle,
+                    width,
+                } => {
+                    let frame = (*origin, *angle, *width);
+                    contact::translational(cl, geometry, frame, [&bi, &bj], memory, &mut out)
+                }
+                ClearanceKind::FlexGuide(g) => {
+                    let (map, frame) = match g.beam {
+                        GuideBeam::Fixed(k) => (
+                            guide::BeamMap::Fixed {
+                                offset: beams[k].offset,
+                                free_index: &beams[k].free_index,
+                            },
+                            BodyState::default(),
+                        ),
+                        GuideBeam::Floating(k) => (
+                            guide::BeamMap::Floating {
+                                offset: floating[k].offset + 3,
+                                r: floating[k].r,
+                                t: &floating[k].t,
+                            },
+                            bi,
+                        ),
+                    };
+                    let guide = guide::Guide {
+                        cl,
+                        path: &g.path,
+                        face: g.face,
+                        area: g.area_normal,
+                        u: &g.qfull,
+                        ud: &g.qdfull,
+                        slider: bj,
+                        frame,
+                        map,
+                    };
+                    guide.candidates(&g.detector, &mut jac.ws.cands);
+                    for pt in g.detector.points() {
+                        guide.point(&g.detector, pt, &jac.ws.cands, memory, &mut out);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Generalized forces of the fallback elements only (closures, LuGre clearances, sliders
+    /// with guide samples) at (t, q, q̇), into `out` (n).
+    fn fallback_forces(&mut self, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+        for f in self.forces.iter().filter(|f| !is_analytic(f)) {
+            f.eval(&self.frames, t, q, qd, out);
+        }
+        let Model {
+            clearances,
+            frames,
+            beams,
+            floating,
+            memory,
+            bristles,
+            ..
+        } = self;
+        for (k, cl) in clearances.iter_mut().enumerate() {
+            if clearance_is_analytic(cl) {
+                continue;
+            }
+            let bi = body_state(frames, cl.i, q, qd);
+            let bj = body_state(frames, cl.j, q, qd);
+            if let Some(b) = cl.flex_beam() {
+                let guide = match b {
+                    GuideBeam::Fixed(k) => GuideRef::Fixed(&beams[k]),
+                    GuideBeam::Floating(k) => GuideRef::Floating(&floating[k]),
+                };
+                let j = cl.j;
+                cl.apply_flex(guide, q, qd, &bj, memory, out, |qf, g| {
+                    add_gen(frames, qf, j, g)
+                });
+            } else if let Some(lugre) = &cl.lugre {
+                let add = |b, g| add_gen(frames, out, b, g);
+                crate::lugre::apply(cl, lugre, k, &bi, &bj, memory, bristles, add);
+            } else {
+                cl.apply(&bi, &bj, memory, |b, g| add_gen(frames, out, b, g));
+            }
+        }
+    }
+
     /// The whole Jacobians by central differences of Q and Φ_q q̇ (the independent check of
-    /// [`Model::jacobians`]; Φ_q is the model's own).
+    /// [`Model::jacobians`]; Φ_q is the model's own), step 10⁻⁶·max(1, |x|).
     pub fn jacobians_fd(&mut self, t: f64, q: &[f64], qd: &[f64]) -> Jacobians {
+        self.jacobians_fd_step(t, q, qd, 1e-6)
+    }
+
+    /// As [`Model::jacobians_fd`] with the relative step h = `step`·max(1, |x|) of every
+    /// coordinate and velocity x. At a contact the step must stay well below the penetration
+    /// (micrometres and less for stiff laws: with h/δ = 10⁻² a Hertz force has a relative
+    /// truncation error near 4·10⁻⁶) and above the rounding of the positions (~10⁻¹⁶ m per m).
+    /// The contact memory and reports are left as they were.
+    pub fn jacobians_fd_step(&mut self, t: f64, q: &[f64], qd: &[f64], step: f64) -> Jacobians {
         let (n, m) = (self.n, self.m);
         let mut jac = Jacobians::sized(n, m);
         let whole = &mut |model: &mut Model, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]| {
@@ -187,8 +398,8 @@ impl Model {
             out.copy_from_slice(&model.qf);
         };
         let all: Vec<usize> = (0..n).collect();
-        self.central(t, q, qd, false, &all, &mut jac.dq, whole);
-        self.central(t, q, qd, true, &all, &mut jac.dv, whole);
+        self.central(t, q, qd, (false, step), &all, &mut jac.dq, whole);
+        self.central(t, q, qd, (true, step), &all, &mut jac.dv, whole);
         let rows = |model: &mut Model, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]| {
             model.eval_constraints(t, q, qd);
             for (r, o) in out.iter_mut().enumerate() {
@@ -197,14 +408,65 @@ impl Model {
                     .sum();
             }
         };
-        jac.phi_qqd_q = self.central_m(t, q, qd, rows);
+        jac.phi_qqd_q = self.central_m(t, q, qd, step, rows);
         self.eval_constraints(t, q, qd);
         jac.phi_q.copy_from_slice(&self.phiq);
         jac
     }
 
-    /// Columns of q touched by the elements without an analytic Jacobian (closures, contact
-    /// elements with their guide beams, floating bodies with all their coordinates).
+    /// Central differences of the whole model on a ladder of relative steps 10⁻⁴ … 10⁻¹⁰: per
+    /// column of each matrix, the three neighbouring steps that agree best (the largest of their
+    /// two differences is smallest). Returns the middle step's differences and, entry by entry,
+    /// the larger of the two differences: an estimate of their own error. The truncation error
+    /// falls with the step and the rounding error grows; they cross where neighbouring steps
+    /// agree (three, not two: rounding noise is quantized, and two noisy quotients can agree by
+    /// chance). The independent check of [`Model::jacobians`] at contact states, where no single
+    /// step fits every column: penetrations from 10⁻⁹ to 10⁻⁴ m need h well below δ, while large
+    /// contact forces and damping (F_e χ/δ̇⁻ with δ̇⁻ at its floor) and the projections of a
+    /// multipoint contact (converged to 10⁻¹³ m) put rounding noise of ε|Q|/h into the small
+    /// columns. Costs seven [`Model::jacobians_fd_step`].
+    pub fn jacobians_fd_best(&mut self, t: f64, q: &[f64], qd: &[f64]) -> (Jacobians, Jacobians) {
+        let ladder: Vec<Jacobians> = (4..=10)
+            .map(|k| self.jacobians_fd_step(t, q, qd, 10f64.powi(-k)))
+            .collect();
+        let (mut best, mut spread) = (ladder[0].clone(), ladder[0].clone());
+        let n = self.n;
+        let pick =
+            |get: &dyn Fn(&Jacobians) -> &Vec<f64>, out: &mut Vec<f64>, err: &mut Vec<f64>| {
+                let rows = out.len() / n.max(1);
+                let at = |k: usize, r: usize, c: usize| get(&ladder[k])[r * n + c];
+                for c in 0..n {
+                    // the larger of the two differences of steps k, k + 1, k + 2 in column c
+                    let spread_of = |k: usize| -> f64 {
+                        let d = |i: usize| {
+                            (0..rows)
+                                .map(|r| (at(i, r, c) - at(i + 1, r, c)).powi(2))
+                                .sum::<f64>()
+                        };
+                        d(k).max(d(k + 1))
+                    };
+                    let k = (0..ladder.len() - 2)
+                        .min_by(|&i, &j| spread_of(i).total_cmp(&spread_of(j)))
+                        .unwrap_or(0);
+                    for r in 0..rows {
+                        let (a, b, e) = (at(k, r, c), at(k + 1, r, c), at(k + 2, r, c));
+                        out[r * n + c] = b;
+                        err[r * n + c] = (a - b).abs().max((b - e).abs());
+                    }
+                }
+            };
+        pick(&|j| &j.dq, &mut best.dq, &mut spread.dq);
+        pick(&|j| &j.dv, &mut best.dv, &mut spread.dv);
+        pick(
+            &|j| &j.phi_qqd_q,
+            &mut best.phi_qqd_q,
+            &mut spread.phi_qqd_q,
+        );
+        (best, spread)
+    }
+
+    /// Columns of q touched by the elements on the fallback (closures, contact elements with
+    /// their guide beams).
     fn fallback_columns(&self, names: &[String]) -> Vec<usize> {
         let mut v: Vec<usize> = self
             .element_columns()
@@ -212,43 +474,36 @@ impl Model {
             .filter(|(name, _)| names.contains(name))
             .flat_map(|(_, c)| c)
             .collect();
-        for f in &self.floating {
-            v.extend(f.offset..f.offset + f.n_coords());
-        }
         v.sort_unstable();
         v.dedup();
         v
     }
 
+    fn has_fallback(&self) -> bool {
+        self.forces.iter().any(|f| !is_analytic(f))
+            || self.clearances.iter().any(|c| !clearance_is_analytic(c))
+    }
+
     fn fallback_names(&self) -> Vec<String> {
-        let mut v: Vec<String> = self
-            .forces
-            .iter()
-            .filter(|f| !is_analytic(f))
+        let forces = self.forces.iter().filter(|f| !is_analytic(f));
+        let contacts = self.clearances.iter().filter(|c| !clearance_is_analytic(c));
+        forces
             .map(|f| f.name().to_string())
-            .collect();
-        v.extend(self.clearances.iter().map(|c| c.name.clone()));
-        v.extend(self.floating.iter().map(|f| f.name.clone()));
-        v.extend(
-            self.cons
-                .iter()
-                .filter(|c| matches!(c.kind, ConKind::FloatNode { .. }))
-                .map(|c| c.name.clone()),
-        );
-        v
+            .chain(contacts.map(|c| c.name.clone()))
+            .collect()
     }
 
     /// Add central differences of `f` (n outputs) over the columns `cols` of q (or q̇ when
-    /// `vel`) into `out` (n × n), step 1e-6·max(1, |x|) (relative truncation error O(h²)), with
-    /// the contact memory and reports restored after each evaluation (a perturbed evaluation
-    /// must not record contact onsets).
+    /// `vel`) into `out` (n × n), step h = `step`·max(1, |x|) (relative truncation error
+    /// O(h²)), with the contact memory and reports restored after each evaluation (a perturbed
+    /// evaluation must not record contact onsets).
     #[allow(clippy::too_many_arguments)]
     fn central(
         &mut self,
         t: f64,
         q: &[f64],
         qd: &[f64],
-        vel: bool,
+        (vel, step): (bool, f64),
         cols: &[usize],
         out: &mut [f64],
         f: &mut impl FnMut(&mut Model, f64, &[f64], &[f64], &mut [f64]),
@@ -260,7 +515,7 @@ impl Model {
         let reports = self.contacts.clone();
         for &c in cols {
             let x = if vel { qd[c] } else { q[c] };
-            let h = 1e-6 * x.abs().max(1.0);
+            let h = step * x.abs().max(1.0);
             for (v, buf) in [(x + h, &mut fp), (x - h, &mut fm)] {
                 if vel {
                     vp[c] = v;
@@ -288,6 +543,7 @@ impl Model {
         t: f64,
         q: &[f64],
         qd: &[f64],
+        step: f64,
         f: impl Fn(&mut Model, f64, &[f64], &[f64], &mut [f64]),
     ) -> Vec<f64> {
         let (n, m) = (self.n, self.m);
@@ -295,7 +551,7 @@ impl Model {
         let mut qp = q.to_vec();
         let (mut fp, mut fm) = (vec![0.0; m], vec![0.0; m]);
         for c in 0..n {
-            let h = 1e-6 * q[c].abs().max(1.0);
+            let h = step * q[c].abs().max(1.0);
             qp[c] = q[c] + h;
             f(self, t, &qp, qd, &mut fp);
             qp[c] = q[c] - h;
@@ -306,21 +562,6 @@ impl Model {
             }
         }
         out
-    }
-
-    /// Generalized forces of the analytically differentiated elements only.
-    fn analytic_force_values(&self, t: f64, q: &[f64], qd: &[f64], out: &mut [f64]) {
-        out.fill(0.0);
-        for (k, b) in self.bodies.iter().enumerate() {
-            out[3 * k] += b.mass * self.gravity.x;
-            out[3 * k + 1] += b.mass * self.gravity.y;
-        }
-        for f in self.forces.iter().filter(|f| is_analytic(f)) {
-            f.eval(&self.frames, t, q, qd, out);
-        }
-        for b in &self.beams {
-            b.forces(t, q, qd, out);
-        }
     }
 
     /// Analytic ∂Q/∂q and ∂Q/∂q̇ of springs, rotational springs, time-only loads and beams.
@@ -467,11 +708,9 @@ impl Model {
         }
     }
 
-    /// (Φ_q q̇)_q of joints and drivers into `out` (m × n); returns the rows left to the
-    /// fallback (node ties of floating bodies).
-    fn analytic_constraints(&self, q: &[f64], qd: &[f64], out: &mut [f64]) -> Vec<usize> {
+    /// (Φ_q q̇)_q of joints, drivers and node ties into `out` (m × n).
+    fn analytic_constraints(&self, q: &[f64], qd: &[f64], out: &mut [f64]) {
         let n = self.n;
-        let mut fallback = Vec::new();
         let put = |out: &mut [f64], r: usize, k: usize, v: [f64; 3]| {
             if k != GROUND_ID {
                 for (c, vd) in self.frames[k].cols.iter().zip(v) {
@@ -518,11 +757,22 @@ impl Model {
                     );
                     put(out, r, j, [wi * pn.x, wi * pn.y, (wi - wj) * nv.dot(&aj)]);
                 }
-                ConKind::FloatNode { .. } => fallback.extend(r..r + 3),
+                ConKind::FloatNode { f, node, .. } => {
+                    self.floating[f].tie_rate_jacobian(node, q, qd, &mut out[r * n..(r + 3) * n])
+                }
             }
         }
-        fallback
     }
+}
+
+/// A contact element with an analytic Jacobian: stateless friction, and for a slider on a
+/// beam no reverse-check samples (module docs).
+fn clearance_is_analytic(c: &Clearance) -> bool {
+    c.lugre.is_none()
+        && match &c.kind {
+            ClearanceKind::FlexGuide(g) => g.detector.point_count() == g.detector.candidate_count(),
+            _ => true,
+        }
 }
 
 fn is_analytic(f: &ForceEl) -> bool {
@@ -614,12 +864,16 @@ mod tests {
         }
     }
 
-    /// With a contact element (differenced over its own columns only) and a body it does not
-    /// touch, the assembled Jacobians still equal central differences of the whole system:
-    /// a rod hanging on a revolute clearance joint (journal 0.1 mm into the bearing wall, sliding
-    /// with Coulomb friction) and a free mass on a spring to ground. Same tolerance as above.
+    /// A closure on the fallback (differenced over its own columns only) beside an analytic
+    /// contact element and a body the closure does not touch: the assembled Jacobians still
+    /// equal central differences of the whole system. A rod hanging on a revolute clearance
+    /// joint (journal 0.1 mm into the bearing wall, sliding with Coulomb friction, impact
+    /// velocity committed) and a free mass on a spring to ground, pushed by a closure of its
+    /// state. Central differences with a relative step 1e-8 (h/δ = 1e-4: Hertz truncation
+    /// ~4e-10); tolerance 1e-6 of the largest entry (rounding of the positions, ~1e-16 m, over
+    /// h = 1e-8 m, and the closure's own O(h²)).
     #[test]
-    fn fallback_columns_cover_the_contact_element() {
+    fn fallback_columns_cover_the_closure() {
         use crate::{FrictionLawDesc, NormalLawDesc, RevoluteClearanceSpec};
         let friction = FrictionLawDesc {
             law: "coulomb".into(),
@@ -649,14 +903,19 @@ mod tests {
                 100.0,
                 1.0,
                 0.8,
-            );
+            )
+            .applied_force("push", ("mass", [0.1, 0.0]), |_, s| {
+                nalgebra::Vector2::new(-3.0 * s.position.x * s.angle, s.velocity.y.powi(2))
+            });
         let mut m = b.build().unwrap();
         // journal centre 1.1 mm from the bearing centre: 0.1 mm penetration
         let q = [0.5011, 0.0, 0.0, 2.0, 0.1, 0.3];
         let qd = [0.01, 0.02, 0.3, 0.1, -0.2, 0.0];
+        let y: Vec<f64> = q.iter().chain(&qd).copied().collect();
+        m.commit_contact_memory(&y);
         let a = m.jacobians(0.0, &q, &qd);
-        let f = m.jacobians_fd(0.0, &q, &qd);
-        assert_eq!(a.fallback, vec!["bearing".to_string()]);
+        let f = m.jacobians_fd_step(0.0, &q, &qd, 1e-8);
+        assert_eq!(a.fallback, vec!["push".to_string()]);
         // the contact is active: its stiffness dominates ∂Q/∂q (the spring's is 100 N/m)
         assert!(f.dq.iter().any(|v| v.abs() > 1e5));
         for (name, x, y) in [("dQ/dq", &a.dq, &f.dq), ("dQ/dqd", &a.dv, &f.dv)] {

@@ -4,6 +4,7 @@ pub mod beam;
 pub mod contact;
 mod contact_geometry;
 mod mbd;
+mod mbd_jacobian;
 pub mod models;
 pub mod models_dual_guide;
 pub mod models_flap_flex;
@@ -57,6 +58,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "mbd",
         run: mbd::cases,
+    },
+    Group {
+        name: "mbd.jacobian",
+        run: mbd_jacobian::cases,
     },
     Group {
         name: "models",

@@ -1,0 +1,177 @@
+//! Analytic ∂Q/∂q and ∂Q/∂q̇ of the rigid contact elements: the revolute clearance joint and the
+//! translational clearance joint (slider corners against the guide faces).
+//!
+//! Each element's generalized forces are re-evaluated in first-order dual numbers
+//! ([`super::dual`]) seeded with the coordinates and velocities of its two frames, following the
+//! kinematics clr-contact evaluates (same formulas, same order), so the gradients are the exact
+//! partial derivatives of the forces the model applies. The laws enter through their closed-form
+//! derivatives ([`law_forces`]); the impact velocity δ̇⁻ of the contact memory is a constant.
+
+use clr_contact::translational::{GuideSide, TranslationalClearance};
+use clr_contact::RevoluteClearance;
+use clr_contact::{BodyState, ContactMemory, ForceApplication, FrictionLaw, NormalLaw};
+use nalgebra::Vector2;
+
+use super::dual::{DBody, D, V};
+use crate::clearance::Clearance;
+use crate::runtime::{Frame, GROUND_ID};
+
+/// Directions of a two-frame element: frame i (q then q̇) at 0..6, frame j at 6..12.
+const N: usize = 12;
+
+/// ∂Q/∂q and ∂Q/∂q̇ under assembly (row-major n × n) with the frames that place rows and
+/// columns in q.
+pub(super) struct Out<'a> {
+    pub(super) frames: &'a [Frame],
+    pub(super) n: usize,
+    pub(super) dq: &'a mut [f64],
+    pub(super) dv: &'a mut [f64],
+}
+
+impl Out<'_> {
+    /// Add `w`·g to row `row`: g is a gradient over frames seeded as `seeds` = (frame, first
+    /// direction), each frame's q at directions o..o + 3 (→ ∂Q/∂q) and q̇ at o + 3..o + 6
+    /// (→ ∂Q/∂q̇). Ground seeds and constrained DOF of beam-node frames have no column.
+    pub(super) fn add_row<const M: usize>(
+        &mut self,
+        row: usize,
+        w: f64,
+        g: &[f64; M],
+        seeds: &[(usize, usize)],
+    ) {
+        for &(k, o) in seeds {
+            if k == GROUND_ID {
+                continue;
+            }
+            for (d, c) in self.frames[k].cols.iter().enumerate() {
+                if let Some(c) = c {
+                    self.dq[row * self.n + c] += w * g[o + d];
+                    self.dv[row * self.n + c] += w * g[o + 3 + d];
+                }
+            }
+        }
+    }
+
+    /// Add the gradients of the generalized force `f` = (f_x, f_y, m) on frame `b`.
+    pub(super) fn add_frame<const M: usize>(
+        &mut self,
+        b: usize,
+        f: &[D<M>; 3],
+        seeds: &[(usize, usize)],
+    ) {
+        if b == GROUND_ID {
+            return;
+        }
+        for (d, r) in self.frames[b].cols.iter().enumerate() {
+            if let Some(r) = *r {
+                self.add_row(r, 1.0, &f[d].g, seeds);
+            }
+        }
+    }
+}
+
+/// (F_N, F_T, ∂F_T/∂F_N) with F_N, F_T as duals, from the penetration δ, its rate δ̇ = v_N and
+/// the slip v_T: F_N = F_e(δ)(1 + χδ̇/δ̇⁻) with ∂F_N/∂δ, ∂F_N/∂δ̇ from
+/// [`NormalLaw::force_with_derivatives`] (δ̇⁻ = `vm` held fixed: it is contact memory, not a
+/// function of the state) and F_T = μ(v_T)F_N with ∂F_T/∂v_T, ∂F_T/∂F_N from
+/// [`FrictionLaw::force_with_derivatives`]. The values are bit for bit those of `force`.
+pub(super) fn law_forces<const M: usize>(
+    normal: &NormalLaw,
+    friction: &FrictionLaw,
+    [delta, vn, vt]: [D<M>; 3],
+    vm: f64,
+) -> (D<M>, D<M>, f64) {
+    let (f, f_d, f_v) = normal.force_with_derivatives(delta.v, vn.v, vm);
+    let f_n = delta.chain(f, f_d) + vn.chain(0.0, f_v);
+    let (t, t_v, t_n) = friction.force_with_derivatives(vt.v, f);
+    let f_t = vt.chain(t, t_v) + f_n.chain(0.0, t_n);
+    (f_n, f_t, t_n)
+}
+
+/// Revolute clearance joint: journal (frame j) in bearing (frame i). Kinematics of Flores,
+/// Ambrósio, Claro & Lankarani, Comput. Struct. 82 (2004) 1359, and Flores et al. 2008 (*Kinematics
+/// and Dynamics of Multibody Systems with Imperfect Joints*, ch. 4): e = r_j^P − r_i^P,
+/// n = e/|e|, δ = |e| − c, contact points r_k^Q = r_k^P + R_k n, relative velocity
+/// v = ṙ_j^Q − ṙ_i^Q, δ̇ = v·n, v_T = v·t (t = k̂ × n); f_j = −F_N n + F_T t at the contact
+/// points or at their midpoint (`ForceApplication`), f_i = −f_j (Lankarani & Nikravesh, J. Mech.
+/// Des. 112 (1990) 369 for the normal law). Nothing without penetration.
+pub(super) fn revolute(
+    cl: &Clearance,
+    g: &RevoluteClearance,
+    application: ForceApplication,
+    [si, sj]: [&BodyState; 2],
+    memory: &mut ContactMemory,
+    out: &mut Out,
+) {
+    let bi = DBody::<N>::seed(si, Some(0));
+    let bj = DBody::<N>::seed(sj, Some(6));
+    let pi = bi.point(g.bearing_centre());
+    let pj = bj.point(g.journal_centre());
+    let e = pj - pi;
+    let len = e.norm();
+    // the no-contact branch (also where n is undefined, e = 0): Q = 0, derivatives 0
+    if !(len.v > f64::MIN_POSITIVE && len.v.is_finite()) || len.v - g.clearance() <= 0.0 {
+        return;
+    }
+    let delta = len + -g.clearance();
+    let n = e.scale(D::cst(1.0) / len);
+    let t = n.perp();
+    let qi = pi + n * g.bearing_radius();
+    let qj = pj + n * g.journal_radius();
+    let v = bj.point_velocity(qj) - bi.point_velocity(qi);
+    let (vn, vt) = (v.dot(n), v.dot(t));
+    let vm = memory.impact_velocity(cl.mem, delta.v, vn.v);
+    let (f_n, f_t, _) = law_forces(&cl.normal, &cl.friction, [delta, vn, vt], vm);
+    let fj = n.scale(-f_n) + t.scale(f_t);
+    let (ai, aj) = match application {
+        ForceApplication::ContactPoints => (qi, qj),
+        ForceApplication::CommonPoint => {
+            let mid = (qi + qj) * 0.5;
+            (mid, mid)
+        }
+    };
+    let seeds = [(cl.i, 0), (cl.j, 6)];
+    out.add_frame(cl.i, &[-fj.x, -fj.y, (ai - bi.r).cross(-fj)], &seeds);
+    out.add_frame(cl.j, &[fj.x, fj.y, (aj - bj.r).cross(fj)], &seeds);
+}
+
+/// Translational clearance joint: slider (frame j) between the faces y = ±W/2 of the guide
+/// frame on frame i (Flores, Ambrósio, Claro & Lankarani, J. Comput. Nonlinear Dyn. 3 (2008)
+/// 011007): per penetrating corner p, y = (p − o)·a_y, δ = y − W/2 (upper, n = a_y) or
+/// −W/2 − y (lower, n = −a_y), guide point p − δn, v = ṗ − ṙ_guide(p − δn), δ̇ = v·n,
+/// v_T = v·t; −F_N n + F_T t on the slider at p, the opposite on the guide at p − δn.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn translational(
+    cl: &Clearance,
+    geometry: &TranslationalClearance,
+    (origin, angle, width): (Vector2<f64>, f64, f64),
+    [si, sj]: [&BodyState; 2],
+    memory: &mut ContactMemory,
+    out: &mut Out,
+) {
+    // which corners touch and on which face: the branch of the evaluation at this state
+    let contact = geometry.contact(si, sj);
+    let bi = DBody::<N>::seed(si, Some(0));
+    let bj = DBody::<N>::seed(sj, Some(6));
+    let o = bi.point(origin);
+    let ay = V::cst(Vector2::new(-angle.sin(), angle.cos())).rot(bi.th);
+    let half = 0.5 * width;
+    let seeds = [(cl.i, 0), (cl.j, 6)];
+    for c in contact.active() {
+        let p = bj.point(geometry.slider().body_corner(c.corner));
+        let y = (p - o).dot(ay);
+        let (delta, n) = match c.side {
+            GuideSide::Upper => (y + -half, ay),
+            GuideSide::Lower => (-y + -half, -ay),
+        };
+        let gp = p - n.scale(delta);
+        let v = bj.point_velocity(p) - bi.point_velocity(gp);
+        let t = n.perp();
+        let (vn, vt) = (v.dot(n), v.dot(t));
+        let vm = memory.impact_velocity(cl.mem + c.corner, delta.v, vn.v);
+        let (f_n, f_t, _) = law_forces(&cl.normal, &cl.friction, [delta, vn, vt], vm);
+        let f = n.scale(-f_n) + t.scale(f_t);
+        out.add_frame(cl.j, &[f.x, f.y, (p - bj.r).cross(f)], &seeds);
+        out.add_frame(cl.i, &[-f.x, -f.y, (gp - bi.r).cross(-f)], &seeds);
+    }
+}

@@ -1,0 +1,251 @@
+//! First-order forward-mode numbers for the analytic contact Jacobians.
+//!
+//! A [`D`] carries a value and its gradient over N seeded directions (the coordinates and
+//! velocities an element depends on); arithmetic applies the chain rule, so a force written once
+//! in these numbers gives its exact partial derivatives (to rounding), with no step size. The
+//! contact laws enter through their own closed-form derivatives (clr-contact's
+//! `force_with_derivatives`), see `contact::law_forces`. Fixed-size arrays: nothing allocates.
+
+use std::ops::{Add, Div, Mul, Neg, Sub};
+
+use nalgebra::Vector2;
+
+/// A value and its gradient over N directions.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct D<const N: usize> {
+    pub(crate) v: f64,
+    pub(crate) g: [f64; N],
+}
+
+impl<const N: usize> D<N> {
+    /// A constant (zero gradient).
+    pub(crate) fn cst(v: f64) -> Self {
+        Self { v, g: [0.0; N] }
+    }
+
+    /// The independent variable of direction `k`.
+    pub(crate) fn var(v: f64, k: usize) -> Self {
+        let mut g = [0.0; N];
+        g[k] = 1.0;
+        Self { v, g }
+    }
+
+    /// f(self) from the value f and the derivative f′ at `self.v` (the chain rule).
+    pub(crate) fn chain(self, f: f64, df: f64) -> Self {
+        Self {
+            v: f,
+            g: self.g.map(|x| df * x),
+        }
+    }
+
+    pub(crate) fn sin_cos(self) -> (Self, Self) {
+        let (s, c) = self.v.sin_cos();
+        (self.chain(s, c), self.chain(c, -s))
+    }
+
+    pub(crate) fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        self.chain(r, 0.5 / r)
+    }
+
+    /// Σ a_k x_k with constant coefficients a and variable x.
+    pub(crate) fn dot(a: &[f64], x: &[Self]) -> Self {
+        a.iter()
+            .zip(x)
+            .fold(Self::cst(0.0), |s, (a, x)| s + *x * *a)
+    }
+}
+
+impl<const N: usize> Add for D<N> {
+    type Output = Self;
+    fn add(mut self, o: Self) -> Self {
+        self.v += o.v;
+        self.g.iter_mut().zip(o.g).for_each(|(a, b)| *a += b);
+        self
+    }
+}
+
+impl<const N: usize> Sub for D<N> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        self + -o
+    }
+}
+
+impl<const N: usize> Neg for D<N> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        self * -1.0
+    }
+}
+
+impl<const N: usize> Mul for D<N> {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        let mut g = [0.0; N];
+        for ((r, a), b) in g.iter_mut().zip(self.g).zip(o.g) {
+            *r = a * o.v + self.v * b;
+        }
+        Self { v: self.v * o.v, g }
+    }
+}
+
+impl<const N: usize> Mul<f64> for D<N> {
+    type Output = Self;
+    fn mul(self, k: f64) -> Self {
+        Self {
+            v: self.v * k,
+            g: self.g.map(|x| x * k),
+        }
+    }
+}
+
+impl<const N: usize> Add<f64> for D<N> {
+    type Output = Self;
+    fn add(mut self, k: f64) -> Self {
+        self.v += k;
+        self
+    }
+}
+
+impl<const N: usize> Div for D<N> {
+    type Output = Self;
+    fn div(self, o: Self) -> Self {
+        let inv = o.chain(1.0 / o.v, -1.0 / (o.v * o.v));
+        self * inv
+    }
+}
+
+/// A planar vector of [`D`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct V<const N: usize> {
+    pub(crate) x: D<N>,
+    pub(crate) y: D<N>,
+}
+
+impl<const N: usize> V<N> {
+    pub(crate) fn new(x: D<N>, y: D<N>) -> Self {
+        Self { x, y }
+    }
+
+    pub(crate) fn cst(v: Vector2<f64>) -> Self {
+        Self::new(D::cst(v.x), D::cst(v.y))
+    }
+
+    /// The value.
+    pub(crate) fn val(&self) -> Vector2<f64> {
+        Vector2::new(self.x.v, self.y.v)
+    }
+
+    pub(crate) fn dot(self, o: Self) -> D<N> {
+        self.x * o.x + self.y * o.y
+    }
+
+    /// The planar cross product self × o (k̂ component).
+    pub(crate) fn cross(self, o: Self) -> D<N> {
+        self.x * o.y - self.y * o.x
+    }
+
+    /// k̂ × self = (−y, x).
+    pub(crate) fn perp(self) -> Self {
+        Self::new(-self.y, self.x)
+    }
+
+    pub(crate) fn norm(self) -> D<N> {
+        self.dot(self).sqrt()
+    }
+
+    pub(crate) fn scale(self, k: D<N>) -> Self {
+        Self::new(self.x * k, self.y * k)
+    }
+
+    /// A(θ) self: turned by the angle θ (rad).
+    pub(crate) fn rot(self, th: D<N>) -> Self {
+        let (s, c) = th.sin_cos();
+        Self::new(c * self.x - s * self.y, s * self.x + c * self.y)
+    }
+}
+
+impl<const N: usize> Add for V<N> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self::new(self.x + o.x, self.y + o.y)
+    }
+}
+
+impl<const N: usize> Sub for V<N> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y)
+    }
+}
+
+impl<const N: usize> Neg for V<N> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Self::new(-self.x, -self.y)
+    }
+}
+
+impl<const N: usize> Mul<f64> for V<N> {
+    type Output = Self;
+    fn mul(self, k: f64) -> Self {
+        Self::new(self.x * k, self.y * k)
+    }
+}
+
+/// A planar frame (rigid body, beam node frame or floating-body frame) as duals: position,
+/// angle, velocity and angular velocity.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct DBody<const N: usize> {
+    pub(crate) r: V<N>,
+    pub(crate) th: D<N>,
+    pub(crate) v: V<N>,
+    pub(crate) w: D<N>,
+}
+
+impl<const N: usize> DBody<N> {
+    /// The state `b` with its q seeded at directions `o..o + 3` and its q̇ at `o + 3..o + 6`
+    /// (`None`: a constant frame, e.g. the ground).
+    pub(crate) fn seed(b: &clr_contact::BodyState, o: Option<usize>) -> Self {
+        let d = |v: f64, k: usize| match o {
+            Some(o) => D::var(v, o + k),
+            None => D::cst(v),
+        };
+        Self {
+            r: V::new(d(b.position.x, 0), d(b.position.y, 1)),
+            th: d(b.angle, 2),
+            v: V::new(d(b.velocity.x, 3), d(b.velocity.y, 4)),
+            w: d(b.angular_velocity, 5),
+        }
+    }
+
+    /// World point of the body-fixed point with local coordinates `s`: r + A(θ) s.
+    pub(crate) fn point(&self, s: Vector2<f64>) -> V<N> {
+        self.r + V::cst(s).rot(self.th)
+    }
+
+    /// Velocity of the body's material point at the world point `p`: ṙ + ω k̂ × (p − r).
+    pub(crate) fn point_velocity(&self, p: V<N>) -> V<N> {
+        self.v + (p - self.r).perp().scale(self.w)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The chain rule of the arithmetic against a hand-derived gradient:
+    /// f(x, y) = sin(x)·y / √(x² + y²).
+    #[test]
+    fn gradient_of_a_composite_expression() {
+        let (x, y) = (0.7, -1.3);
+        let (dx, dy) = (D::<2>::var(x, 0), D::<2>::var(y, 1));
+        let f = dx.sin_cos().0 * dy / (dx * dx + dy * dy).sqrt();
+        let r = (x * x + y * y).sqrt();
+        let fx = x.cos() * y / r - x.sin() * y * x / r.powi(3);
+        let fy = x.sin() / r - x.sin() * y * y / r.powi(3);
+        assert!((f.v - x.sin() * y / r).abs() < 1e-15);
+        assert!((f.g[0] - fx).abs() < 1e-14 && (f.g[1] - fy).abs() < 1e-14);
+    }
+}
