@@ -205,6 +205,9 @@ pub fn preset_desc(
 
 /// The sliding-guide laws as model-file data: the edge line law (`flores-line`) and the area law
 /// (`area`) of a slider face on a guide of the same material.
+///
+/// # Errors
+/// What is wrong with a parameter (the laws are built once to check them).
 pub fn guide_law_descs(
     youngs_modulus: f64,
     poisson_ratio: f64,
@@ -212,7 +215,7 @@ pub fn guide_law_descs(
     width: f64,
     layer_depth: f64,
     restitution: f64,
-) -> (NormalLawDesc, NormalLawDesc) {
+) -> Result<(NormalLawDesc, NormalLawDesc), String> {
     let mat = MaterialDesc {
         youngs_modulus,
         poisson_ratio,
@@ -231,7 +234,10 @@ pub fn guide_law_descs(
         layer_depth: Some(layer_depth),
         ..line.clone()
     };
-    (line, area)
+    // built once here for the parameter-level message (the model builds them again)
+    line.build("normal", None).map_err(|e| e.message)?;
+    area.build("area_normal", None).map_err(|e| e.message)?;
+    Ok((line, area))
 }
 
 /// Lankarani–Nikravesh law with a given Hertz constant K (N/m^1.5):

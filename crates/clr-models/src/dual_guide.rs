@@ -375,10 +375,8 @@ impl DualGuideParams {
             self.guide_width,
             self.layer_depth,
             self.restitution,
-        );
-        line.build("normal", None).map_err(|e| inv(e.message))?;
-        area.build("area_normal", None)
-            .map_err(|e| inv(e.message))?;
+        )
+        .map_err(inv)?;
         self.friction.law().map_err(inv)?;
         let friction = self.friction.desc();
         let spec = |f: Face| FlexibleGuideSpec {

@@ -260,10 +260,8 @@ impl GuideParams {
             self.guide_width,
             self.layer_depth,
             self.restitution,
-        );
-        line.build("normal", None).map_err(|e| inv(e.message))?;
-        area.build("area_normal", None)
-            .map_err(|e| inv(e.message))?;
+        )
+        .map_err(inv)?;
         self.friction.law().map_err(inv)?;
         let friction = self.friction.desc();
         let (l, hp, c) = (self.slider_length, self.pad_height, self.clearance);
