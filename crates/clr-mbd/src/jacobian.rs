@@ -709,7 +709,7 @@ impl Model {
     }
 
     /// (Φ_q q̇)_q of joints, drivers and node ties into `out` (m × n).
-    fn analytic_constraints(&self, q: &[f64], qd: &[f64], out: &mut [f64]) {
+    pub(crate) fn analytic_constraints(&self, q: &[f64], qd: &[f64], out: &mut [f64]) {
         let n = self.n;
         let put = |out: &mut [f64], r: usize, k: usize, v: [f64; 3]| {
             if k != GROUND_ID {

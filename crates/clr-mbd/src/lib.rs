@@ -42,6 +42,7 @@ mod init;
 pub mod jacobian;
 mod lugre;
 pub mod model;
+pub mod newton;
 pub mod results;
 mod runtime;
 pub mod sim;
@@ -57,6 +58,7 @@ pub use jacobian::Jacobians;
 pub use model::{
     FlexibleGuideSpec, ModelBuilder, RevoluteClearanceSpec, TranslationalClearanceSpec,
 };
+pub use newton::JacobianMode;
 pub use runtime::{RigidBody, GROUND};
 pub use timefn::TimeFn;
 /// The former name of [`TimeFn`] for drivers' motions.

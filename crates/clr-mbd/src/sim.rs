@@ -9,6 +9,7 @@
 use clr_ode::{Control, Dopri5, Ndf, Observer, OdeSystem, Options, Output, Stats, StopReason};
 
 use crate::error::MbdError;
+use crate::newton::JacobianMode;
 pub use crate::results::Results;
 use crate::system::Model;
 
@@ -51,6 +52,10 @@ pub struct SimOptions {
     /// Locate contact onsets of clearance joints as terminal events and restart there (default
     /// true).
     pub contact_events: bool,
+    /// How NDF forms its Newton matrix (default [`JacobianMode::Analytic`]).
+    pub jacobian: JacobianMode,
+    /// Highest NDF order, 1–5 (default 5).
+    pub max_order: usize,
 }
 
 impl Default for SimOptions {
@@ -67,6 +72,8 @@ impl Default for SimOptions {
             every_step: false,
             projection: None,
             contact_events: true,
+            jacobian: JacobianMode::Analytic,
+            max_order: 5,
         }
     }
 }
@@ -309,12 +316,20 @@ impl Model {
                 self.n_bristle_states()
             )));
         }
+        if !(1..=5).contains(&opts.max_order) {
+            return Err(MbdError::Options(format!(
+                "max_order = {} must be 1 to 5 (the NDF orders)",
+                opts.max_order
+            )));
+        }
         self.events_on = opts.contact_events;
+        self.newton.mode = opts.jacobian;
         let mut ode = Options::default()
             .rtol(opts.rtol)
             .atol(opts.atol)
             .h_max(opts.h_max)
             .max_steps(opts.max_steps)
+            .max_order(opts.max_order)
             .output(Output::Times(opts.times.clone()));
         if let Some(atol) = self.bristle_atol(opts.atol, opts.rtol) {
             ode = ode.atol_vec(atol);

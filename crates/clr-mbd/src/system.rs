@@ -99,6 +99,8 @@ pub struct Model {
     pub(crate) p_diss: f64,
     /// LuGre bristle states of the clearance joints (loaded from y by `rhs`).
     pub(crate) bristles: crate::lugre::Bristles,
+    /// Workspace of the integrator's reduced Newton systems ([`crate::newton`]).
+    pub(crate) newton: crate::newton::NewtonWs,
 }
 
 impl Model {
@@ -346,22 +348,7 @@ impl Model {
         let nm = n + m;
         let a = self.lu.matrix_mut();
         a.fill(0.0);
-        for (k, b) in self.bodies.iter().enumerate() {
-            a[3 * k * (nm + 1)] = b.mass;
-            a[(3 * k + 1) * (nm + 1)] = b.mass;
-            a[(3 * k + 2) * (nm + 1)] = b.inertia;
-        }
-        for fb in &self.beams {
-            let (o, nf) = (fb.offset, fb.n_free());
-            for r in 0..nf {
-                for c in 0..nf {
-                    a[(o + r) + (o + c) * nm] = fb.m[r * nf + c];
-                }
-            }
-        }
-        for f in &self.floating {
-            f.add_mass(q, a, nm);
-        }
+        add_mass(&self.bodies, &self.beams, &self.floating, q, a, nm);
         for r in 0..m {
             for c in 0..n {
                 let v = self.phiq[r * n + c];
@@ -554,6 +541,35 @@ impl Model {
     }
 }
 
+/// Add the mass matrix M(q) into the column-major matrix `a` with leading dimension `ld` ≥ n:
+/// rigid bodies (m, m, I on the diagonal), ground-fixed beams (their constant M_ff) and
+/// floating-frame bodies (their state-dependent blocks).
+pub(crate) fn add_mass(
+    bodies: &[RigidBody],
+    beams: &[FlexBeam],
+    floating: &[FloatingBody],
+    q: &[f64],
+    a: &mut [f64],
+    ld: usize,
+) {
+    for (k, b) in bodies.iter().enumerate() {
+        a[3 * k * (ld + 1)] += b.mass;
+        a[(3 * k + 1) * (ld + 1)] += b.mass;
+        a[(3 * k + 2) * (ld + 1)] += b.inertia;
+    }
+    for fb in beams {
+        let (o, nf) = (fb.offset, fb.n_free());
+        for r in 0..nf {
+            for c in 0..nf {
+                a[(o + r) + (o + c) * ld] += fb.m[r * nf + c];
+            }
+        }
+    }
+    for f in floating {
+        f.add_mass(q, a, ld);
+    }
+}
+
 #[inline]
 fn guide_ref<'a>(
     beams: &'a [FlexBeam],
@@ -584,6 +600,24 @@ impl OdeSystem for Model {
         dydt[n..2 * n].copy_from_slice(&self.sol[..n]);
         dydt[2 * n] = self.p_diss;
         dydt[2 * n + 1..].copy_from_slice(self.bristle_rates());
+    }
+
+    /// The reduced second-order Newton systems of [`crate::newton`] unless the model has LuGre
+    /// bristle states or [`crate::JacobianMode::FiniteDifference`] was chosen.
+    fn has_newton_solver(&self) -> bool {
+        self.uses_reduced_newton()
+    }
+
+    fn newton_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
+        self.reduced_jacobian(t, y)
+    }
+
+    fn newton_factor(&mut self, c: f64) -> bool {
+        self.reduced_factor(c)
+    }
+
+    fn newton_solve(&mut self, b: &mut [f64]) {
+        self.reduced_solve(b)
     }
 
     fn n_events(&self) -> usize {

@@ -78,6 +78,8 @@ pub struct NdfMethod {
     jac: Vec<f64>,
     mass: Vec<f64>,
     mass_kind: MassKind,
+    /// The system solves its own Newton systems ([`OdeSystem::has_newton_solver`]).
+    own_solver: bool,
     lu: DenseLu,
     lu_valid: bool,
     jac_current: bool,
@@ -187,6 +189,9 @@ impl NdfMethod {
         let n = self.n;
         ctx.stats.jac_evals += 1;
         let y: &[f64] = if y_is_pred { &self.y_pred } else { &self.y_new };
+        if self.own_solver {
+            return sys.newton_jacobian(t, y);
+        }
         self.jac.fill(0.0);
         if sys.has_jacobian() {
             sys.jacobian(t, y, &mut self.jac);
@@ -217,8 +222,13 @@ impl NdfMethod {
         self.jac.iter().all(|v| v.is_finite())
     }
 
-    /// Build and factor M − cJ.
-    fn factor(&mut self, ctx: &mut Ctx, c: f64) -> bool {
+    /// Build and factor M − cJ (by the system when it has its own Newton solver).
+    fn factor<S: OdeSystem>(&mut self, sys: &mut S, ctx: &mut Ctx, c: f64) -> bool {
+        if self.own_solver {
+            ctx.stats.lu_factorizations += 1;
+            self.lu_valid = sys.newton_factor(c);
+            return self.lu_valid;
+        }
         let n = self.n;
         let a = self.lu.matrix_mut();
         for (aij, jij) in a.iter_mut().zip(&self.jac) {
@@ -287,7 +297,11 @@ impl NdfMethod {
                     }
                 }
             }
-            self.lu.solve(&mut self.dy);
+            if self.own_solver {
+                sys.newton_solve(&mut self.dy);
+            } else {
+                self.lu.solve(&mut self.dy);
+            }
             let dy_norm = rms_scaled(&self.dy, &self.scale);
             if !dy_norm.is_finite() {
                 break;
@@ -431,6 +445,7 @@ impl Method for NdfMethod {
             return Err(Failure::NonFiniteRhs { t });
         }
         self.mass_kind = sys.mass_kind();
+        self.own_solver = sys.has_newton_solver();
         if self.mass_kind != MassKind::Identity {
             self.mass.fill(0.0);
             sys.mass(t, y, &mut self.mass);
@@ -446,9 +461,13 @@ impl Method for NdfMethod {
             // the consistent slope of the differential and algebraic components.
             let jmax = self.jac.iter().fold(0.0f64, |m, v| m.max(v.abs()));
             let delta = f64::EPSILON.sqrt() / jmax.max(1.0);
-            if self.factor(ctx, delta) {
+            if self.factor(sys, ctx, delta) {
                 self.dy.copy_from_slice(&self.f);
-                self.lu.solve(&mut self.dy);
+                if self.own_solver {
+                    sys.newton_solve(&mut self.dy);
+                } else {
+                    self.lu.solve(&mut self.dy);
+                }
                 self.f.copy_from_slice(&self.dy);
             } else {
                 self.f.fill(0.0);
@@ -463,11 +482,14 @@ impl Method for NdfMethod {
                 let identity = self.mass_kind == MassKind::Identity;
                 let stats = &mut *ctx.stats;
                 let lu = &mut self.lu;
+                let own = self.own_solver;
                 let (yp0, work) = (&self.f, &mut self.work);
                 let slope = |t: f64, y: &[f64], yp: &mut [f64]| {
                     sys.rhs(t, y, yp);
                     stats.f_evals += 1;
-                    if !identity {
+                    if !identity && own {
+                        sys.newton_solve(yp);
+                    } else if !identity {
                         // slope (M − δJ)⁻¹ f with the factorization made above
                         lu.solve(yp);
                     }
@@ -569,7 +591,7 @@ impl Method for NdfMethod {
             let mut outcome;
             let mut iters;
             loop {
-                if !self.lu_valid && !self.factor(ctx, c) {
+                if !self.lu_valid && !self.factor(sys, ctx, c) {
                     outcome = Err(NewtonFail::Singular);
                     iters = 0;
                 } else {

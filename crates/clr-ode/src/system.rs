@@ -62,6 +62,35 @@ pub trait OdeSystem {
     /// The Jacobian ∂f/∂y (column-major, zeroed before the call).
     fn jacobian(&mut self, _t: f64, _y: &[f64], _jac: &mut [f64]) {}
 
+    /// True when the system solves the Newton systems of implicit methods itself
+    /// ([`OdeSystem::newton_jacobian`], [`OdeSystem::newton_factor`],
+    /// [`OdeSystem::newton_solve`]) instead of handing a dense Jacobian to the solver: for
+    /// problems whose structure (sparsity, a second-order form, constraint multipliers) makes a
+    /// smaller or sparse factorization possible, in the manner of the linear-solver interface of
+    /// SUNDIALS (`lsetup`/`lsolve`; Hindmarsh et al., ACM TOMS 31 (2005) 363–396, §5).
+    /// [`OdeSystem::jacobian`] and [`OdeSystem::has_jacobian`] are then not used by NDF.
+    fn has_newton_solver(&self) -> bool {
+        false
+    }
+
+    /// Evaluate and keep the Jacobian ∂f/∂y at (t, y) for the following
+    /// [`OdeSystem::newton_factor`] calls (the solver reuses it over several steps and step
+    /// sizes, as it does a dense Jacobian). Returns false when it is not finite.
+    fn newton_jacobian(&mut self, _t: f64, _y: &[f64]) -> bool {
+        false
+    }
+
+    /// Form and factor M − c·J with the kept Jacobian J and the mass matrix M (c > 0, units of
+    /// t). Returns false when the matrix is singular.
+    fn newton_factor(&mut self, _c: f64) -> bool {
+        false
+    }
+
+    /// Solve (M − c·J) x = b in place with the last successful factorization (`b` becomes x).
+    /// An approximate solve is allowed (simplified Newton converges with an approximate J; a
+    /// poor one costs iterations and Jacobian evaluations, which the statistics show).
+    fn newton_solve(&mut self, _b: &mut [f64]) {}
+
     /// The kind of mass matrix (identity by default).
     fn mass_kind(&self) -> MassKind {
         MassKind::Identity
@@ -112,6 +141,18 @@ macro_rules! forward_ode_system {
             }
             fn jacobian(&mut self, t: f64, y: &[f64], jac: &mut [f64]) {
                 (**self).jacobian(t, y, jac)
+            }
+            fn has_newton_solver(&self) -> bool {
+                (**self).has_newton_solver()
+            }
+            fn newton_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
+                (**self).newton_jacobian(t, y)
+            }
+            fn newton_factor(&mut self, c: f64) -> bool {
+                (**self).newton_factor(c)
+            }
+            fn newton_solve(&mut self, b: &mut [f64]) {
+                (**self).newton_solve(b)
             }
             fn mass_kind(&self) -> MassKind {
                 (**self).mass_kind()

@@ -384,6 +384,7 @@ impl Compiler {
             solve_ok: true,
             p_diss: 0.0,
             bristles,
+            newton: Default::default(),
         })
     }
 
