@@ -27,10 +27,11 @@ pub(crate) struct FlexBeam {
     pub(crate) free_index: Vec<Option<usize>>,
     /// The path through all elements (for surface queries), when the model has one.
     pub(crate) path: Option<clr_beam::Path>,
-    /// Free-DOF matrices, row-major nf × nf.
-    pub(crate) m: Vec<f64>,
-    pub(crate) k: Vec<f64>,
-    pub(crate) c: Vec<f64>,
+    /// Free-DOF mass, stiffness and damping matrices (nf × nf, banded by the mesh: stored by
+    /// rows of non-zeros so that a step costs O(elements), not O(elements²)).
+    pub(crate) m: RowSparse,
+    pub(crate) k: RowSparse,
+    pub(crate) c: RowSparse,
     /// Nodal loads: the free index of the node's three DOF (`None` when constrained) and f(t).
     pub(crate) loads: Vec<([Option<usize>; 3], NodalLoadFn)>,
 }
@@ -48,7 +49,9 @@ impl FlexBeam {
             model.damping_dense().map_err(err)?,
         );
         let nf = map.free.len();
-        let mut out = FlexBeam {
+        let free =
+            |a: &faer::Mat<f64>| RowSparse::from_fn(nf, |r, c| a[(map.free[r], map.free[c])]);
+        let out = FlexBeam {
             name: name.to_string(),
             offset: 0,
             free: map.free.clone(),
@@ -56,18 +59,11 @@ impl FlexBeam {
             nodes: model.nodes().to_vec(),
             free_index: map.free_index.clone(),
             path: model.path().ok(),
-            m: vec![0.0; nf * nf],
-            k: vec![0.0; nf * nf],
-            c: vec![0.0; nf * nf],
+            m: free(&m),
+            k: free(&k),
+            c: free(&c),
             loads: Vec::new(),
         };
-        for (a, &da) in map.free.iter().enumerate() {
-            for (b, &db) in map.free.iter().enumerate() {
-                out.m[a * nf + b] = m[(da, db)];
-                out.k[a * nf + b] = k[(da, db)];
-                out.c[a * nf + b] = c[(da, db)];
-            }
-        }
         Ok(out)
     }
 
@@ -91,13 +87,8 @@ impl FlexBeam {
         let (u, ud) = (&q[o..o + nf], &qd[o..o + nf]);
         let mut p = 0.0;
         for a in 0..nf {
-            let (kr, cr) = (&self.k[a * nf..(a + 1) * nf], &self.c[a * nf..(a + 1) * nf]);
-            let mut ku = 0.0;
-            let mut cu = 0.0;
-            for b in 0..nf {
-                ku += kr[b] * u[b];
-                cu += cr[b] * ud[b];
-            }
+            let ku = self.k.row_dot(a, u);
+            let cu = self.c.row_dot(a, ud);
             qf[o + a] -= ku + cu;
             p += ud[a] * cu;
         }
@@ -118,11 +109,64 @@ impl FlexBeam {
         let (u, ud) = (&q[o..o + nf], &qd[o..o + nf]);
         let (mut ek, mut ee) = (0.0, 0.0);
         for a in 0..nf {
-            for b in 0..nf {
-                ek += 0.5 * ud[a] * self.m[a * nf + b] * ud[b];
-                ee += 0.5 * u[a] * self.k[a * nf + b] * u[b];
-            }
+            ek += 0.5 * ud[a] * self.m.row_dot(a, ud);
+            ee += 0.5 * u[a] * self.k.row_dot(a, u);
         }
         (ek, ee)
+    }
+}
+
+/// A square matrix stored by rows of non-zeros (compressed sparse rows).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct RowSparse {
+    ptr: Vec<usize>,
+    col: Vec<usize>,
+    val: Vec<f64>,
+}
+
+impl RowSparse {
+    /// The non-zeros of the n × n matrix with entries `f(row, col)`.
+    pub(crate) fn from_fn(n: usize, f: impl Fn(usize, usize) -> f64) -> Self {
+        let mut out = RowSparse {
+            ptr: vec![0],
+            ..Default::default()
+        };
+        for r in 0..n {
+            for c in 0..n {
+                let v = f(r, c);
+                if v != 0.0 {
+                    out.col.push(c);
+                    out.val.push(v);
+                }
+            }
+            out.ptr.push(out.col.len());
+        }
+        out
+    }
+
+    /// Σ_c A[r, c] x[c].
+    #[inline]
+    pub(crate) fn row_dot(&self, r: usize, x: &[f64]) -> f64 {
+        let (a, b) = (self.ptr[r], self.ptr[r + 1]);
+        self.col[a..b]
+            .iter()
+            .zip(&self.val[a..b])
+            .map(|(&c, v)| v * x[c])
+            .sum()
+    }
+
+    /// Entry (r, c) (zero outside the pattern).
+    pub(crate) fn get(&self, r: usize, c: usize) -> f64 {
+        let (a, b) = (self.ptr[r], self.ptr[r + 1]);
+        self.col[a..b]
+            .binary_search(&c)
+            .map_or(0.0, |k| self.val[a + k])
+    }
+
+    /// The non-zeros as (row, col, value).
+    pub(crate) fn entries(&self) -> impl Iterator<Item = (usize, usize, f64)> + '_ {
+        (0..self.ptr.len() - 1).flat_map(move |r| {
+            (self.ptr[r]..self.ptr[r + 1]).map(move |k| (r, self.col[k], self.val[k]))
+        })
     }
 }

@@ -290,15 +290,15 @@ impl FloatingBody {
         self.i1[k] + row.iter().zip(qf).map(|(a, b)| a * b).sum::<f64>()
     }
 
-    /// Add this body's mass matrix blocks into the column-major `a` (leading dimension `ld`).
-    pub(crate) fn add_mass(&self, q: &[f64], a: &mut [f64], ld: usize) {
+    /// Add this body's mass matrix blocks through `sink(row, col, value)` (coordinates of q).
+    pub(crate) fn add_mass(&self, q: &[f64], sink: &mut dyn FnMut(usize, usize, f64)) {
         let (o, r) = (self.offset, self.r);
         let th = q[o + 2];
         let qf = &q[o + 3..o + 3 + r];
         let mut put = |i: usize, j: usize, v: f64| {
-            a[(o + i) + (o + j) * ld] += v;
+            sink(o + i, o + j, v);
             if i != j {
-                a[(o + j) + (o + i) * ld] += v;
+                sink(o + j, o + i, v);
             }
         };
         put(0, 0, self.mass);

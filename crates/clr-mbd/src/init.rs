@@ -30,7 +30,7 @@ impl Model {
             let (o, nf) = (fb.offset, fb.n_free());
             if (o..o + nf).contains(&c) {
                 let a = c - o;
-                return 1.0 / fb.m[a * nf + a].abs().max(f64::MIN_POSITIVE).sqrt();
+                return 1.0 / fb.m.get(a, a).abs().max(f64::MIN_POSITIVE).sqrt();
             }
         }
         1.0

@@ -624,12 +624,12 @@ impl Model {
             }
         }
         for b in &self.beams {
-            let (o, nf) = (b.offset, b.n_free());
-            for r in 0..nf {
-                for c in 0..nf {
-                    jac.dq[(o + r) * n + o + c] -= b.k[r * nf + c];
-                    jac.dv[(o + r) * n + o + c] -= b.c[r * nf + c];
-                }
+            let o = b.offset;
+            for (r, c, v) in b.k.entries() {
+                jac.dq[(o + r) * n + o + c] -= v;
+            }
+            for (r, c, v) in b.c.entries() {
+                jac.dv[(o + r) * n + o + c] -= v;
             }
         }
     }

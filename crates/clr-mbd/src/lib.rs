@@ -40,9 +40,11 @@ mod flexible;
 pub mod floating;
 mod init;
 pub mod jacobian;
+pub mod linsys;
 mod lugre;
 pub mod model;
 pub mod newton;
+mod rangespace;
 pub mod results;
 mod runtime;
 pub mod sim;
@@ -55,6 +57,7 @@ pub use desc::{BeamMesh, Body, FieldError, ModelDesc, Reduction};
 pub use element::Anchor;
 pub use error::MbdError;
 pub use jacobian::Jacobians;
+pub use linsys::{LinearSolver, SPARSE_FROM};
 pub use model::{
     FlexibleGuideSpec, ModelBuilder, RevoluteClearanceSpec, TranslationalClearanceSpec,
 };

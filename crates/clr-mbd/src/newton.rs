@@ -35,9 +35,8 @@
 //! whole first-order system (their ż rows are not in [`crate::Jacobians`]), as does
 //! [`crate::JacobianMode::FiniteDifference`].
 
-use clr_ode::linalg::DenseLu;
-
 use crate::jacobian::Jacobians;
+use crate::linsys::Factorization;
 use crate::system::Model;
 
 /// How the NDF integrator obtains its Newton matrix.
@@ -54,25 +53,39 @@ pub enum JacobianMode {
     FiniteDifference,
 }
 
-/// Workspace of the reduced Newton systems: the Jacobians kept between factorizations, the mass
-/// matrix, the coefficient c and the LU of the (n + m) matrix. Sized once per model; nothing
-/// here allocates after the first use.
+/// Workspace of the reduced Newton systems: the Jacobians kept between factorizations, the
+/// non-zeros of the blocks of the reduced matrix, the coefficient c and the factorization of the
+/// (n + m) matrix. Sized once per model; after the first use nothing here allocates except when
+/// the sparse pattern grows.
 #[derive(Debug, Default)]
 pub(crate) struct NewtonWs {
     pub(crate) mode: JacobianMode,
     jac: Jacobians,
-    /// M(q), column-major n × n.
-    mass: Vec<f64>,
-    /// b_q (m × n, row-major).
-    b_q: Vec<f64>,
     /// (Φ_q a)_q scratch (m × n, row-major).
     phi_a_q: Vec<f64>,
     /// Accelerations a at the Jacobian's state.
     acc: Vec<f64>,
+    /// Non-zeros (row, col, value) of M, Q_q, Q_v (n × n), Φ_q, b_v, b_q (m × n).
+    mass: Vec<(usize, usize, f64)>,
+    dq: Vec<(usize, usize, f64)>,
+    dv: Vec<(usize, usize, f64)>,
+    phi_q: Vec<(usize, usize, f64)>,
+    b_v: Vec<(usize, usize, f64)>,
+    b_q: Vec<(usize, usize, f64)>,
     /// Right-hand side / solution of the reduced system (n + m).
     rhs: Vec<f64>,
-    lu: DenseLu,
+    pub(crate) fact: Factorization,
     c: f64,
+}
+
+/// The non-zeros of a row-major matrix with `cols` columns into `out`.
+fn nonzeros(a: &[f64], cols: usize, out: &mut Vec<(usize, usize, f64)>) {
+    out.clear();
+    for (k, &v) in a.iter().enumerate() {
+        if v != 0.0 {
+            out.push((k / cols, k % cols, v));
+        }
+    }
 }
 
 impl Model {
@@ -81,107 +94,127 @@ impl Model {
         self.newton.mode == JacobianMode::Analytic && self.bristles.len() == 0
     }
 
-    /// Evaluate the Jacobians, M and b_q at (t, y) for the following factorizations.
+    /// Evaluate the Jacobians, M, b_v and b_q at (t, y) for the following factorizations.
     pub(crate) fn reduced_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
         let (n, m) = (self.n, self.m);
         let mut ws = std::mem::take(&mut self.newton);
-        ws.mass.resize(n * n, 0.0);
-        ws.b_q.resize(m * n, 0.0);
         ws.phi_a_q.resize(m * n, 0.0);
         ws.acc.resize(n, 0.0);
         ws.rhs.resize(n + m, 0.0);
-        ws.lu.resize(n + m);
         let (q, v) = (&y[..n], &y[n..2 * n]);
         let ok = self.solve_accelerations(t, q, v);
         ws.acc.copy_from_slice(&self.sol[..n]);
         self.jacobians_into(t, q, v, &mut ws.jac);
-        self.mass_into(q, &mut ws.mass);
+        ws.mass.clear();
+        let mass = &mut ws.mass;
+        crate::system::add_mass(
+            &self.bodies,
+            &self.beams,
+            &self.floating,
+            q,
+            &mut |r, c, v| mass.push((r, c, v)),
+        );
         ws.phi_a_q.fill(0.0);
         self.analytic_constraints(q, &ws.acc, &mut ws.phi_a_q);
+        nonzeros(&ws.jac.dq, n, &mut ws.dq);
+        nonzeros(&ws.jac.dv, n, &mut ws.dv);
+        nonzeros(&ws.jac.phi_q, n, &mut ws.phi_q);
         let (al, be) = (self.alpha, self.beta);
-        for ((bq, pvq), (pq, paq)) in ws
-            .b_q
-            .iter_mut()
-            .zip(&ws.jac.phi_qqd_q)
-            .zip(ws.jac.phi_q.iter().zip(&ws.phi_a_q))
-        {
-            *bq = -2.0 * al * pvq - be * be * pq - paq;
+        ws.b_v.clear();
+        ws.b_q.clear();
+        for k in 0..m * n {
+            let (pq, pvq, paq) = (ws.jac.phi_q[k], ws.jac.phi_qqd_q[k], ws.phi_a_q[k]);
+            let (r, c) = (k / n, k % n);
+            let bv = -2.0 * pvq - 2.0 * al * pq;
+            let bq = -2.0 * al * pvq - be * be * pq - paq;
+            if bv != 0.0 {
+                ws.b_v.push((r, c, bv));
+            }
+            if bq != 0.0 {
+                ws.b_q.push((r, c, bq));
+            }
         }
-        let finite = [&ws.jac.dq, &ws.jac.dv, &ws.mass, &ws.b_q]
+        let finite = [&ws.mass, &ws.dq, &ws.dv, &ws.b_v, &ws.b_q]
             .iter()
-            .all(|v| v.iter().all(|x| x.is_finite()));
+            .all(|l| l.iter().all(|e| e.2.is_finite()));
         self.newton = ws;
         ok && finite
     }
 
-    /// Form and factor the reduced matrix for the coefficient c.
+    /// Form and factor the reduced matrix for the coefficient c:
+    /// [M − cQ_v − c²Q_q, Φ_qᵀ; Φ_q − c b_v − c² b_q, 0].
     pub(crate) fn reduced_factor(&mut self, c: f64) -> bool {
         let (n, m) = (self.n, self.m);
         let nm = n + m;
-        let al = self.alpha;
         let ws = &mut self.newton;
         ws.c = c;
-        let Jacobians {
-            dq,
-            dv,
-            phi_q,
-            phi_qqd_q,
-            ..
-        } = &ws.jac;
-        let a = ws.lu.matrix_mut();
-        for col in 0..n {
-            let out = &mut a[col * nm..col * nm + n];
-            for (r, o) in out.iter_mut().enumerate() {
-                *o = ws.mass[r + col * n] - c * dv[r * n + col] - c * c * dq[r * n + col];
+        let c2 = c * c;
+        let blocks = [
+            (&ws.mass, 0, 1.0),
+            (&ws.dv, 0, -c),
+            (&ws.dq, 0, -c2),
+            (&ws.phi_q, n, 1.0),
+            (&ws.b_v, n, -c),
+            (&ws.b_q, n, -c2),
+        ];
+        let fact = &mut ws.fact;
+        if fact.sparse {
+            let g = &mut fact.growing;
+            g.begin(nm);
+            for (list, row0, f) in blocks {
+                for &(r, col, v) in list {
+                    g.add(row0 + r, col, f * v);
+                }
             }
-            for r in 0..m {
-                let b_v = -2.0 * phi_qqd_q[r * n + col] - 2.0 * al * phi_q[r * n + col];
-                a[n + r + col * nm] = phi_q[r * n + col] - c * b_v - c * c * ws.b_q[r * n + col];
+            for &(r, col, v) in &ws.phi_q {
+                g.add(col, n + r, v);
             }
+            g.factor().is_ok()
+        } else {
+            fact.dense.resize(nm);
+            let a = fact.dense.matrix_mut();
+            a.fill(0.0);
+            for (list, row0, f) in blocks {
+                for &(r, col, v) in list {
+                    a[row0 + r + col * nm] += f * v;
+                }
+            }
+            for &(r, col, v) in &ws.phi_q {
+                a[col + (n + r) * nm] += v;
+            }
+            fact.dense.factor().is_ok()
         }
-        for r in 0..m {
-            let col = &mut a[(n + r) * nm..(n + r + 1) * nm];
-            for (k, o) in col[..n].iter_mut().enumerate() {
-                *o = phi_q[r * n + k];
-            }
-            col[n..].fill(0.0);
-        }
-        ws.lu.factor().is_ok()
     }
 
-    /// Solve (I − cJ) Δy = b in place through the reduced system.
+    /// Solve (I − cJ) Δy = b in place through the reduced system: Δv and cμ from
+    /// [M r_v + c Q_q r_q; Φ_q r_v + c b_q r_q], then Δq = r_q + cΔv, ΔE = r_E.
     pub(crate) fn reduced_solve(&mut self, b: &mut [f64]) {
         let n = self.n;
         let ws = &mut self.newton;
         let c = ws.c;
         let (rq, rest) = b.split_at_mut(n);
         let rv = &mut rest[..n];
-        let Jacobians { dq, phi_q, .. } = &ws.jac;
-        let (top, bottom) = ws.rhs.split_at_mut(n);
-        for (r, t) in top.iter_mut().enumerate() {
-            let mut s = 0.0;
-            for k in 0..n {
-                s += ws.mass[r + k * n] * rv[k] + c * dq[r * n + k] * rq[k];
-            }
-            *t = s;
+        ws.rhs.fill(0.0);
+        for &(r, col, v) in &ws.mass {
+            ws.rhs[r] += v * rv[col];
         }
-        for (r, o) in bottom.iter_mut().enumerate() {
-            let mut s = 0.0;
-            for k in 0..n {
-                s += phi_q[r * n + k] * rv[k] + c * ws.b_q[r * n + k] * rq[k];
-            }
-            *o = s;
+        for &(r, col, v) in &ws.dq {
+            ws.rhs[r] += c * v * rq[col];
         }
-        ws.lu.solve(&mut ws.rhs);
+        for &(r, col, v) in &ws.phi_q {
+            ws.rhs[n + r] += v * rv[col];
+        }
+        for &(r, col, v) in &ws.b_q {
+            ws.rhs[n + r] += c * v * rq[col];
+        }
+        if ws.fact.sparse {
+            ws.fact.growing.solve(&mut ws.rhs);
+        } else {
+            ws.fact.dense.solve(&mut ws.rhs);
+        }
         rv.copy_from_slice(&ws.rhs[..n]);
         for (q, v) in rq.iter_mut().zip(rv.iter()) {
             *q += c * v;
         }
-    }
-
-    /// The mass matrix M(q) (column-major n × n, overwritten).
-    pub(crate) fn mass_into(&self, q: &[f64], out: &mut [f64]) {
-        out.fill(0.0);
-        crate::system::add_mass(&self.bodies, &self.beams, &self.floating, q, out, self.n);
     }
 }

@@ -9,6 +9,7 @@
 use clr_ode::{Control, Dopri5, Ndf, Observer, OdeSystem, Options, Output, Stats, StopReason};
 
 use crate::error::MbdError;
+use crate::linsys::LinearSolver;
 use crate::newton::JacobianMode;
 pub use crate::results::Results;
 use crate::system::Model;
@@ -56,6 +57,9 @@ pub struct SimOptions {
     pub jacobian: JacobianMode,
     /// Highest NDF order, 1–5 (default 5).
     pub max_order: usize,
+    /// Dense or sparse factorization of the augmented and Newton matrices (default
+    /// [`LinearSolver::Auto`]).
+    pub linear_solver: LinearSolver,
 }
 
 impl Default for SimOptions {
@@ -74,6 +78,7 @@ impl Default for SimOptions {
             contact_events: true,
             jacobian: JacobianMode::Analytic,
             max_order: 5,
+            linear_solver: LinearSolver::Auto,
         }
     }
 }
@@ -324,6 +329,7 @@ impl Model {
         }
         self.events_on = opts.contact_events;
         self.newton.mode = opts.jacobian;
+        self.set_linear_solver(opts.linear_solver);
         let mut ode = Options::default()
             .rtol(opts.rtol)
             .atol(opts.atol)

@@ -22,7 +22,6 @@ pub use crate::clearance::ContactReport;
 use crate::clearance::{Clearance, GuideBeam, GuideRef};
 use crate::flexible::FlexBeam;
 use crate::floating::FloatingBody;
-use clr_ode::linalg::DenseLu;
 use clr_ode::{Direction, OdeSystem};
 use nalgebra::Vector2;
 
@@ -84,7 +83,10 @@ pub struct Model {
     pub(crate) n: usize,
     pub(crate) m: usize,
     // workspace (sized in `assemble`, reused by every evaluation)
-    pub(crate) lu: DenseLu,
+    /// Factorization of the augmented matrix G (dense or sparse, [`crate::LinearSolver`]).
+    pub(crate) g: crate::linsys::Factorization,
+    /// Range-space solve of the augmented equations (the default path, [`crate::rangespace`]).
+    pub(crate) range_space: crate::rangespace::RangeSpace,
     pub(crate) phi: Vec<f64>,
     /// Φ_q, row-major m × n.
     pub(crate) phiq: Vec<f64>,
@@ -148,6 +150,19 @@ impl Model {
         self.alpha = alpha;
         self.beta = beta;
         Ok(())
+    }
+
+    /// Choose dense or sparse factorizations of the augmented and Newton matrices (default
+    /// [`crate::LinearSolver::Auto`]: sparse from n + m ≥ [`crate::SPARSE_FROM`]).
+    pub fn set_linear_solver(&mut self, s: crate::LinearSolver) {
+        let sparse = s.is_sparse(self.n + self.m);
+        self.g.sparse = sparse;
+        self.newton.fact.sparse = sparse;
+    }
+
+    /// Whether the augmented and Newton matrices are factored sparse.
+    pub fn linear_solver_is_sparse(&self) -> bool {
+        self.g.sparse
     }
 
     /// Locate contact onsets as terminal events (default on): see
@@ -344,33 +359,77 @@ impl Model {
     pub(crate) fn solve_accelerations(&mut self, t: f64, q: &[f64], qd: &[f64]) -> bool {
         self.eval_constraints(t, q, qd);
         self.eval_forces(t, q, qd);
-        let (n, m) = (self.n, self.m);
-        let nm = n + m;
-        let a = self.lu.matrix_mut();
-        a.fill(0.0);
-        add_mass(&self.bodies, &self.beams, &self.floating, q, a, nm);
-        for r in 0..m {
-            for c in 0..n {
-                let v = self.phiq[r * n + c];
-                if v != 0.0 {
-                    a[(n + r) + c * nm] = v;
-                    a[c + (n + r) * nm] = v;
-                }
-            }
+        self.load_augmented_rhs();
+        let parts = (&self.bodies[..], &self.beams[..], &self.floating[..]);
+        if self
+            .range_space
+            .solve(parts, q, &self.phiq, &mut self.sol)
+            .is_ok()
+        {
+            self.solve_ok = true;
+            return true;
         }
+        // no range-space form (W = Φ_q M⁻¹ Φ_qᵀ singular: redundant constraints, or a block of M
+        // not positive definite): the augmented matrix, which reports the singularity itself
+        self.load_augmented_rhs();
+        if self.factor_augmented(q).is_err() {
+            self.sol.fill(f64::NAN);
+            self.solve_ok = false;
+            return false;
+        }
+        if self.g.sparse {
+            self.g.growing.solve(&mut self.sol);
+        } else {
+            self.g.dense.solve(&mut self.sol);
+        }
+        self.solve_ok = true;
+        true
+    }
+
+    /// `sol` ← [Q; γ − 2αΦ̇ − β²Φ].
+    pub(crate) fn load_augmented_rhs(&mut self) {
+        let (n, m) = (self.n, self.m);
         self.sol[..n].copy_from_slice(&self.qf);
         let (al, be) = (self.alpha, self.beta);
         for r in 0..m {
             self.sol[n + r] = self.gamma[r] - 2.0 * al * self.phid[r] - be * be * self.phi[r];
         }
-        if self.lu.factor().is_err() {
-            self.sol.fill(f64::NAN);
-            self.solve_ok = false;
-            return false;
+    }
+
+    /// Assemble and factor G = [M Φ_qᵀ; Φ_q 0] at q (Φ_q from the last constraint evaluation),
+    /// dense or sparse ([`crate::LinearSolver`]).
+    pub(crate) fn factor_augmented(&mut self, q: &[f64]) -> Result<(), clr_ode::linalg::Singular> {
+        let (n, m) = (self.n, self.m);
+        let nm = n + m;
+        let (bodies, beams, floating) = (&self.bodies, &self.beams, &self.floating);
+        let g = &mut self.g;
+        if g.sparse {
+            let s = &mut g.growing;
+            s.begin(nm);
+            add_mass(bodies, beams, floating, q, &mut |r, c, v| s.add(r, c, v));
+            for (k, &v) in self.phiq.iter().enumerate() {
+                if v != 0.0 {
+                    let (r, c) = (k / n, k % n);
+                    s.add(n + r, c, v);
+                    s.add(c, n + r, v);
+                }
+            }
+            return s.factor();
         }
-        self.lu.solve(&mut self.sol);
-        self.solve_ok = true;
-        true
+        g.dense.resize(nm);
+        let a = g.dense.matrix_mut();
+        a.fill(0.0);
+        add_mass(bodies, beams, floating, q, &mut |r, c, v| {
+            a[r + c * nm] += v
+        });
+        for (k, &v) in self.phiq.iter().enumerate() {
+            if v != 0.0 {
+                let (r, c) = (k / n, k % n);
+                a[(n + r) + c * nm] = v;
+                a[c + (n + r) * nm] = v;
+            }
+        }
+        g.dense.factor()
     }
 
     /// Accelerations q̈ of the last evaluation (units of q per s²).
@@ -541,32 +600,29 @@ impl Model {
     }
 }
 
-/// Add the mass matrix M(q) into the column-major matrix `a` with leading dimension `ld` ≥ n:
-/// rigid bodies (m, m, I on the diagonal), ground-fixed beams (their constant M_ff) and
-/// floating-frame bodies (their state-dependent blocks).
+/// Add the non-zeros of the mass matrix M(q) through `sink(row, col, value)`: rigid bodies
+/// (m, m, I on the diagonal), ground-fixed beams (their constant M_ff) and floating-frame bodies
+/// (their state-dependent blocks).
 pub(crate) fn add_mass(
     bodies: &[RigidBody],
     beams: &[FlexBeam],
     floating: &[FloatingBody],
     q: &[f64],
-    a: &mut [f64],
-    ld: usize,
+    sink: &mut dyn FnMut(usize, usize, f64),
 ) {
     for (k, b) in bodies.iter().enumerate() {
-        a[3 * k * (ld + 1)] += b.mass;
-        a[(3 * k + 1) * (ld + 1)] += b.mass;
-        a[(3 * k + 2) * (ld + 1)] += b.inertia;
+        sink(3 * k, 3 * k, b.mass);
+        sink(3 * k + 1, 3 * k + 1, b.mass);
+        sink(3 * k + 2, 3 * k + 2, b.inertia);
     }
     for fb in beams {
-        let (o, nf) = (fb.offset, fb.n_free());
-        for r in 0..nf {
-            for c in 0..nf {
-                a[(o + r) + (o + c) * ld] += fb.m[r * nf + c];
-            }
+        let o = fb.offset;
+        for (r, c, v) in fb.m.entries() {
+            sink(o + r, o + c, v);
         }
     }
     for f in floating {
-        f.add_mass(q, a, ld);
+        f.add_mass(q, sink);
     }
 }
 

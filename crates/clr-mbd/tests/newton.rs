@@ -7,7 +7,9 @@
 //! in the dense system (tolerance 1e-5; measured 2e-7 … 1.4e-6 for c = 1e-6 … 1e-3 s).
 
 use clr_contact::{FrictionLaw, JournalBearing, Material, NormalLaw};
-use clr_mbd::{JacobianMode, Model, ModelBuilder, RevoluteClearanceSpec, RigidBody, SimOptions};
+use clr_mbd::{
+    JacobianMode, LinearSolver, Model, ModelBuilder, RevoluteClearanceSpec, RigidBody, SimOptions,
+};
 use clr_ode::linalg::DenseLu;
 use clr_ode::OdeSystem;
 
@@ -102,10 +104,21 @@ fn reduced_newton_solve_matches_the_dense_newton_matrix() {
         let mut dense = b.clone();
         lu.solve(&mut dense);
         assert!(m.has_newton_solver());
-        assert!(m.newton_jacobian(t, &y));
-        assert!(m.newton_factor(c));
-        let mut reduced = b.clone();
-        m.newton_solve(&mut reduced);
+        let mut solutions = Vec::new();
+        for ls in [LinearSolver::Dense, LinearSolver::Sparse] {
+            m.set_linear_solver(ls);
+            assert!(m.newton_jacobian(t, &y));
+            assert!(m.newton_factor(c));
+            let mut x = b.clone();
+            m.newton_solve(&mut x);
+            solutions.push(x);
+        }
+        // the dense and sparse factorizations of the reduced matrix agree to rounding
+        let big = solutions[0].iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        for (a, s) in solutions[0].iter().zip(&solutions[1]) {
+            assert!((a - s).abs() <= 1e-12 * big, "dense {a} vs sparse {s}");
+        }
+        let reduced = solutions.swap_remove(0);
         // Backward error of the reduced solution in the dense system, row by row over q and
         // q̇ (the dissipated energy's row is taken as ΔE = r_E: module docs):
         // |(I − cJ) x − b|_i / (|I − cJ| |x| + |b|)_i. A forward comparison would amplify the
@@ -136,16 +149,26 @@ fn reduced_newton_solve_matches_the_dense_newton_matrix() {
 #[test]
 fn analytic_and_finite_difference_newton_give_the_same_motion() {
     let mut out = Vec::new();
-    for mode in [JacobianMode::Analytic, JacobianMode::FiniteDifference] {
+    for (mode, ls) in [
+        (JacobianMode::Analytic, LinearSolver::Dense),
+        (JacobianMode::Analytic, LinearSolver::Sparse),
+        (JacobianMode::FiniteDifference, LinearSolver::Dense),
+    ] {
         let (mut m, y0) = double_pendulum_in_contact();
         let mut opts = SimOptions::span(0.0, 0.01, 5).tolerances(1e-8, 1e-11);
         opts.jacobian = mode;
+        opts.linear_solver = ls;
         let r = m.simulate_from(&opts, &y0).unwrap();
         assert!(r.onsets > 0, "the journal hits the bearing again");
         out.push((r.column("tip.x").unwrap().to_vec(), r.stats));
     }
-    eprintln!("analytic {:?}\nfinite differences {:?}", out[0].1, out[1].1);
-    for (a, f) in out[0].0.iter().zip(&out[1].0) {
-        assert!((a - f).abs() < 1e-5, "{a} vs {f}");
+    eprintln!(
+        "analytic {:?}\nanalytic, sparse {:?}\nfinite differences {:?}",
+        out[0].1, out[1].1, out[2].1
+    );
+    for other in &out[1..] {
+        for (a, f) in out[0].0.iter().zip(&other.0) {
+            assert!((a - f).abs() < 1e-5, "{a} vs {f}");
+        }
     }
 }

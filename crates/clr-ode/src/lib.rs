@@ -80,6 +80,7 @@ pub mod ndf;
 pub mod options;
 pub mod solution;
 pub mod solver;
+pub mod sparse;
 pub mod system;
 pub mod test_models;
 

@@ -8,7 +8,7 @@ use faer::linalg::lu::partial_pivoting::{factor, solve};
 use faer::{MatMut, MatRef, Par};
 
 /// Largest dimension factored by the hand-written small-matrix path.
-pub const SMALL_N: usize = 16;
+pub const SMALL_N: usize = 48;
 
 /// An LU factorization P A = L U held in place (column-major, n × n).
 #[derive(Default)]

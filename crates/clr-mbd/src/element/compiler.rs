@@ -5,7 +5,6 @@
 use std::collections::HashMap;
 
 use clr_contact::{ContactMemory, ForceApplication};
-use clr_ode::linalg::DenseLu;
 use nalgebra::Vector2;
 
 use super::anchor::Anchor;
@@ -350,8 +349,12 @@ impl Compiler {
             item: "contact memory".into(),
             source,
         })?;
-        let mut lu = DenseLu::default();
-        lu.resize(n + m);
+        let g = crate::linsys::Factorization {
+            sparse: crate::LinearSolver::Auto.is_sparse(n + m),
+            ..Default::default()
+        };
+        let mut newton = crate::newton::NewtonWs::default();
+        newton.fact.sparse = g.sparse;
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
         let bristles = crate::lugre::Bristles::assign(&mut clearances);
@@ -373,7 +376,8 @@ impl Compiler {
             events_on: true,
             n,
             m,
-            lu,
+            g,
+            range_space: Default::default(),
             phi: vec![0.0; m],
             phiq: vec![0.0; m * n],
             phid: vec![0.0; m],
@@ -384,7 +388,7 @@ impl Compiler {
             solve_ok: true,
             p_diss: 0.0,
             bristles,
-            newton: Default::default(),
+            newton,
         })
     }
 
