@@ -476,10 +476,10 @@ fn simulation_failure_exits_1_with_partial_results() {
 
 /// A built-in model whose integrator fails exits with 1 and writes the rows computed up to the
 /// failure in every column of a complete run (contact columns and energies included). The
-/// failure is the documented clr-ode NDF Newton failure of the Wan slider–crank at rtol 1e-8 /
-/// atol 1e-11 (docs/mbd.md, Known problems; built-in models have no step-budget parameter);
-/// the rows are checked against a complete DOPRI5 run up to the failure time: the same columns,
-/// and the crank angle, prescribed by the driver, equal to 1e-9 rad.
+/// failure is the step budget (`--max-steps 300`) of the Wan slider–crank with NDF at rtol 1e-8
+/// (which used to stop there with Newton failures, fixed in issue 13); the rows are checked
+/// against a complete run up to the failure time: the same columns, and the crank angle,
+/// prescribed by the driver, equal to 1e-9 rad.
 #[test]
 fn builtin_failure_exits_1_with_partial_results_in_every_column() {
     let out = scratch("builtin-fail");
@@ -490,12 +490,15 @@ fn builtin_failure_exits_1_with_partial_results_in_every_column() {
         "solver=ndf",
         "--rtol",
         "1e-8",
+        "--max-steps",
+        "300",
         "--no-figures",
         "-q",
         "--out",
         out.to_str().unwrap(),
     ]);
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("step budget"), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("partial results up to t ="),
         "{}",
@@ -622,6 +625,7 @@ fn malformed_files_exit_2_with_a_located_message() {
             "translational_liu.toml",
             &[":22:", "clearance[0].normal.law", "needs a journal"],
         ),
+        ("max_order.toml", &[":20:", "solver.max_order", "1 to 5"]),
     ];
     for (file, needles) in cases {
         let o = clr(&[
@@ -780,4 +784,49 @@ fn list_shows_the_paper_studies_and_an_unknown_study_names_the_valid_ones() {
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("guide_friction"), "{err}");
+}
+
+/// The integrator knobs of `clr run`: an order outside 1–5 is refused with exit code 2 and the
+/// option named; `--jacobian finite-difference` with `--max-order 2` runs a built-in and a model
+/// file, the file's summary echoing them in its resolved `[solver]`.
+#[test]
+fn integrator_knobs_reach_the_run() {
+    let out = scratch("knobs-bad");
+    let o = clr(&[
+        "run",
+        "slider_crank",
+        "--max-order",
+        "7",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--max-order 7"), "{}", stderr(&o));
+    for target in ["slider_crank".to_string(), data("pendulum.toml")] {
+        let out = scratch("knobs");
+        let o = clr(&[
+            "run",
+            &target,
+            "--t-end",
+            "2e-3",
+            "--jacobian",
+            "finite-difference",
+            "--max-order",
+            "2",
+            "--no-figures",
+            "-q",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(0), "{target}: {}", stderr(&o));
+        if target.ends_with(".toml") {
+            let s = summary(&out);
+            assert_eq!(
+                s["parameters"]["solver"]["jacobian"], "finite_difference",
+                "{s}"
+            );
+            assert_eq!(s["parameters"]["solver"]["max_order"], 2, "{s}");
+        }
+    }
 }

@@ -221,6 +221,12 @@ fn lugre_model_file_parses_and_runs() {
         z.iter().all(|z| z.abs() <= 0.15 / 1e5 * (1.0 + 1e-9)),
         "{z:?}"
     );
+    // the bristle states have no analytic Jacobian rows: the run says it differenced instead
+    assert!(
+        r.notes.iter().any(|n| n.contains("finite_difference")),
+        "{:?}",
+        r.notes
+    );
     // hostile edits never panic
     let lines: Vec<&str> = text.lines().collect();
     let mut failures = Vec::new();
@@ -242,4 +248,43 @@ fn lugre_model_file_parses_and_runs() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// `[solver] jacobian`, `max_order` and `linear_solver` reach the run: the pendulum of
+/// tests/data/pendulum.toml with the finite-difference Newton matrix, order ≤ 2 and sparse
+/// factorizations takes more steps than with the defaults and ends at the same state (both
+/// within the closed-form period's tolerance of the file: rtol 1e-10), with no note (nothing
+/// was chosen for the user).
+#[test]
+fn solver_settings_reach_the_run() {
+    let text = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pendulum.toml"),
+    )
+    .unwrap()
+    .replace("t_end = 3.5", "t_end = 0.5");
+    let run = |extra: &str| {
+        let t = text.replace("atol = 1e-12", &format!("atol = 1e-12\n{extra}"));
+        let spec = match load_str("pendulum.toml", &t, &[]) {
+            Ok(Loaded::Generic(s)) => s,
+            other => panic!("{other:?}"),
+        };
+        let mut built = spec.build().unwrap();
+        built.model.simulate(&built.options).unwrap()
+    };
+    let base = run("");
+    let other = run("jacobian = \"finite_difference\"\nmax_order = 2\nlinear_solver = \"sparse\"");
+    assert!(
+        other.stats.accepted > 2 * base.stats.accepted,
+        "{:?} vs {:?}",
+        other.stats,
+        base.stats
+    );
+    assert!(base.notes.is_empty() && other.notes.is_empty());
+    let th = |r: &clr_mbd::Results| *r.column("rod.theta").unwrap().last().unwrap();
+    assert!(
+        (th(&base) - th(&other)).abs() < 1e-7,
+        "{} vs {}",
+        th(&base),
+        th(&other)
+    );
 }

@@ -53,7 +53,7 @@ pub(crate) fn execute(
 /// `clr run`.
 pub(crate) fn run_command(args: &RunArgs, out: &Path) -> Result<(), CliError> {
     let sets = assignments(&args.set)?;
-    let job = resolve(&args.target, &sets, args.t_end, args.rtol)?;
+    let job = resolve(&args.target, &sets, args.t_end, args.rtol)?.with_knobs(args.knobs())?;
     let progress = Progress::new(args.quiet);
     let rec = execute(&job, args.t_end, args.rtol, Some(&progress))?;
     progress.finish();
@@ -107,7 +107,10 @@ pub(crate) fn export_command(
         )));
     }
     let sets = assignments(set)?;
-    let Job::Builtin { name, parameters } = resolve(model, &sets, None, None)? else {
+    let Job::Builtin {
+        name, parameters, ..
+    } = resolve(model, &sets, None, None)?
+    else {
         return Err(CliError::Input("export takes a built-in model name".into()));
     };
     let text = if form.builtin {
@@ -145,6 +148,7 @@ pub(crate) fn desc_text(
         t_end: form.t_end,
         rtol: form.rtol,
         progress: None,
+        ..Default::default()
     };
     let desc = clr_models::catalog::export(name, parameters, &settings)
         .map_err(|e| CliError::Input(e.to_string()))?;

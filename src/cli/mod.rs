@@ -35,12 +35,49 @@ pub(crate) struct RunArgs {
     /// Relative tolerance of the integrator.
     #[arg(long, value_name = "R")]
     pub rtol: Option<f64>,
+    /// Step budget of the integrator (accepted steps).
+    #[arg(long, value_name = "N")]
+    pub max_steps: Option<usize>,
+    /// Highest NDF order (1–5).
+    #[arg(long, value_name = "K")]
+    pub max_order: Option<usize>,
+    /// NDF's Newton matrix: `analytic` (the elements' Jacobians) or `finite-difference`.
+    #[arg(long, value_enum, value_name = "MODE")]
+    pub jacobian: Option<JacobianArg>,
+    /// Scale the velocities' error estimate by min(h, 1) (fine beam meshes, lightly damped
+    /// structures).
+    #[arg(long)]
+    pub scale_velocity_error: bool,
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
     /// Do not draw figures.
     #[arg(long)]
     pub no_figures: bool,
+}
+
+/// `--jacobian`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug)]
+pub(crate) enum JacobianArg {
+    /// The elements' analytic Jacobians in the reduced second-order Newton system.
+    Analytic,
+    /// Differences of the whole right-hand side.
+    FiniteDifference,
+}
+
+impl RunArgs {
+    /// The integrator knobs given on the command line.
+    pub(crate) fn knobs(&self) -> clr_models::SolverKnobs {
+        clr_models::SolverKnobs {
+            max_steps: self.max_steps,
+            max_order: self.max_order,
+            jacobian: self.jacobian.map(|j| match j {
+                JacobianArg::Analytic => clr_mbd::JacobianMode::Analytic,
+                JacobianArg::FiniteDifference => clr_mbd::JacobianMode::FiniteDifference,
+            }),
+            scale_velocity_error: self.scale_velocity_error,
+        }
+    }
 }
 
 #[derive(Subcommand)]

@@ -91,7 +91,7 @@ pub(crate) fn sweep_command(
     };
     // the target is read once; every point clones it and applies its values, so bad input
     // stops the sweep before anything runs
-    let base_job = resolve(&args.target, &base, args.t_end, args.rtol)?;
+    let base_job = resolve(&args.target, &base, args.t_end, args.rtol)?.with_knobs(args.knobs())?;
     let mut points: Vec<(usize, Vec<String>, Job)> = Vec::new();
     for k in (0..total).filter(|k| k % sn == si) {
         let idx = combination(k, &varies);

@@ -165,6 +165,13 @@ impl ModelSpec {
         Ok(())
     }
 
+    /// Write the integrator knobs that are set into the description's `[solver]` (they were
+    /// asked for on the command line: no note).
+    pub fn set_knobs(&mut self, knobs: &clr_models::SolverKnobs) {
+        knobs.apply(&mut self.desc.solver);
+        self.resolved["solver"] = serde_json::to_value(&self.desc.solver).unwrap_or_default();
+    }
+
     /// Set the relative tolerance, and the absolute one to 10⁻³·rtol as the built-in models do
     /// (reported in [`ModelSpec::notes`] when that changes the file's `atol`).
     ///

@@ -31,6 +31,8 @@ pub enum Job {
         name: String,
         /// Full resolved parameters (defaults with the overrides applied).
         parameters: serde_json::Value,
+        /// Integrator knobs of the run ([`Job::with_knobs`]).
+        knobs: clr_models::SolverKnobs,
     },
     /// A validated generic model file.
     Generic(Box<ModelSpec>),
@@ -100,7 +102,11 @@ pub fn resolve(
 ) -> Result<Job, RunError> {
     let mut job = if is_file(target) {
         match load_file(target, overrides, t_end)? {
-            Loaded::Builtin { name, parameters } => Job::Builtin { name, parameters },
+            Loaded::Builtin { name, parameters } => Job::Builtin {
+                name,
+                parameters,
+                knobs: Default::default(),
+            },
             Loaded::Generic(s) => Job::Generic(s),
         }
     } else {
@@ -120,6 +126,7 @@ pub fn resolve(
         Job::Builtin {
             name: target.to_string(),
             parameters,
+            knobs: Default::default(),
         }
     };
     if let Some(t) = t_end {
@@ -144,6 +151,21 @@ pub fn resolve(
 }
 
 impl Job {
+    /// This job with the integrator knobs of `clr run` (`--max-steps`, `--max-order`,
+    /// `--jacobian`, `--scale-velocity-error`): written into a model file's `[solver]`, kept for
+    /// a built-in model's run.
+    ///
+    /// # Errors
+    /// [`RunError::Input`] for a value out of range (a step budget of 0, an order outside 1–5).
+    pub fn with_knobs(mut self, knobs: clr_models::SolverKnobs) -> Result<Job, RunError> {
+        knobs.validate().map_err(RunError::Input)?;
+        match &mut self {
+            Job::Builtin { knobs: k, .. } => *k = knobs,
+            Job::Generic(s) => s.set_knobs(&knobs),
+        }
+        Ok(self)
+    }
+
     /// This job with more assignments (a sweep point): a built-in's parameters or a model
     /// file's description are cloned and changed, not read again; then `t_end` (s) and `rtol`
     /// as in [`resolve`].
@@ -157,7 +179,11 @@ impl Job {
         rtol: Option<f64>,
     ) -> Result<Job, RunError> {
         Ok(match self {
-            Job::Builtin { name, parameters } => {
+            Job::Builtin {
+                name,
+                parameters,
+                knobs,
+            } => {
                 let mut parameters = parameters.clone();
                 for a in overrides {
                     apply_json_override(&mut parameters, a)?;
@@ -165,6 +191,7 @@ impl Job {
                 Job::Builtin {
                     name: name.clone(),
                     parameters,
+                    knobs: *knobs,
                 }
             }
             Job::Generic(s) => {
@@ -187,7 +214,9 @@ impl Job {
     pub fn time_span(&self, t_end: Option<f64>) -> Option<(f64, f64)> {
         match self {
             Job::Generic(s) => Some((s.options.t0, s.options.t_end)),
-            Job::Builtin { name, parameters } => {
+            Job::Builtin {
+                name, parameters, ..
+            } => {
                 let end = t_end.or_else(|| {
                     if name == "guide" {
                         serde_json::from_value::<clr_models::guide::GuideParams>(parameters.clone())
@@ -216,6 +245,7 @@ impl Outcome {
                 .map(|c| unit_of(c).to_string())
                 .collect()
         };
+        let notes = o.results.notes.clone();
         Self {
             model: o.model,
             source: "builtin".into(),
@@ -225,7 +255,7 @@ impl Outcome {
             parameters: o.parameters,
             error,
             no_orbit: Vec::new(),
-            notes: Vec::new(),
+            notes,
         }
     }
 
@@ -240,6 +270,7 @@ impl Outcome {
             .iter()
             .map(|c| unit_of(c).to_string())
             .collect();
+        let notes = s.notes.iter().chain(&results.notes).cloned().collect();
         Self {
             model: s.name.clone(),
             source: s.file.clone(),
@@ -255,7 +286,7 @@ impl Outcome {
                 .filter(|(_, radial)| radial.is_none())
                 .map(|(n, _)| n.clone())
                 .collect(),
-            notes: s.notes.clone(),
+            notes,
         }
     }
 
@@ -271,6 +302,7 @@ impl Outcome {
                 projections: 0,
                 max_position_violation: f64::NAN,
                 y_final: Vec::new(),
+                notes: Vec::new(),
             },
             units: vec!["s".into()],
             metrics: Vec::new(),
@@ -298,11 +330,16 @@ pub fn execute(
     progress: Option<Box<dyn Fn(f64) + Send + Sync>>,
 ) -> Result<Outcome, RunError> {
     match job {
-        Job::Builtin { name, parameters } => {
+        Job::Builtin {
+            name,
+            parameters,
+            knobs,
+        } => {
             let settings = RunSettings {
                 t_end,
                 rtol,
                 progress,
+                knobs: *knobs,
             };
             match clr_models::catalog::run(name, parameters, &settings) {
                 Ok(o) => Ok(Outcome::from_output(o, None)),

@@ -11,8 +11,10 @@
 use clr_ode::linalg::{DenseLu, Singular};
 use clr_ode::sparse::SparseLu;
 
-/// Which factorization the augmented and Newton systems use.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// Which factorization the augmented and Newton systems use (`[solver] linear_solver` in model
+/// files: `auto`, `dense`, `sparse`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum LinearSolver {
     /// Sparse for models with n + m ≥ [`SPARSE_FROM`] coordinates and constraint rows, dense
     /// below (the default).

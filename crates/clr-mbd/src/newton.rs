@@ -39,8 +39,10 @@ use crate::jacobian::Jacobians;
 use crate::linsys::Factorization;
 use crate::system::Model;
 
-/// How the NDF integrator obtains its Newton matrix.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+/// How the NDF integrator obtains its Newton matrix (`[solver] jacobian` in model files:
+/// `analytic`, `finite_difference`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
 pub enum JacobianMode {
     /// The elements' analytic Jacobians in the reduced second-order system of size n + m (see
     /// the module docs of `newton`); the default. Models with LuGre bristle states fall back to

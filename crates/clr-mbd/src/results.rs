@@ -36,6 +36,9 @@ pub struct Results {
     /// Final state (q, q̇, dissipated energy, LuGre bristle states; see
     /// [`Model::n_bristle_states`](crate::Model::n_bristle_states)).
     pub y_final: Vec<f64>,
+    /// Automatic choices the run made for the user, in words (for example the Newton matrix
+    /// falling back to finite differences for a model with LuGre bristle states).
+    pub notes: Vec<String>,
 }
 
 impl Results {

@@ -60,6 +60,12 @@ pub struct SimOptions {
     /// Dense or sparse factorization of the augmented and Newton matrices (default
     /// [`LinearSolver::Auto`]).
     pub linear_solver: LinearSolver,
+    /// NDF only: multiply the local error estimate of the velocities q̇ by min(h, 1) (h in s)
+    /// before the error test (default false), as RADAU5 does for index-2 variables: the
+    /// velocities of stiff, lightly damped structural modes (fine beam meshes) then no longer
+    /// pin the step at h·ω ≲ 1 (clr-ode `Options::h_scaled_error`, docs/ode.md "Undamped and
+    /// lightly damped structures"). Positions stay fully error-controlled.
+    pub scale_velocity_error: bool,
 }
 
 impl Default for SimOptions {
@@ -79,6 +85,7 @@ impl Default for SimOptions {
             jacobian: JacobianMode::Analytic,
             max_order: 5,
             linear_solver: LinearSolver::Auto,
+            scale_velocity_error: false,
         }
     }
 }
@@ -191,6 +198,23 @@ impl Model {
             c.push(s.to_string());
         }
         c
+    }
+
+    /// The automatic choices of a run with `opts`, in words ([`Results::notes`]).
+    pub(crate) fn run_notes(&self, opts: &SimOptions) -> Vec<String> {
+        let mut notes = Vec::new();
+        if opts.solver == SolverKind::Ndf
+            && opts.jacobian == JacobianMode::Analytic
+            && !self.uses_reduced_newton()
+        {
+            notes.push(format!(
+                "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
+                 \"finite_difference\"): the {} LuGre bristle states have no analytic Jacobian \
+                 rows yet",
+                self.n_bristle_states()
+            ));
+        }
+        notes
     }
 
     /// Evaluate everything at (t, y) and append one output row.
@@ -337,6 +361,9 @@ impl Model {
             .max_steps(opts.max_steps)
             .max_order(opts.max_order)
             .output(Output::Times(opts.times.clone()));
+        if opts.scale_velocity_error {
+            ode = ode.h_scaled_error(self.n..2 * self.n);
+        }
         if let Some(atol) = self.bristle_atol(opts.atol, opts.rtol) {
             ode = ode.atol_vec(atol);
         }
@@ -355,7 +382,9 @@ impl Model {
         match self.integrate(opts, &mut solver, &mut run, progress) {
             Ok(()) => {
                 let stats = with_solver!(&solver, s => s.stats());
-                Ok(run.results(self.columns(), stats))
+                let mut res = run.results(self.columns(), stats);
+                res.notes = self.run_notes(opts);
+                Ok(res)
             }
             Err(Stop::Mbd(e)) => Err(e),
             Err(Stop::Ode(e)) => {
@@ -486,6 +515,7 @@ impl Run {
             projections: self.projections,
             max_position_violation: self.max_viol,
             y_final: self.y,
+            notes: Vec::new(),
         }
     }
 }

@@ -387,6 +387,7 @@ pub(crate) fn run_desc(
         d.solver.rtol = r;
         d.solver.atol = r * 1e-3;
     }
+    settings.knobs.apply(&mut d.solver);
     let intervals = match record {
         Record::EveryStep => 0,
         Record::Every(dt) => {
@@ -418,6 +419,7 @@ pub(crate) fn compile_run(
 
 /// Check run settings that apply to every model.
 pub(crate) fn check_settings(model: &str, settings: &RunSettings) -> Result<(), ModelsError> {
+    settings.knobs.validate().map_err(|m| invalid(model, m))?;
     if let Some(t) = settings.t_end {
         positive("t_end (s)", t).map_err(|m| invalid(model, m))?;
     }

@@ -22,4 +22,4 @@ pub mod slider_crank;
 pub mod studies;
 
 pub use error::ModelsError;
-pub use output::{Metric, RunOutput, RunSettings};
+pub use output::{Metric, RunOutput, RunSettings, SolverKnobs};

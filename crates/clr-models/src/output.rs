@@ -11,6 +11,56 @@ pub struct RunSettings {
     pub rtol: Option<f64>,
     /// Called now and then with the current simulated time (s), for progress display.
     pub progress: Option<Box<dyn Fn(f64) + Send + Sync>>,
+    /// Integrator knobs beyond the tolerance (`None` keeps the model's settings).
+    pub knobs: SolverKnobs,
+}
+
+/// Integrator settings a run may override (`clr run --max-steps`, `--max-order`,
+/// `--jacobian`, `--scale-velocity-error`); each `None`/`false` keeps the model's own value.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SolverKnobs {
+    /// Step budget (accepted steps, ≥ 1).
+    pub max_steps: Option<usize>,
+    /// Highest NDF order, 1–5.
+    pub max_order: Option<usize>,
+    /// How NDF forms its Newton matrix.
+    pub jacobian: Option<clr_mbd::JacobianMode>,
+    /// Scale the velocities' error estimate by min(h, 1) (`clr_mbd::SimOptions::scale_velocity_error`).
+    pub scale_velocity_error: bool,
+}
+
+impl SolverKnobs {
+    /// Check the values.
+    ///
+    /// # Errors
+    /// A message naming the option and the accepted range.
+    pub fn validate(&self) -> Result<(), String> {
+        if self.max_steps == Some(0) {
+            return Err("--max-steps must be at least 1".into());
+        }
+        if let Some(k) = self.max_order {
+            if !(1..=5).contains(&k) {
+                return Err(format!("--max-order {k}: the NDF orders are 1 to 5"));
+            }
+        }
+        Ok(())
+    }
+
+    /// Write the knobs that are set into `solver`.
+    pub fn apply(&self, solver: &mut clr_mbd::desc::SolverSettings) {
+        if let Some(n) = self.max_steps {
+            solver.max_steps = n;
+        }
+        if let Some(k) = self.max_order {
+            solver.max_order = k;
+        }
+        if let Some(j) = self.jacobian {
+            solver.jacobian = j;
+        }
+        if self.scale_velocity_error {
+            solver.scale_velocity_error = true;
+        }
+    }
 }
 
 /// A named scalar result of a run (peak contact force, path error, momentum drift, …).

@@ -65,7 +65,7 @@ pub fn studies() -> Vec<Study> {
             model: "flap",
             description:
                 "flexible lever arm / aux rod / aux lever arm: number of flexible bodies, \
-                          number of joints, 4 joints + 3 flexible (23 runs of 1.25 s, ~11 min)",
+                          number of joints, 4 joints + 3 flexible, reversing load (24 runs of 1.25 s, ~1.5 min)",
             run: flap_flexible,
         },
         Study {

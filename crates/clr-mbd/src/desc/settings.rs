@@ -3,6 +3,8 @@
 use serde::{Deserialize, Serialize};
 
 use crate::field::FieldError;
+use crate::linsys::LinearSolver;
+use crate::newton::JacobianMode;
 use crate::sim::{SimOptions, SolverKind};
 
 /// Integrator of a run.
@@ -40,6 +42,17 @@ pub struct SolverSettings {
     pub projection: Option<f64>,
     /// Locate contact onsets as events (default true).
     pub contact_events: bool,
+    /// NDF's Newton matrix: `analytic` (default; the elements' Jacobians in the reduced
+    /// second-order system) or `finite_difference` (the whole right-hand side differenced).
+    pub jacobian: JacobianMode,
+    /// Highest NDF order, 1–5 (default 5).
+    pub max_order: usize,
+    /// Factorization of the augmented and Newton matrices: `auto` (default: sparse from
+    /// n + m ≥ 32), `dense` or `sparse`.
+    pub linear_solver: LinearSolver,
+    /// Scale the velocities' error estimate by min(h, 1) (default false; see
+    /// [`SimOptions::scale_velocity_error`]).
+    pub scale_velocity_error: bool,
 }
 
 impl Default for SolverSettings {
@@ -54,6 +67,10 @@ impl Default for SolverSettings {
             baumgarte_beta: crate::system::DEFAULT_BAUMGARTE_BETA,
             projection: None,
             contact_events: true,
+            jacobian: JacobianMode::Analytic,
+            max_order: 5,
+            linear_solver: LinearSolver::Auto,
+            scale_velocity_error: false,
         }
     }
 }
@@ -122,6 +139,12 @@ pub(crate) fn sim_options(
     if let Some(p) = s.projection {
         positive("solver.projection", p)?;
     }
+    if !(1..=5).contains(&s.max_order) {
+        return Err(FieldError::new(
+            "solver.max_order",
+            format!("give an NDF order from 1 to 5, got {}", s.max_order),
+        ));
+    }
     if s.max_steps == 0 {
         return Err(FieldError::new(
             "solver.max_steps",
@@ -172,5 +195,9 @@ pub(crate) fn sim_options(
     options.every_step = o.every_step;
     options.projection = s.projection;
     options.contact_events = s.contact_events;
+    options.jacobian = s.jacobian;
+    options.max_order = s.max_order;
+    options.linear_solver = s.linear_solver;
+    options.scale_velocity_error = s.scale_velocity_error;
     Ok(options)
 }
