@@ -12,6 +12,9 @@ K = (4/3) E* sqrt(R_i R_j / (R_i - R_j)) (Flores et al. 2004) with the Lankarani
 hysteresis factor chi = 3 (1 - c_e^2) / 4, F_N = max(0, K delta^1.5 (1 + chi delta_dot / v_minus)),
 v_minus the penetration rate at the located onset (at least 1e-4 m/s, clr-contact's floor).
 
+With --rtols R1,R2,... (a work-precision sweep) every method runs at each rtol with
+atol = --atol-ratio * rtol (default 1e-3) instead of the single --rtol/--atol pair.
+
 Prints one JSON object per line: {"solver", "rtol", "atol", "wall_s", "repeats", "nfev",
 "steps"(null: solve_ivp does not report them), "onsets", "x": [slider x at each --times]}.
 Only the solve is timed (median over repeats), not the interpreter start-up.
@@ -125,6 +128,9 @@ def main():
     ap.add_argument("--methods", default="LSODA,BDF")
     ap.add_argument("--rtol", type=float, default=1e-6)
     ap.add_argument("--atol", type=float, default=1e-9)
+    ap.add_argument("--rtols", default=None,
+                    help="comma-separated rtols of a sweep (atol = --atol-ratio * rtol)")
+    ap.add_argument("--atol-ratio", type=float, default=1e-3)
     ap.add_argument("--t-end", type=float, default=0.1)
     ap.add_argument("--times", default="0.005,0.01")
     ap.add_argument("--rpm", type=float, default=5000.0)
@@ -134,27 +140,33 @@ def main():
     a = ap.parse_args()
     omega = a.rpm * math.pi / 30.0
     times = [float(s) for s in a.times.split(",")] + [a.t_end]
-    for method in a.methods.split(","):
-        walls, out = [], None
-        while True:
-            start = time.perf_counter()
-            try:
-                out = solve(method, omega, a.restitution, a.rtol, a.atol, a.t_end, times)
-            except Exception as e:  # report and go on with the next method
-                print(f"scipy_slider_crank: {method} failed: {e}", file=sys.stderr)
-                out = None
-                break
-            walls.append(time.perf_counter() - start)
-            if len(walls) >= a.max_repeats or sum(walls) >= a.min_time:
-                break
-        if out is None:
-            continue
-        xs, nfev, onsets = out
-        print(json.dumps({
-            "solver": f"scipy-{method.lower()}", "rtol": a.rtol, "atol": a.atol,
-            "wall_s": statistics.median(walls), "repeats": len(walls), "nfev": nfev,
-            "steps": None, "onsets": onsets, "times": times, "x": xs,
-        }), flush=True)
+    if a.rtols:
+        pairs = [(r, a.atol_ratio * r) for r in (float(s) for s in a.rtols.split(","))]
+    else:
+        pairs = [(a.rtol, a.atol)]
+    for rtol, atol in pairs:
+        for method in a.methods.split(","):
+            walls, out = [], None
+            while True:
+                start = time.perf_counter()
+                try:
+                    out = solve(method, omega, a.restitution, rtol, atol, a.t_end, times)
+                except Exception as e:  # report and go on with the next method
+                    print(f"scipy_slider_crank: {method} at rtol {rtol:g} failed: {e}",
+                          file=sys.stderr)
+                    out = None
+                    break
+                walls.append(time.perf_counter() - start)
+                if len(walls) >= a.max_repeats or sum(walls) >= a.min_time:
+                    break
+            if out is None:
+                continue
+            xs, nfev, onsets = out
+            print(json.dumps({
+                "solver": f"scipy-{method.lower()}", "rtol": rtol, "atol": atol,
+                "wall_s": statistics.median(walls), "repeats": len(walls), "nfev": nfev,
+                "steps": None, "onsets": onsets, "times": times, "x": xs,
+            }), flush=True)
 
 
 if __name__ == "__main__":

@@ -32,7 +32,7 @@ pub fn target_dir() -> PathBuf {
 
 const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
-  bench    benchmarks against peers (groups: ode, mbd); writes target/bench/<group>.json
+  bench    benchmarks against peers (groups: ode, mbd, beam); writes target/bench/<group>.json
   figures  regenerate docs/figures/";
 
 fn main() -> ExitCode {

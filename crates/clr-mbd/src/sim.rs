@@ -468,7 +468,8 @@ impl Model {
                 restart = true;
             }
             if let Some(tol) = opts.projection {
-                if pv > tol && t < opts.t_end {
+                // also at t_end: the last recorded state satisfies the threshold like the others
+                if pv > tol {
                     self.project(t, &mut run.y, tol * 1e-3)?;
                     run.projections += 1;
                     restart = true;

@@ -11,7 +11,13 @@
 //! - Local error estimate (κ γ_k + 1/(k+1)) d; orders k−1, k, k+1 compared after k+1 steps of
 //!   constant size; step factor ≤ 10, rejection factor ≥ 0.2, safety 0.9·(2·4+1)/(2·4+iters).
 //! - J is re-evaluated only when Newton converges too slowly with an old J; the LU of M − cJ is
-//!   refactored only when c = h/α_k changes or J is new.
+//!   refactored only when c = h/α_k changes or J is new. Systems may factor and solve M − cJ
+//!   themselves ([`OdeSystem::has_newton_solver`]).
+//! - Newton stops when θ/(1 − θ)·‖Δ‖ is below the tolerance, θ the observed contraction rate. For
+//!   an ODE (M = I) the first iteration may already stop, with the θ measured in an earlier
+//!   step with the same factorization (RADAU5's reuse of θ, CVODE's crate); a non-contracting
+//!   correction far below the tolerance is the noise floor of f and accepted
+//!   (`NOISE_FLOOR`).
 
 use crate::linalg::DenseLu;
 use crate::options::Formula;
@@ -89,6 +95,9 @@ pub struct NdfMethod {
     lu: DenseLu,
     lu_valid: bool,
     jac_current: bool,
+    /// Contraction rate of the last Newton iteration that measured one with the current
+    /// factorization (`None` after a refactorization).
+    rate: Option<f64>,
     last_error_norm: f64,
     last_safety: f64,
     /// Order and step ratio chosen after the last step, applied when the next step begins.
@@ -230,6 +239,7 @@ impl NdfMethod {
 
     /// Build and factor M − cJ (by the system when it has its own Newton solver).
     fn factor<S: OdeSystem>(&mut self, sys: &mut S, ctx: &mut Ctx, c: f64) -> bool {
+        self.rate = None;
         if self.own_solver {
             ctx.stats.lu_factorizations += 1;
             self.lu_valid = sys.newton_factor(c);
@@ -325,6 +335,24 @@ impl NdfMethod {
             } else {
                 -1.0
             };
+            if rate >= 0.0 {
+                self.rate = Some(rate);
+            } else if let Some(r) = self.rate.filter(|&r| r < 0.9 && identity) {
+                // first iteration: the rate measured with this factorization in an earlier step
+                // predicts the remaining error (Hairer & Wanner's reuse of θ in RADAU5, CVODE's
+                // crate), so a small enough first correction is accepted at once. Not with a
+                // mass matrix: the algebraic components of an index-1 DAE need the converged
+                // iterate (Robertson as a DAE loses every digit otherwise)
+                if r / (1.0 - r) * dy_norm < self.newton_tol {
+                    for ((y, dd), dy) in self.y_new.iter_mut().zip(self.dd.iter_mut()).zip(&self.dy)
+                    {
+                        *y += dy;
+                        *dd += dy;
+                    }
+                    result = Ok(());
+                    break;
+                }
+            }
             if rate >= 0.9 && dy_norm <= NOISE_FLOOR * self.newton_tol {
                 // not contracting, but far below the tolerance: the corrections are the rounding
                 // noise of f itself (accelerations from an ill-conditioned augmented solve), not

@@ -1,5 +1,6 @@
 //! `cargo xtask bench`: clr side by side with peer solvers, in one run.
 
+mod beam;
 mod clr;
 mod mbd;
 mod ode;
@@ -15,14 +16,29 @@ const USAGE: &str =
         target/bench/ode.md and work-precision figures target/bench/ode_<problem>.{svg,png}
         (with --docs-figures also docs/figures/bench_ode_<problem>.{svg,png})
        cargo xtask bench mbd [--min-time SECONDS] [--exudyn-h H1,H2] [--no-scipy] [--no-exudyn]
+                             [--no-sweep] [--docs-figures]
   mbd   clearance slider–crank of issue 5: clr (NDF, DOPRI5 at rtol 1e-6) vs Exudyn
         (generalized-α, h = 1e-5 and 1e-6) vs SciPy solve_ivp LSODA/BDF; wall time and slider
-        error at 5/10 ms against the independent formulation; writes target/bench/mbd.{json,md}";
+        error at 5/10 ms against the independent formulation; plus a work–precision sweep (clr
+        NDF rtol 1e-5 ... 1e-10, Exudyn h = 1e-5, 3e-6, 1e-6, SciPy LSODA/BDF rtol 1e-6 ... 1e-10;
+        error at 10 ms) with the equal-error ratios of issue 13; writes target/bench/mbd.{json,md}
+        and target/bench/mbd_work_precision.{svg,png} (with --docs-figures also
+        docs/figures/bench_mbd_work_precision.{svg,png})
+       cargo xtask bench beam [--jacobian analytic|fd] [--both] [--runs N] [--t-end SECONDS]
+                              [--elements 10,40,160] [--rtol R] [--max-order K]
+                              [--lateral-load N] [--no-gravity]
+  beam  slider in clearance on a flexible cantilever guide (the built-in guide's beam and
+        slider, resting on the upper face under gravity, driven at 1 m/s) meshed with 10, 40 and
+        160 elements, NDF rtol 1e-6, 0.5 ms: steps, wall time, cost per step, Jacobians, LU
+        factorizations and the growth of cost per step per 4x elements (issue 13: <= 2.5x);
+        --jacobian fd uses finite-difference Newton matrices, --both runs both; writes
+        target/bench/beam.{json,md}";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {
         Some("ode") => ode::run(&args[1..]),
         Some("mbd") => mbd::run(&args[1..]),
+        Some("beam") => beam::run(&args[1..]),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

@@ -5,6 +5,7 @@ pub mod contact;
 mod contact_geometry;
 mod mbd;
 mod mbd_jacobian;
+mod mbd_tolerance;
 pub mod models;
 pub mod models_dual_guide;
 pub mod models_flap_flex;
@@ -62,6 +63,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "mbd.jacobian",
         run: mbd_jacobian::cases,
+    },
+    Group {
+        name: "mbd.tolerance",
+        run: mbd_tolerance::cases,
     },
     Group {
         name: "models",
