@@ -14,8 +14,8 @@
 //!   refactored only when c = h/α_k changes or J is new. Systems may factor and solve M − cJ
 //!   themselves ([`OdeSystem::has_newton_solver`]).
 //! - Newton stops when θ/(1 − θ)·‖Δ‖ is below the tolerance, θ the observed contraction rate. For
-//!   an ODE (M = I) the first iteration may already stop, with the θ measured in an earlier
-//!   step with the same factorization (RADAU5's reuse of θ, CVODE's crate); a non-contracting
+//!   an ODE (M = I) with `Options::newton_rate_reuse` the first iteration may already stop, with
+//!   the θ measured in an earlier step with the same factorization (RADAU5, CVODE); a non-contracting
 //!   correction far below the tolerance is the noise floor of f and accepted
 //!   (`NOISE_FLOOR`).
 
@@ -277,6 +277,7 @@ impl NdfMethod {
         self.y_new.copy_from_slice(&self.y_pred);
         let mut dy_norm_old = -1.0;
         let identity = self.mass_kind == MassKind::Identity;
+        let reuse = ctx.opts.newton_rate_reuse;
         let mut result = Err(NewtonFail::Slow);
         let mut iters = 0;
         // Round-off floor (ode15s, Shampine & Reichelt 1997): a correction this small is pure
@@ -337,7 +338,7 @@ impl NdfMethod {
             };
             if rate >= 0.0 {
                 self.rate = Some(rate);
-            } else if let Some(r) = self.rate.filter(|&r| r < 0.9 && identity) {
+            } else if let Some(r) = self.rate.filter(|&r| r < 0.9 && identity && reuse) {
                 // first iteration: the rate measured with this factorization in an earlier step
                 // predicts the remaining error (Hairer & Wanner's reuse of θ in RADAU5, CVODE's
                 // crate), so a small enough first correction is accepted at once. Not with a

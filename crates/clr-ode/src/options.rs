@@ -75,6 +75,12 @@ pub struct Options {
     /// same scaling as RADAU5's index-2 variables (Hairer & Wanner, Solving ODEs II, 2nd ed.,
     /// §VII.4, and the NIND2 option of their code). See docs/ode.md, "Undamped structures".
     pub h_scaled_error: Option<std::ops::Range<usize>>,
+    /// NDF/BDF only, ODEs (M = I) only: let Newton stop after its first correction when the
+    /// contraction rate θ measured earlier with the same factorization predicts convergence
+    /// (θ/(1 − θ)·‖Δ‖ below the tolerance), as RADAU5 and CVODE do (default false). It pays
+    /// where f is expensive (clr-mbd turns it on: an augmented solve per f); on the Test Set
+    /// problems it is not a clear win (docs/ode.md, "Newton rate carried across steps").
+    pub newton_rate_reuse: bool,
 }
 
 impl Default for Options {
@@ -92,6 +98,7 @@ impl Default for Options {
             max_newton_failures: 20,
             fixed_step: false,
             h_scaled_error: None,
+            newton_rate_reuse: false,
         }
     }
 }
@@ -156,6 +163,11 @@ impl Options {
     /// y = (x, ẋ)) by min(h, 1) before the error norm (see [`Options::h_scaled_error`]).
     pub fn h_scaled_error(mut self, components: std::ops::Range<usize>) -> Self {
         self.h_scaled_error = Some(components);
+        self
+    }
+    /// Reuse the Newton contraction rate across steps (see [`Options::newton_rate_reuse`]).
+    pub fn newton_rate_reuse(mut self, on: bool) -> Self {
+        self.newton_rate_reuse = on;
         self
     }
     /// Fixed steps of size `h` with no error control.

@@ -40,6 +40,7 @@ use clr_models::guide::GuideParams;
 use serde::Serialize;
 
 use super::ode::machine;
+use super::{parse_next, parsed_or_report};
 
 const MESHES: [usize; 3] = [10, 40, 160];
 /// Default relative tolerance (atol = 1e-3·rtol, the built-ins' ratio).
@@ -125,11 +126,11 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
             "--both" => both = true,
             "--no-gravity" => a.gravity = false,
             "--max-order" => {
-                a.max_order = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .filter(|v: &usize| (1..=5).contains(v))
-                    .ok_or("--max-order needs an order 1…5")?;
+                a.max_order = parse_next(
+                    &mut it,
+                    |v: &usize| (1..=5).contains(v),
+                    "--max-order needs an order 1…5",
+                )?;
             }
             "--elements" => {
                 a.meshes = it
@@ -139,33 +140,32 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
                     .ok_or("--elements needs comma-separated element counts, e.g. 10,40,160")?;
             }
             "--lateral-load" => {
-                a.lateral_load = Some(
-                    it.next()
-                        .and_then(|v| v.parse().ok())
-                        .filter(|v: &f64| *v >= 0.0)
-                        .ok_or("--lateral-load needs a force in N (≥ 0)")?,
-                );
+                a.lateral_load = Some(parse_next(
+                    &mut it,
+                    |v: &f64| *v >= 0.0,
+                    "--lateral-load needs a force in N (≥ 0)",
+                )?);
             }
             "--rtol" => {
-                a.rtol = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .filter(|v: &f64| *v > 0.0 && *v < 1.0)
-                    .ok_or("--rtol needs a number in (0, 1)")?;
+                a.rtol = parse_next(
+                    &mut it,
+                    |v: &f64| *v > 0.0 && *v < 1.0,
+                    "--rtol needs a number in (0, 1)",
+                )?;
             }
             "--runs" => {
-                a.runs = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .filter(|v: &usize| *v >= 1)
-                    .ok_or("--runs needs a positive integer")?;
+                a.runs = parse_next(
+                    &mut it,
+                    |v: &usize| *v >= 1,
+                    "--runs needs a positive integer",
+                )?;
             }
             "--t-end" => {
-                a.t_end = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .filter(|v: &f64| *v > 0.0 && *v <= 0.2)
-                    .ok_or("--t-end needs a time in (0, 0.2] s")?;
+                a.t_end = parse_next(
+                    &mut it,
+                    |v: &f64| *v > 0.0 && *v <= 0.2,
+                    "--t-end needs a time in (0, 0.2] s",
+                )?;
             }
             other => return Err(format!("bench beam: unknown argument {other}")),
         }
@@ -338,12 +338,8 @@ fn markdown(machine: &str, a: &Args, rows: &[Row], notes: &[String]) -> String {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    let a = match parse_args(args) {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::from(2);
-        }
+    let Some(a) = parsed_or_report(parse_args(args), "") else {
+        return ExitCode::from(2);
     };
     let machine = machine();
     let mut rows: Vec<Row> = Vec::new();

@@ -51,6 +51,7 @@ use serde::{Deserialize, Serialize};
 
 use super::ode::machine;
 use super::peers::ensure_venv;
+use super::{parse_next, parsed_or_report, with_series};
 use crate::minimal_slider_crank::minimal_slider_positions;
 
 /// Output times: the two compared instants and the end of the run, s.
@@ -162,11 +163,11 @@ fn parse_args(args: &[String]) -> Result<Args, String> {
     while let Some(arg) = it.next() {
         match arg.as_str() {
             "--min-time" => {
-                a.min_time = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .filter(|v: &f64| *v >= 0.0)
-                    .ok_or("--min-time needs a non-negative number of seconds")?;
+                a.min_time = parse_next(
+                    &mut it,
+                    |v: &f64| *v >= 0.0,
+                    "--min-time needs a non-negative number of seconds",
+                )?;
             }
             "--exudyn-h" => {
                 a.exudyn_steps = it
@@ -217,6 +218,29 @@ fn clr_run(
                 [x[0], x[1]],
             ));
         }
+    }
+}
+
+/// Table row of a [`clr_run`] result (median wall s, repeats, steps, onsets, x at 5 and 10 ms)
+/// of `solver` at `rtol`, described by `setting`, with its error against `x_ref`.
+fn clr_row(
+    solver: &str,
+    setting: String,
+    rtol: f64,
+    (wall_s, repeats, steps, onsets, x): (f64, usize, usize, usize, [f64; 2]),
+    x_ref: [f64; 2],
+) -> Row {
+    Row {
+        solver: solver.to_string(),
+        setting,
+        rtol: Some(rtol),
+        h: None,
+        wall_s,
+        repeats,
+        steps: Some(steps),
+        onsets: Some(onsets),
+        x,
+        error: [(x[0] - x_ref[0]).abs(), (x[1] - x_ref[1]).abs()],
     }
 }
 
@@ -545,7 +569,7 @@ fn figure(sweep: &[Row], stem: &Path) -> Result<(), String> {
         ("scipy-lsoda", "SciPy LSODA (rtol 1e-6…1e-10)"),
         ("scipy-bdf", "SciPy BDF (rtol 1e-6…1e-10)"),
     ] {
-        let mut pts: Vec<(f64, f64, f64)> = sweep
+        let pts: Vec<(f64, f64, f64)> = sweep
             .iter()
             .filter(|r| r.solver == solver && r.error[1] > 0.0)
             .map(|r| {
@@ -560,13 +584,7 @@ fn figure(sweep: &[Row], stem: &Path) -> Result<(), String> {
             continue;
         }
         any = true;
-        pts.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let xy = pts.iter().map(|p| (p.1, p.2)).collect();
-        fig = if pts.len() > 2 {
-            fig.line(label, xy)
-        } else {
-            fig.points(label, xy)
-        };
+        fig = with_series(fig, label, pts);
     }
     if !any {
         return Err("no sweep point".into());
@@ -575,12 +593,8 @@ fn figure(sweep: &[Row], stem: &Path) -> Result<(), String> {
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    let a = match parse_args(args) {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("{e}");
-            return ExitCode::from(2);
-        }
+    let Some(a) = parsed_or_report(parse_args(args), "") else {
+        return ExitCode::from(2);
     };
     let root = crate::workspace_root();
     let machine = machine();
@@ -606,18 +620,13 @@ pub fn run(args: &[String]) -> ExitCode {
     ] {
         eprintln!("bench mbd: {name}");
         match clr_run(kind, RTOL, ATOL, a.min_time) {
-            Ok((wall_s, repeats, steps, onsets, x)) => rows.push(Row {
-                solver: name.to_string(),
-                setting: format!("rtol {RTOL:e}, atol {ATOL:e}"),
-                rtol: Some(RTOL),
-                h: None,
-                wall_s,
-                repeats,
-                steps: Some(steps),
-                onsets: Some(onsets),
-                x,
-                error: [(x[0] - x_ref[0]).abs(), (x[1] - x_ref[1]).abs()],
-            }),
+            Ok(run) => rows.push(clr_row(
+                name,
+                format!("rtol {RTOL:e}, atol {ATOL:e}"),
+                RTOL,
+                run,
+                x_ref,
+            )),
             Err(e) => notes.push(format!("{name} failed: {e}")),
         }
     }
@@ -639,18 +648,13 @@ pub fn run(args: &[String]) -> ExitCode {
             let atol = 1e-3 * rtol;
             eprintln!("bench mbd: sweep clr-ndf rtol {rtol:e}");
             match clr_run(SolverKind::Ndf, rtol, atol, a.min_time) {
-                Ok((wall_s, repeats, steps, onsets, x)) => sweep.push(Row {
-                    solver: "clr-ndf".to_string(),
-                    setting: format!("rtol {rtol:.0e}, atol {atol:.0e}"),
-                    rtol: Some(rtol),
-                    h: None,
-                    wall_s,
-                    repeats,
-                    steps: Some(steps),
-                    onsets: Some(onsets),
-                    x,
-                    error: [(x[0] - x_ref[0]).abs(), (x[1] - x_ref[1]).abs()],
-                }),
+                Ok(run) => sweep.push(clr_row(
+                    "clr-ndf",
+                    format!("rtol {rtol:.0e}, atol {atol:.0e}"),
+                    rtol,
+                    run,
+                    x_ref,
+                )),
                 Err(e) => notes.push(format!("sweep: clr-ndf at rtol {rtol:e} failed: {e}")),
             }
         }

@@ -7,6 +7,9 @@ mod ode;
 mod peers;
 
 use std::process::ExitCode;
+use std::str::FromStr;
+
+use clr_plot::Figure;
 
 const USAGE: &str =
     "usage: cargo xtask bench ode [--rtol R]... [--min-time SECONDS] [--rounds N] [--docs-figures] [--no-scipy] [--no-diffsol]
@@ -47,5 +50,37 @@ pub fn run(args: &[String]) -> ExitCode {
             eprintln!("{USAGE}");
             ExitCode::from(2)
         }
+    }
+}
+
+/// The next command-line value parsed as `T` when `accept` holds for it, otherwise `msg` (a
+/// missing value, one that does not parse, and one out of range all get the same message).
+fn parse_next<'a, T: FromStr>(
+    it: &mut impl Iterator<Item = &'a String>,
+    accept: impl Fn(&T) -> bool,
+    msg: &str,
+) -> Result<T, String> {
+    it.next()
+        .and_then(|v| v.parse().ok())
+        .filter(|v| accept(v))
+        .ok_or_else(|| msg.to_string())
+}
+
+/// The parsed arguments, or `None` after printing `prefix` and the error to stderr (the caller
+/// then exits with 2, the usage-error code of every bench).
+fn parsed_or_report<A>(parsed: Result<A, String>, prefix: &str) -> Option<A> {
+    parsed.map_err(|e| eprintln!("{prefix}{e}")).ok()
+}
+
+/// `fig` with one work–precision series of `pts` = (setting, x, y), ordered loosest setting
+/// first so the line runs from cheap to accurate; two points or fewer are drawn as markers,
+/// since a line through them would suggest a trend they cannot show.
+fn with_series(fig: Figure, label: &str, mut pts: Vec<(f64, f64, f64)>) -> Figure {
+    pts.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let xy = pts.iter().map(|p| (p.1, p.2)).collect();
+    if pts.len() > 2 {
+        fig.line(label, xy)
+    } else {
+        fig.points(label, xy)
     }
 }

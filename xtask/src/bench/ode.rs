@@ -30,6 +30,7 @@ use serde::{Deserialize, Serialize};
 
 use super::clr;
 use super::peers::{run_diffsol, run_scipy, PeerRow};
+use super::{parsed_or_report, with_series};
 
 /// One row of the benchmark table.
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -348,32 +349,21 @@ fn figure(rows: &[Row], problem: &str, stem: &std::path::Path) -> Result<(), Str
         ("diffsol-bdf", "diffsol BDF"),
         ("scipy-bdf", "SciPy BDF"),
     ] {
-        let mut pts: Vec<(f64, f64, f64)> = rows
+        let pts: Vec<(f64, f64, f64)> = rows
             .iter()
             .filter(|r| r.problem == problem && r.solver == solver)
             .map(|r| (r.rtol, r.wall_s * 1e3, r.scd))
             .collect();
-        if pts.is_empty() {
-            continue;
+        if !pts.is_empty() {
+            fig = with_series(fig, label, pts);
         }
-        pts.sort_by(|a, b| b.0.total_cmp(&a.0));
-        let xy = pts.iter().map(|p| (p.1, p.2)).collect();
-        fig = if pts.len() > 2 {
-            fig.line(label, xy)
-        } else {
-            fig.points(label, xy)
-        };
     }
     fig.save(stem).map(|_| ()).map_err(|e| e.to_string())
 }
 
 pub fn run(args: &[String]) -> ExitCode {
-    let args = match parse_args(args) {
-        Ok(a) => a,
-        Err(e) => {
-            eprintln!("cargo xtask bench ode: {e}");
-            return ExitCode::from(2);
-        }
+    let Some(args) = parsed_or_report(parse_args(args), "cargo xtask bench ode: ") else {
+        return ExitCode::from(2);
     };
     let root = crate::workspace_root();
     let machine = machine();

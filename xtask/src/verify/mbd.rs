@@ -465,8 +465,9 @@ fn early_case(out: &mut Vec<Case>) {
 
 /// A rod (1 kg, 0.4 m) hanging from a frictionless clearance pin (steel Hertz internal cylinder,
 /// R_i = 10 mm, R_j = 9.5 mm, c_e = 1: no damping), released horizontally with the journal
-/// centred.
-fn clearance_pendulum() -> Result<Model, String> {
+/// centred. Shared with `mbd.tolerance.clearance_pendulum` (verify/mbd_tolerance.rs), which
+/// integrates the same model with NDF.
+pub(crate) fn clearance_pendulum() -> Result<Model, String> {
     let jb = JournalBearing {
         bearing: Material::steel(),
         journal: Material::steel(),
