@@ -53,6 +53,9 @@ pub struct SolverSettings {
     /// Scale the velocities' error estimate by min(h, 1) (default false; see
     /// [`SimOptions::scale_velocity_error`]).
     pub scale_velocity_error: bool,
+    /// Let Newton stop after one correction with an earlier contraction rate (default false;
+    /// see [`SimOptions::newton_rate_reuse`]).
+    pub newton_rate_reuse: bool,
 }
 
 impl Default for SolverSettings {
@@ -71,6 +74,7 @@ impl Default for SolverSettings {
             max_order: 5,
             linear_solver: LinearSolver::Auto,
             scale_velocity_error: false,
+            newton_rate_reuse: false,
         }
     }
 }
@@ -199,5 +203,6 @@ pub(crate) fn sim_options(
     options.max_order = s.max_order;
     options.linear_solver = s.linear_solver;
     options.scale_velocity_error = s.scale_velocity_error;
+    options.newton_rate_reuse = s.newton_rate_reuse;
     Ok(options)
 }
