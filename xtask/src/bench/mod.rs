@@ -29,12 +29,13 @@ const USAGE: &str =
         docs/figures/bench_mbd_work_precision.{svg,png})
        cargo xtask bench beam [--jacobian analytic|fd] [--both] [--runs N] [--t-end SECONDS]
                               [--elements 10,40,160] [--rtol R] [--max-order K]
-                              [--lateral-load N] [--no-gravity]
+                              [--lateral-load N] [--no-gravity] [--scale-velocity-error]
   beam  slider in clearance on a flexible cantilever guide (the built-in guide's beam and
         slider, resting on the upper face under gravity, driven at 1 m/s) meshed with 10, 40 and
         160 elements, NDF rtol 1e-6, 0.5 ms: steps, wall time, cost per step, Jacobians, LU
         factorizations and the growth of cost per step per 4x elements (issue 13: <= 2.5x);
-        --jacobian fd uses finite-difference Newton matrices, --both runs both; writes
+        --jacobian fd uses finite-difference Newton matrices, --both runs both,
+        --scale-velocity-error scales the velocities' error by min(h, 1); writes
         target/bench/beam.{json,md}";
 
 pub fn run(args: &[String]) -> ExitCode {
