@@ -154,8 +154,8 @@ pub(crate) struct Clearance {
     /// First index of this element's contact points in the model's contact memory.
     pub(crate) mem: usize,
     /// LuGre friction with bristle states (then `friction` is frictionless and the element is
-    /// evaluated by `crate::lugre::apply`, not [`Clearance::apply`]).
-    pub(crate) lugre: Option<crate::lugre::LuGreContact>,
+    /// evaluated by `crate::lugre::force::apply`, not [`Clearance::apply`]).
+    pub(crate) lugre: Option<crate::lugre::state::LuGreContact>,
 }
 
 /// Quantities of one contact element at the last evaluated state.

@@ -372,7 +372,7 @@ impl Model {
                 });
             } else if let Some(lugre) = &cl.lugre {
                 let add = |b, g| add_gen(frames, out, b, g);
-                crate::lugre::apply(cl, lugre, k, &bi, &bj, memory, bristles, add);
+                crate::lugre::force::apply(cl, lugre, k, &bi, &bj, memory, bristles, add);
             } else {
                 cl.apply(&bi, &bj, memory, |b, g| add_gen(frames, out, b, g));
             }

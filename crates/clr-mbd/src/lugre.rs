@@ -60,169 +60,29 @@
 //! tolerance min(atol, rtol·z_max), z_max = max(μ_s, μ_c)/σ₀ ([`LuGre::z_max`]), since z is
 //! micrometres where q is metres.
 
-use clr_contact::{BodyState, ContactMemory, FrictionLaw, LuGre};
+pub(crate) mod force;
+pub(crate) mod state;
 
-use crate::clearance::{Clearance, ClearanceKind, ContactReport};
-use crate::desc::laws::ContactFriction;
+use crate::clearance::Clearance;
 use crate::runtime::body_state;
 use crate::system::Model;
+use state::Bristles;
 
-/// The LuGre law of a clearance joint and where its bristle states sit.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct LuGreContact {
-    pub(crate) law: LuGre,
-    /// Index of the element's first bristle state in [`Bristles::z`] (set by
-    /// [`Bristles::assign`]).
-    pub(crate) first: usize,
-}
-
-impl LuGreContact {
-    /// The stateless law and the LuGre part of a clearance joint's friction: a stateless law
-    /// alone, or no stateless friction plus the LuGre law.
-    pub(crate) fn split(f: ContactFriction) -> (FrictionLaw, Option<Self>) {
-        match f {
-            ContactFriction::Static(l) => (l, None),
-            ContactFriction::LuGre(law) => (
-                FrictionLaw::coulomb(0.0, 1.0).expect("μ = 0 with v_reg = 1 m/s is valid"),
-                Some(Self { law, first: 0 }),
-            ),
+/// Give every LuGre element its slots (one per contact point) and size the storage.
+pub(crate) fn assign_bristles(clearances: &mut [Clearance]) -> Bristles {
+    let mut count = 0;
+    for c in clearances.iter_mut() {
+        let points = c.points();
+        if let Some(l) = c.lugre.as_mut() {
+            l.first = count;
+            count += points;
         }
     }
-}
-
-/// Bristle states of every LuGre contact point of a model and their rates at the last
-/// evaluation.
-#[derive(Debug, Clone, Default)]
-pub(crate) struct Bristles {
-    /// Deflections z (m), loaded from the state before each evaluation.
-    pub(crate) z: Vec<f64>,
-    /// Rates ż (m/s) of the last evaluation (0 at open points).
-    pub(crate) z_dot: Vec<f64>,
-    /// Per clearance element: its `lugre_z` output (the F_N-weighted mean deflection of its
-    /// loaded points, so that σ₀·mean·ΣF_N = Σσ₀z_kF_N,k; the plain mean when none is loaded), m.
-    pub(crate) mean: Vec<f64>,
-}
-
-impl Bristles {
-    /// Give every LuGre element its slots (one per contact point) and size the storage.
-    pub(crate) fn assign(clearances: &mut [Clearance]) -> Self {
-        let mut count = 0;
-        for c in clearances.iter_mut() {
-            let points = c.points();
-            if let Some(l) = c.lugre.as_mut() {
-                l.first = count;
-                count += points;
-            }
-        }
-        Self {
-            z: vec![0.0; count],
-            z_dot: vec![0.0; count],
-            mean: vec![0.0; clearances.len()],
-        }
+    Bristles {
+        z: vec![0.0; count],
+        z_dot: vec![0.0; count],
+        mean: vec![0.0; clearances.len()],
     }
-
-    /// Number of bristle states.
-    pub(crate) fn len(&self) -> usize {
-        self.z.len()
-    }
-}
-
-/// ż and F_T of one contact point.
-#[inline]
-fn bristle(law: &LuGre, v: f64, z: f64, f_n: f64) -> (f64, f64) {
-    let z_dot = law.z_dot(v, z);
-    (law.force(v, z, z_dot, f_n), z_dot)
-}
-
-/// The forces of a LuGre clearance joint (element `k` of the model), added through
-/// `add(body, [f_x, f_y, m])`; its bristle rates written to `states`. The geometry, normal law,
-/// contact memory and report are those of [`Clearance::apply`], with the LuGre force as the
-/// tangential force of each active point.
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn apply(
-    cl: &Clearance,
-    lugre: &LuGreContact,
-    k: usize,
-    bi: &BodyState,
-    bj: &BodyState,
-    memory: &mut ContactMemory,
-    states: &mut Bristles,
-    mut add: impl FnMut(usize, [f64; 3]),
-) -> ContactReport {
-    let mut rep = ContactReport::default();
-    let law = &lugre.law;
-    let first = lugre.first;
-    let Bristles { z, z_dot, mean } = states;
-    match &cl.kind {
-        ClearanceKind::Revolute(g, application) => {
-            let ct = g.contact(bi, bj);
-            let local = bi.to_local(bi.position + ct.eccentricity_vector);
-            rep.penetration = ct.penetration;
-            rep.penetration_rate = ct.normal_velocity;
-            rep.eccentricity = [local.x, local.y];
-            z_dot[first] = 0.0;
-            mean[k] = z[first];
-            if ct.in_contact() {
-                let vm = memory.impact_velocity(cl.mem, ct.penetration, ct.normal_velocity);
-                let f_n = cl.normal.force(ct.penetration, ct.normal_velocity, vm);
-                let v = ct.tangential_velocity;
-                let (f_t, rate) = bristle(law, v, z[first], f_n);
-                z_dot[first] = rate;
-                let jf = ct.generalized_forces_with(f_n, f_t, *application);
-                add(cl.i, jf.bearing.as_array());
-                add(cl.j, jf.journal.as_array());
-                rep.active_points = 1;
-                rep.normal_force = jf.normal_force;
-                rep.friction_force = jf.tangential_force;
-                rep.dissipated_power = (jf.normal_force - cl.normal.elastic_force(ct.penetration))
-                    * ct.normal_velocity
-                    - jf.tangential_force * v;
-            }
-        }
-        ClearanceKind::Translational {
-            geometry,
-            origin,
-            angle,
-            ..
-        } => {
-            let ct = geometry.contact(bi, bj);
-            let local = bi.to_local(bj.position);
-            let rel = local - *origin;
-            let (s, c) = angle.sin_cos();
-            rep.eccentricity = [c * rel.x + s * rel.y, -s * rel.x + c * rel.y];
-            let zs = &z[first..first + 4];
-            let rates = &mut z_dot[first..first + 4];
-            rates.fill(0.0);
-            let normal = &cl.normal;
-            let (mut n_active, mut power, mut zf, mut f_sum) = (0, 0.0, 0.0, 0.0);
-            let f = ct.generalized_forces(|corner| {
-                let pc = &corner.contact;
-                let p = corner.corner;
-                let vm = memory.impact_velocity(cl.mem + p, pc.penetration, pc.normal_velocity);
-                let f_n = normal.force(pc.penetration, pc.normal_velocity, vm);
-                let (f_t, rate) = bristle(law, pc.tangential_velocity, zs[p], f_n);
-                rates[p] = rate;
-                n_active += 1;
-                power += (f_n - normal.elastic_force(pc.penetration)) * pc.normal_velocity
-                    - f_t * pc.tangential_velocity;
-                if f_n > 0.0 {
-                    zf += f_n * zs[p];
-                    f_sum += f_n;
-                }
-                (f_n, f_t)
-            });
-            mean[k] = if f_sum > 0.0 {
-                zf / f_sum
-            } else {
-                zs.iter().sum::<f64>() / 4.0
-            };
-            cl.report_corners(bi, bj, &f, (n_active, power), &mut rep, &mut add);
-        }
-        // refused when the element is compiled (`FrictionSpec::build`): a slider on a flexible
-        // guide takes stateless laws only
-        ClearanceKind::FlexGuide(_) => {}
-    }
-    rep
 }
 
 impl Model {

@@ -35,6 +35,8 @@
 //! whole first-order system (their ż rows are not in [`crate::Jacobians`]), as does
 //! [`crate::JacobianMode::FiniteDifference`].
 
+use clr_ode::{Direction, OdeSystem};
+
 use crate::jacobian::Jacobians;
 use crate::linsys::Factorization;
 use crate::system::Model;
@@ -57,11 +59,12 @@ pub enum JacobianMode {
 
 /// Workspace of the reduced Newton systems: the Jacobians kept between factorizations, the
 /// non-zeros of the blocks of the reduced matrix, the coefficient c and the factorization of the
-/// (n + m) matrix. Sized once per model; after the first use nothing here allocates except when
-/// the sparse pattern grows.
+/// (n + m) matrix. Owned by the integration driver (not by the [`Model`], which stays the
+/// problem), sized at the first use; after that nothing here allocates except when the sparse
+/// pattern grows.
 #[derive(Debug, Default)]
-pub(crate) struct NewtonWs {
-    pub(crate) mode: JacobianMode,
+pub struct NewtonWs {
+    mode: JacobianMode,
     jac: Jacobians,
     /// (Φ_q a)_q scratch (m × n, row-major).
     phi_a_q: Vec<f64>,
@@ -76,8 +79,72 @@ pub(crate) struct NewtonWs {
     b_q: Vec<(usize, usize, f64)>,
     /// Right-hand side / solution of the reduced system (n + m).
     rhs: Vec<f64>,
-    pub(crate) fact: Factorization,
+    fact: Factorization,
     c: f64,
+}
+
+impl NewtonWs {
+    /// A workspace for `model` with the Newton matrix `mode` and the factorization
+    /// `linear_solver` (sparse from n + m ≥ [`crate::SPARSE_FROM`] with `Auto`).
+    pub fn new(model: &Model, mode: JacobianMode, linear_solver: crate::LinearSolver) -> Self {
+        let mut ws = Self {
+            mode,
+            ..Default::default()
+        };
+        ws.fact.sparse = linear_solver.is_sparse(model.n + model.m);
+        ws
+    }
+
+    /// Whether the integrator uses the reduced analytic Newton systems for `model`: not with
+    /// [`JacobianMode::FiniteDifference`], nor with LuGre bristle states (their ż rows are not in
+    /// [`Jacobians`]).
+    pub fn is_reduced(&self, model: &Model) -> bool {
+        self.mode == JacobianMode::Analytic && model.bristles.len() == 0
+    }
+}
+
+/// The model as the integrator sees it: the [`Model`]'s right-hand side and events, and the
+/// reduced Newton systems of a [`NewtonWs`] ([`OdeSystem::has_newton_solver`]). Built for each
+/// call into the solver; the Jacobian it keeps lives in the workspace, so it is reused across
+/// steps as before.
+pub struct Integrand<'a> {
+    /// The problem.
+    pub model: &'a mut Model,
+    /// The Newton workspace.
+    pub ws: &'a mut NewtonWs,
+}
+
+impl OdeSystem for Integrand<'_> {
+    fn dim(&self) -> usize {
+        self.model.dim()
+    }
+    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
+        self.model.rhs(t, y, dydt)
+    }
+    fn has_newton_solver(&self) -> bool {
+        self.ws.is_reduced(self.model)
+    }
+    fn newton_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
+        self.model.reduced_jacobian(self.ws, t, y)
+    }
+    fn newton_factor(&mut self, c: f64) -> bool {
+        self.model.reduced_factor(self.ws, c)
+    }
+    fn newton_solve(&mut self, b: &mut [f64]) {
+        self.model.reduced_solve(self.ws, b)
+    }
+    fn n_events(&self) -> usize {
+        self.model.n_events()
+    }
+    fn events(&mut self, t: f64, y: &[f64], g: &mut [f64]) {
+        self.model.events(t, y, g)
+    }
+    fn event_direction(&self, i: usize) -> Direction {
+        self.model.event_direction(i)
+    }
+    fn event_terminal(&self, i: usize) -> bool {
+        self.model.event_terminal(i)
+    }
 }
 
 /// The non-zeros of a row-major matrix with `cols` columns into `out`.
@@ -91,15 +158,10 @@ fn nonzeros(a: &[f64], cols: usize, out: &mut Vec<(usize, usize, f64)>) {
 }
 
 impl Model {
-    /// Whether the integrator uses the reduced analytic Newton systems.
-    pub(crate) fn uses_reduced_newton(&self) -> bool {
-        self.newton.mode == JacobianMode::Analytic && self.bristles.len() == 0
-    }
-
-    /// Evaluate the Jacobians, M, b_v and b_q at (t, y) for the following factorizations.
-    pub(crate) fn reduced_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
+    /// Evaluate the Jacobians, M, b_v and b_q at (t, y) into `ws` for the following
+    /// factorizations.
+    fn reduced_jacobian(&mut self, ws: &mut NewtonWs, t: f64, y: &[f64]) -> bool {
         let (n, m) = (self.n, self.m);
-        let mut ws = std::mem::take(&mut self.newton);
         ws.phi_a_q.resize(m * n, 0.0);
         ws.acc.resize(n, 0.0);
         ws.rhs.resize(n + m, 0.0);
@@ -139,16 +201,14 @@ impl Model {
         let finite = [&ws.mass, &ws.dq, &ws.dv, &ws.b_v, &ws.b_q]
             .iter()
             .all(|l| l.iter().all(|e| e.2.is_finite()));
-        self.newton = ws;
         ok && finite
     }
 
     /// Form and factor the reduced matrix for the coefficient c:
     /// [M − cQ_v − c²Q_q, Φ_qᵀ; Φ_q − c b_v − c² b_q, 0].
-    pub(crate) fn reduced_factor(&mut self, c: f64) -> bool {
+    fn reduced_factor(&self, ws: &mut NewtonWs, c: f64) -> bool {
         let (n, m) = (self.n, self.m);
         let nm = n + m;
-        let ws = &mut self.newton;
         ws.c = c;
         let c2 = c * c;
         let blocks = [
@@ -190,9 +250,8 @@ impl Model {
 
     /// Solve (I − cJ) Δy = b in place through the reduced system: Δv and cμ from
     /// [M r_v + c Q_q r_q; Φ_q r_v + c b_q r_q], then Δq = r_q + cΔv, ΔE = r_E.
-    pub(crate) fn reduced_solve(&mut self, b: &mut [f64]) {
+    fn reduced_solve(&self, ws: &mut NewtonWs, b: &mut [f64]) {
         let n = self.n;
-        let ws = &mut self.newton;
         let c = ws.c;
         let (rq, rest) = b.split_at_mut(n);
         let rv = &mut rest[..n];

@@ -10,7 +10,7 @@ use clr_ode::{Control, Dopri5, Ndf, Observer, OdeSystem, Options, Output, Stats,
 
 use crate::error::MbdError;
 use crate::linsys::LinearSolver;
-use crate::newton::JacobianMode;
+use crate::newton::{Integrand, JacobianMode, NewtonWs};
 pub use crate::results::Results;
 use crate::system::Model;
 
@@ -214,7 +214,7 @@ impl Model {
         let mut notes = Vec::new();
         if opts.solver == SolverKind::Ndf
             && opts.jacobian == JacobianMode::Analytic
-            && !self.uses_reduced_newton()
+            && self.n_bristle_states() > 0
         {
             notes.push(format!(
                 "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
@@ -361,7 +361,6 @@ impl Model {
             )));
         }
         self.events_on = opts.contact_events;
-        self.newton.mode = opts.jacobian;
         self.set_linear_solver(opts.linear_solver);
         let mut ode = Options::default()
             .rtol(opts.rtol)
@@ -389,7 +388,8 @@ impl Model {
             projections: 0,
             max_viol: 0.0,
         };
-        match self.integrate(opts, &mut solver, &mut run, progress) {
+        let mut newton = NewtonWs::new(self, opts.jacobian, opts.linear_solver);
+        match self.integrate(opts, (&mut solver, &mut newton), &mut run, progress) {
             Ok(()) => {
                 let stats = with_solver!(&solver, s => s.stats());
                 let mut res = run.results(self.columns(), stats);
@@ -427,7 +427,7 @@ impl Model {
     fn integrate(
         &mut self,
         opts: &SimOptions,
-        solver: &mut AnySolver,
+        (solver, newton): (&mut AnySolver, &mut NewtonWs),
         run: &mut Run,
         progress: &dyn Fn(f64),
     ) -> Result<(), Stop> {
@@ -436,7 +436,11 @@ impl Model {
         let mut last_report = opts.t0;
         self.memory.reset();
         self.commit_contacts(&run.y);
-        with_solver!(&mut *solver, s => s.start(self, opts.t0, &run.y, opts.t_end))?;
+        let ig = &mut Integrand {
+            model: self,
+            ws: newton,
+        };
+        with_solver!(&mut *solver, s => s.start(ig, opts.t0, &run.y, opts.t_end))?;
         // outputs at t0 were recorded by the solver's start
         run.recorded = with_solver!(&*solver, s => s.solution().t.len());
         for _ in 0..run.recorded {
@@ -446,8 +450,10 @@ impl Model {
             self.record(opts.t0, &run.y, &mut run.data);
         }
         loop {
-            let reason =
-                with_solver!(&mut *solver, s => s.advance_observed(self, &mut StopEachStep))?;
+            let reason = with_solver!(&mut *solver, s => s.advance_observed(&mut Integrand {
+                    model: self,
+                    ws: newton,
+                }, &mut StopEachStep))?;
             let t = with_solver!(&*solver, s => s.solution().t_final);
             run.y
                 .copy_from_slice(with_solver!(&*solver, s => &s.solution().y_final));
@@ -497,7 +503,10 @@ impl Model {
                 return Ok(());
             }
             if restart {
-                with_solver!(&mut *solver, s => s.restart(self, t, &run.y))?;
+                with_solver!(&mut *solver, s => s.restart(&mut Integrand {
+                    model: self,
+                    ws: newton,
+                }, t, &run.y))?;
             }
         }
     }

@@ -100,9 +100,7 @@ pub struct Model {
     /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
     pub(crate) p_diss: f64,
     /// LuGre bristle states of the clearance joints (loaded from y by `rhs`).
-    pub(crate) bristles: crate::lugre::Bristles,
-    /// Workspace of the integrator's reduced Newton systems ([`crate::newton`]).
-    pub(crate) newton: crate::newton::NewtonWs,
+    pub(crate) bristles: crate::lugre::state::Bristles,
 }
 
 impl Model {
@@ -152,15 +150,14 @@ impl Model {
         Ok(())
     }
 
-    /// Choose dense or sparse factorizations of the augmented and Newton matrices (default
-    /// [`crate::LinearSolver::Auto`]: sparse from n + m ≥ [`crate::SPARSE_FROM`]).
+    /// Choose dense or sparse factorizations of the augmented matrix (default
+    /// [`crate::LinearSolver::Auto`]: sparse from n + m ≥ [`crate::SPARSE_FROM`]; the Newton
+    /// matrix follows the same setting through [`crate::newton::NewtonWs::new`]).
     pub fn set_linear_solver(&mut self, s: crate::LinearSolver) {
-        let sparse = s.is_sparse(self.n + self.m);
-        self.g.sparse = sparse;
-        self.newton.fact.sparse = sparse;
+        self.g.sparse = s.is_sparse(self.n + self.m);
     }
 
-    /// Whether the augmented and Newton matrices are factored sparse.
+    /// Whether the augmented matrix is factored sparse.
     pub fn linear_solver_is_sparse(&self) -> bool {
         self.g.sparse
     }
@@ -330,7 +327,7 @@ impl Model {
                     add_gen(frames, qf, j, g)
                 })
             } else if let Some(lugre) = &cl.lugre {
-                crate::lugre::apply(
+                crate::lugre::force::apply(
                     cl,
                     lugre,
                     k,
@@ -656,24 +653,6 @@ impl OdeSystem for Model {
         dydt[n..2 * n].copy_from_slice(&self.sol[..n]);
         dydt[2 * n] = self.p_diss;
         dydt[2 * n + 1..].copy_from_slice(self.bristle_rates());
-    }
-
-    /// The reduced second-order Newton systems of [`crate::newton`] unless the model has LuGre
-    /// bristle states or [`crate::JacobianMode::FiniteDifference`] was chosen.
-    fn has_newton_solver(&self) -> bool {
-        self.uses_reduced_newton()
-    }
-
-    fn newton_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
-        self.reduced_jacobian(t, y)
-    }
-
-    fn newton_factor(&mut self, c: f64) -> bool {
-        self.reduced_factor(c)
-    }
-
-    fn newton_solve(&mut self, b: &mut [f64]) {
-        self.reduced_solve(b)
     }
 
     fn n_events(&self) -> usize {

@@ -353,11 +353,9 @@ impl Compiler {
             sparse: crate::LinearSolver::Auto.is_sparse(n + m),
             ..Default::default()
         };
-        let mut newton = crate::newton::NewtonWs::default();
-        newton.fact.sparse = g.sparse;
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
-        let bristles = crate::lugre::Bristles::assign(&mut clearances);
+        let bristles = crate::lugre::assign_bristles(&mut clearances);
         Ok(Model {
             body_names,
             bodies,
@@ -388,7 +386,6 @@ impl Compiler {
             solve_ok: true,
             p_diss: 0.0,
             bristles,
-            newton,
         })
     }
 

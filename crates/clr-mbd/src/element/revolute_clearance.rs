@@ -58,7 +58,7 @@ impl Element for RevoluteClearance {
         let normal = self
             .normal
             .build(&format!("{name}.normal"), Some((rb, rj)))?;
-        let (friction, lugre) = crate::lugre::LuGreContact::split(
+        let (friction, lugre) = crate::lugre::state::LuGreContact::split(
             self.friction.build_contact(&format!("{name}.friction"))?,
         );
         c.clearances.push(Runtime {

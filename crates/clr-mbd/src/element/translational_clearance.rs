@@ -78,7 +78,7 @@ impl Element for TranslationalClearance {
                 }
             })?;
         let normal = self.normal.build(&format!("{name}.normal"), None)?;
-        let (friction, lugre) = crate::lugre::LuGreContact::split(
+        let (friction, lugre) = crate::lugre::state::LuGreContact::split(
             self.friction.build_contact(&format!("{name}.friction"))?,
         );
         c.clearances.push(Runtime {
