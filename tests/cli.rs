@@ -2,15 +2,11 @@
 //! checked against a closed form, sweeps with shards and merge, plots, malformed files and
 //! simulation failures (exit codes 0, 1, 2).
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn clr(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_clr"))
-        .args(args)
-        .output()
-        .expect("the clr binary runs")
-}
+use std::path::{Path, PathBuf};
+
+use common::{clr, stderr};
 
 fn data(name: &str) -> String {
     Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -22,16 +18,7 @@ fn data(name: &str) -> String {
 
 /// A fresh scratch folder under the target dir.
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("cli")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
+    common::scratch_in("cli", name)
 }
 
 /// Header names (units stripped) and rows of a results.csv.
@@ -803,6 +790,18 @@ fn integrator_knobs_reach_the_run() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("--max-order 7"), "{}", stderr(&o));
+    // NDF settings on a Dormand–Prince built-in are refused, not ignored (issue 14)
+    let o = clr(&[
+        "run",
+        "slider_crank",
+        "--max-order",
+        "2",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--set solver=ndf"), "{}", stderr(&o));
     for target in ["slider_crank".to_string(), data("pendulum.toml")] {
         let out = scratch("knobs");
         let o = clr(&[
@@ -810,6 +809,12 @@ fn integrator_knobs_reach_the_run() {
             &target,
             "--t-end",
             "2e-3",
+            "--set",
+            if target.ends_with(".toml") {
+                "solver.method=ndf"
+            } else {
+                "solver=ndf"
+            },
             "--jacobian",
             "finite-difference",
             "--max-order",
@@ -829,4 +834,67 @@ fn integrator_knobs_reach_the_run() {
             assert_eq!(s["parameters"]["solver"]["max_order"], 2, "{s}");
         }
     }
+}
+
+/// `clr run` on the clearance slider–crank model file writes `impacts.csv` (header and one row
+/// per located impact, consistent with the rows of results.csv) and the per-joint `impacts`
+/// summary in summary.json, which agrees with the CSV.
+#[test]
+fn run_writes_located_impacts() {
+    let out = scratch("impacts");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/slider_crank.toml");
+    let o = clr(&[
+        "run",
+        file.to_str().unwrap(),
+        "--t-end",
+        "0.03",
+        "--out",
+        out.to_str().unwrap(),
+        "--no-figures",
+        "-q",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(out.join("impacts.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "joint,onset_s,impact_velocity_m_per_s,peak_force_N,peak_force_time_s,\
+         max_penetration_m,max_penetration_time_s,separation_s,duration_s"
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert!(!rows.is_empty(), "no impact located");
+    let num = |s: &str| s.parse::<f64>().unwrap();
+    for r in &rows {
+        assert_eq!((r.len(), r[0]), (9, "B"));
+        let (onset, peak_t, sep) = (num(r[1]), num(r[4]), r[7]);
+        assert!(num(r[3]) > 0.0 && num(r[5]) > 0.0);
+        if !sep.is_empty() {
+            assert!(onset <= peak_t && peak_t <= num(sep));
+            assert!((num(r[8]) - (num(sep) - onset)).abs() <= 1e-12);
+        }
+    }
+    let (names, data) = read_csv(&out.join("results.csv"));
+    let row_peak = column(&names, &data, "B.normal_force")
+        .into_iter()
+        .fold(0.0, f64::max);
+    let s = summary(&out);
+    let b = &s["impacts"]["B"];
+    assert_eq!(b["count"].as_u64().unwrap() as usize, rows.len());
+    assert_eq!(b["first_impact_s"].as_f64().unwrap(), num(rows[0][1]));
+    let largest = b["largest_peak_force_N"].as_f64().unwrap();
+    assert!(
+        largest >= row_peak * (1.0 - 1e-12),
+        "{largest} < {row_peak}"
+    );
+    let metric = |name: &str| {
+        s["metrics"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find(|m| m["name"] == name)
+            .and_then(|m| m["value"].as_f64())
+            .unwrap()
+    };
+    assert_eq!(metric("B.peak_normal_force"), largest);
+    assert_eq!(metric("B.impacts") as usize, rows.len());
 }

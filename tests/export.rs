@@ -5,26 +5,16 @@
 //! accelerations, contact and reaction forces; the final state; the step count). The shipped
 //! files `models/<name>.toml` are the current exports.
 
+mod common;
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
 
 use clr::spec::run::{execute, resolve, Outcome};
 use clr::spec::{parse_assignment, Assignment};
-
-fn clr(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_clr"))
-        .args(args)
-        .output()
-        .expect("the clr binary runs")
-}
+use common::clr;
 
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
-        .join("export")
-        .join(name);
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch_in("export", name)
 }
 
 /// Overrides that shorten each built-in to a few milliseconds of simulated time (each run under

@@ -63,8 +63,8 @@ fn toml_value(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
 }
 
 /// The outcome as a dict: `time` and every other column as float64 arrays, `units` (column →
-/// unit, `time` → `s`), `metrics` (name → value), `metric_units`, `parameters` (JSON text),
-/// `model`, `source` and `error` (`None`, or the solver's message when the results are partial).
+/// unit, `time` → `s`), `metrics` (name → value), `metric_units`, `impacts` (list of dicts,
+/// [`impacts_list`]), `parameters` (JSON text), `model`, `source` and `error` (`None`, or the solver's message when the results are partial).
 fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let units = PyDict::new(py);
@@ -86,11 +86,37 @@ fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>
     }
     d.set_item("metrics", metrics)?;
     d.set_item("metric_units", metric_units)?;
+    d.set_item("impacts", impacts_list(py, &o.results.impacts)?)?;
     d.set_item("parameters", o.parameters.to_string())?;
     d.set_item("model", o.model)?;
     d.set_item("source", o.source)?;
     d.set_item("error", o.error)?;
     Ok(d)
+}
+
+/// The located impacts as a list of dicts with the columns of `impacts.csv` (docs/cli.md):
+/// `joint`, `onset_s`, `impact_velocity_m_per_s`, `peak_force_N`, `peak_force_time_s`,
+/// `max_penetration_m`, `max_penetration_time_s`, `separation_s` and `duration_s` (`None` while
+/// the contact lasts at the end of the run).
+fn impacts_list<'py>(
+    py: Python<'py>,
+    impacts: &[clr::mbd::Impact],
+) -> PyResult<Bound<'py, PyList>> {
+    let list = PyList::empty(py);
+    for i in impacts {
+        let d = PyDict::new(py);
+        d.set_item("joint", &i.joint)?;
+        d.set_item("onset_s", i.onset)?;
+        d.set_item("impact_velocity_m_per_s", i.impact_velocity)?;
+        d.set_item("peak_force_N", i.peak_force)?;
+        d.set_item("peak_force_time_s", i.peak_force_time)?;
+        d.set_item("max_penetration_m", i.max_penetration)?;
+        d.set_item("max_penetration_time_s", i.max_penetration_time)?;
+        d.set_item("separation_s", i.separation)?;
+        d.set_item("duration_s", i.duration)?;
+        list.append(d)?;
+    }
+    Ok(list)
 }
 
 /// Run a built-in model (by name) or a model file (a path ending in `.toml`, or any existing

@@ -32,9 +32,14 @@ pub(crate) struct RunArgs {
     /// End time of the simulation, s.
     #[arg(long, value_name = "S")]
     pub t_end: Option<f64>,
-    /// Relative tolerance of the integrator.
+    /// Relative tolerance of the integrator; the absolute one becomes 1e-3·rtol unless
+    /// `--atol` is given.
     #[arg(long, value_name = "R")]
     pub rtol: Option<f64>,
+    /// Absolute tolerance of the integrator, in the units of the coordinates and velocities
+    /// (m, rad, m/s, rad/s).
+    #[arg(long, value_name = "A")]
+    pub atol: Option<f64>,
     /// Step budget of the integrator (accepted steps).
     #[arg(long, value_name = "N")]
     pub max_steps: Option<usize>,
@@ -76,6 +81,7 @@ impl RunArgs {
                 JacobianArg::FiniteDifference => clr_mbd::JacobianMode::FiniteDifference,
             }),
             scale_velocity_error: self.scale_velocity_error,
+            atol: self.atol,
         }
     }
 }

@@ -158,7 +158,105 @@ pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> se
             "projections": rec.results.projections,
             "max_position_violation": finite(rec.results.max_position_violation),
         },
+        "initial_conditions": initial_conditions(rec.results.initial_conditions.as_ref()),
+        "impacts": impacts_summary(&rec.results.impacts),
         "parameters": rec.parameters,
+    })
+}
+
+/// Header of `impacts.csv` (units in the names; docs/cli.md).
+pub(crate) const IMPACTS_HEADER: &str = "joint,onset_s,impact_velocity_m_per_s,peak_force_N,\
+peak_force_time_s,max_penetration_m,max_penetration_time_s,separation_s,duration_s";
+
+/// Write the located impacts, one row each in onset order; an empty cell for the separation and
+/// duration of an impact still under way at the end of the run.
+pub(crate) fn write_impacts(path: &Path, impacts: &[clr_mbd::Impact]) -> Result<(), CliError> {
+    let opt = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
+    let mut text = format!("{IMPACTS_HEADER}\n");
+    for i in impacts {
+        text.push_str(&format!(
+            "{},{:e},{:e},{:e},{:e},{:e},{:e},{},{}\n",
+            i.joint,
+            i.onset,
+            i.impact_velocity,
+            i.peak_force,
+            i.peak_force_time,
+            i.max_penetration,
+            i.max_penetration_time,
+            opt(i.separation),
+            opt(i.duration)
+        ));
+    }
+    std::fs::write(path, text).map_err(|e| io(path, e))
+}
+
+/// Per clearance joint with impacts: count, first onset (s), the largest peak normal force (N)
+/// with its time (s), and the largest penetration (m).
+fn impacts_summary(impacts: &[clr_mbd::Impact]) -> serde_json::Value {
+    let mut per: serde_json::Map<String, serde_json::Value> = serde_json::Map::new();
+    let mut joints: Vec<&str> = impacts.iter().map(|i| i.joint.as_str()).collect();
+    joints.dedup();
+    joints.sort_unstable();
+    joints.dedup();
+    for j in joints {
+        let mine = || impacts.iter().filter(move |i| i.joint == j);
+        let Some(peak) = mine().max_by(|a, b| a.peak_force.total_cmp(&b.peak_force)) else {
+            continue;
+        };
+        let pen = mine().fold(f64::NEG_INFINITY, |a, i| a.max(i.max_penetration));
+        let first = mine().fold(f64::INFINITY, |a, i| a.min(i.onset));
+        per.insert(
+            j.to_string(),
+            serde_json::json!({
+                "count": mine().count(),
+                "first_impact_s": first,
+                "largest_peak_force_N": peak.peak_force,
+                "largest_peak_force_time_s": peak.peak_force_time,
+                "largest_penetration_m": pen,
+            }),
+        );
+    }
+    serde_json::Value::Object(per)
+}
+
+/// The initial-conditions report as JSON: per body and coordinate whether it was fixed (given)
+/// or solved, the given and assembled values and the correction, in the units named.
+fn initial_conditions(ic: Option<&clr_mbd::InitialConditions>) -> serde_json::Value {
+    let Some(ic) = ic else {
+        return serde_json::Value::Null;
+    };
+    let bodies: serde_json::Map<String, serde_json::Value> = ic
+        .bodies
+        .iter()
+        .map(|b| {
+            let coords: serde_json::Map<String, serde_json::Value> = b
+                .coordinates
+                .iter()
+                .zip(
+                    clr_mbd::COORDINATE_NAMES
+                        .iter()
+                        .zip(clr_mbd::COORDINATE_UNITS),
+                )
+                .map(|(c, (name, unit))| {
+                    let v = serde_json::json!({
+                        "status": if !c.fixed { "solved" } else if c.is_corrected() {
+                            "corrected" } else { "given" },
+                        "given": c.given,
+                        "assembled": c.assembled,
+                        "correction": c.correction(),
+                        "unit": unit,
+                    });
+                    (name.to_string(), v)
+                })
+                .collect();
+            (b.body.clone(), serde_json::Value::Object(coords))
+        })
+        .collect();
+    serde_json::json!({
+        "position_newton_iterations": ic.newton_iterations,
+        "solved": ic.solved().len(),
+        "corrected": ic.corrected().len(),
+        "bodies": bodies,
     })
 }
 
@@ -172,6 +270,7 @@ pub(crate) fn write_run(
 ) -> Result<(), CliError> {
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
     write_csv(&dir.join("results.csv"), rec)?;
+    write_impacts(&dir.join("impacts.csv"), &rec.results.impacts)?;
     let p = dir.join("summary.json");
     let text = serde_json::to_string_pretty(&summary(rec, t_end, rtol))
         .map_err(|e| CliError::Input(format!("summary: {e}")))?;

@@ -117,10 +117,63 @@ pub(crate) fn builtin(
     for a in overrides {
         apply_json_override(&mut params, a)?;
     }
+    check(file, src, name, &params)?;
     Ok(Loaded::Builtin {
         name: name.to_string(),
         parameters: params,
     })
+}
+
+/// Check the merged parameters as a run would (the catalog builds and compiles the model), so
+/// that a refused value is reported at its place in the file rather than when the run starts.
+fn check(file: &str, src: &str, name: &str, params: &serde_json::Value) -> Result<(), SpecError> {
+    let settings = clr_models::RunSettings::default();
+    let result = clr_models::catalog::export(name, params, &settings).and_then(|d| {
+        d.compile()
+            .map(drop)
+            .map_err(|e| clr_models::ModelsError::Build {
+                model: name.to_string(),
+                source: Box::new(e),
+            })
+    });
+    let message = match result {
+        Ok(()) => return Ok(()),
+        Err(clr_models::ModelsError::InvalidParameters { message, .. }) => message,
+        Err(e) => e.to_string(),
+    };
+    Err(SpecError::at(
+        file,
+        src,
+        &parameter_path(&message, params),
+        message,
+    ))
+}
+
+/// The parameter a catalog message names in backticks (`end`, `friction.mu`), else the
+/// `[parameters]` table.
+fn parameter_path(message: &str, params: &serde_json::Value) -> FieldPath {
+    let base = FieldPath::root().key("parameters");
+    for name in message.split('`').skip(1).step_by(2) {
+        let mut v = params;
+        let mut p = base.clone();
+        let mut found = !name.is_empty();
+        for part in name.split('.') {
+            match v.get(part) {
+                Some(x) => {
+                    v = x;
+                    p = p.key(part);
+                }
+                None => {
+                    found = false;
+                    break;
+                }
+            }
+        }
+        if found {
+            return p;
+        }
+    }
+    base
 }
 
 /// Merge a TOML table into JSON defaults: every key must exist with the same kind of value.

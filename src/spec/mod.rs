@@ -148,9 +148,11 @@ pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loade
     }
     let desc = parse::desc(file, src, root)?;
     if desc.bodies.is_empty() && desc.beams.is_empty() && desc.flexible_bodies.is_empty() {
-        return Err(SpecError::plain(
+        // placed at the missing section (an empty or comment-only file has no other place)
+        return Err(SpecError::at(
             file,
-            "",
+            src,
+            &FieldPath::root().key("body"),
             "the file defines nothing that moves: give at least one [[body]], [[beam]] or \
              [[flexible_body]], or `[model] builtin = \"<name>\"` for a built-in model \
              (`clr list` names them)",

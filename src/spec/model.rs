@@ -166,29 +166,44 @@ impl ModelSpec {
     }
 
     /// Write the integrator knobs that are set into the description's `[solver]` (they were
-    /// asked for on the command line: no note).
-    pub fn set_knobs(&mut self, knobs: &clr_models::SolverKnobs) {
+    /// asked for on the command line: no note) and check them with the method.
+    ///
+    /// # Errors
+    /// [`SpecError`] for a knob the method does not use (`--max-order` with `dopri5`).
+    pub fn set_knobs(&mut self, knobs: &clr_models::SolverKnobs) -> Result<(), SpecError> {
         knobs.apply(&mut self.desc.solver);
+        self.options = self.desc.sim_options().map_err(|e| {
+            let option = e.path.strip_prefix("solver.").unwrap_or(&e.path);
+            SpecError::plain(
+                &format!("--{}", option.replace('_', "-")),
+                "",
+                e.message.clone(),
+            )
+        })?;
         self.resolved["solver"] = serde_json::to_value(&self.desc.solver).unwrap_or_default();
+        if self.desc.solver.atol.is_none() {
+            let atol = clr_mbd::desc::ATOL_PER_RTOL * self.desc.solver.rtol;
+            self.resolved["solver"]["atol"] = serde_json::json!(atol);
+        }
+        Ok(())
     }
 
-    /// Set the relative tolerance, and the absolute one to 10⁻³·rtol as the built-in models do
-    /// (reported in [`ModelSpec::notes`] when that changes the file's `atol`).
+    /// Set the relative tolerance; the absolute one follows the rule atol = 1e-3·rtol
+    /// (`clr_mbd::desc::ATOL_PER_RTOL`) unless `--atol` gives it ([`ModelSpec::set_knobs`]). A
+    /// different `atol` the file gave is replaced, with a note.
     ///
     /// # Errors
     /// [`SpecError`] when `rtol` is not positive.
     pub fn set_rtol(&mut self, rtol: f64) -> Result<(), SpecError> {
-        let atol = 1e-3 * rtol;
-        if self.desc.solver.atol != atol {
+        let atol = clr_mbd::desc::ATOL_PER_RTOL * rtol;
+        if let Some(file_atol) = self.desc.solver.atol.filter(|a| *a != atol) {
             self.notes.push(format!(
                 "--rtol {rtol:e} also sets atol = 1e-3·rtol = {atol:e} (the file's [solver] atol \
-                 = {:e} is not used); give `--set solver.atol=…` with `--set solver.rtol=…` to \
-                 choose both",
-                self.desc.solver.atol
+                 = {file_atol:e} is not used); give `--atol` to choose it"
             ));
         }
         self.desc.solver.rtol = rtol;
-        self.desc.solver.atol = atol;
+        self.desc.solver.atol = None;
         self.options = self
             .desc
             .sim_options()
@@ -234,6 +249,7 @@ impl ModelSpec {
             | E::Contact { item, .. }
             | E::Beam { item, .. } => self.desc_path(item),
             E::DuplicateName { name, .. } => self.desc_path(name),
+            E::InconsistentInitialConditions { field, .. } => self.desc_path(field),
             // labels are `item (equation)`: place the error at the first item named
             E::RedundantConstraints {
                 involved: label, ..
@@ -297,12 +313,57 @@ fn clearances(desc: &ModelDesc) -> Vec<(String, Option<f64>)> {
         .collect()
 }
 
-/// The description as JSON without empty optional fields (for `summary.json`).
+/// The description as JSON without empty optional fields (for `summary.json`), with a
+/// `derived` table of the values the run computed from it rather than read (see [`derived`]).
 fn resolved(file: &str, desc: &ModelDesc) -> Result<serde_json::Value, SpecError> {
     let mut v = serde_json::to_value(desc)
         .map_err(|e| SpecError::plain(file, "", format!("the model cannot be recorded: {e}")))?;
     strip_nulls(&mut v);
+    v["derived"] = derived(desc);
     Ok(v)
+}
+
+/// Values the run uses that the file does not give, each with how it was derived: the
+/// absolute tolerance by the rule atol = 1e-3·rtol, and per contact element the elastic law's
+/// stiffness K and exponent n (computed from materials and radii for the journal-bearing
+/// laws), its hysteresis factor χ and effective restitution.
+fn derived(desc: &ModelDesc) -> serde_json::Value {
+    use clr_mbd::element::Clearance;
+    let mut d = serde_json::Map::new();
+    if desc.solver.atol.is_none() {
+        d.insert(
+            "solver.atol".into(),
+            serde_json::json!({
+                "value": clr_mbd::desc::ATOL_PER_RTOL * desc.solver.rtol,
+                "unit": "units of q and q̇",
+                "from": "1e-3·rtol (not given)",
+            }),
+        );
+    }
+    for c in &desc.clearances {
+        let (normal, radii) = match c {
+            Clearance::Revolute(r) => (&r.normal, Some((r.bearing_radius, r.journal_radius))),
+            Clearance::Translational(t) => (&t.normal, None),
+            Clearance::SliderOnBeam(s) => (&s.normal, None),
+        };
+        let name = c.name();
+        let Ok(law) = normal.build(&format!("{name}.normal"), radii) else {
+            continue;
+        };
+        let mut entry = serde_json::json!({
+            "elastic_law": law.elastic().name(),
+            "hysteresis_factor": law.chi(),
+            "effective_restitution": law.effective_restitution(),
+            "from": "the normal law's parameters, materials and the joint's radii",
+        });
+        if let Some((k, n)) = law.elastic().power_parameters() {
+            entry["stiffness"] = serde_json::json!(k);
+            entry["exponent"] = serde_json::json!(n);
+            entry["stiffness_unit"] = serde_json::json!(format!("N/m^{n}"));
+        }
+        d.insert(format!("{name}.normal"), entry);
+    }
+    serde_json::Value::Object(d)
 }
 
 fn strip_nulls(v: &mut serde_json::Value) {

@@ -76,7 +76,37 @@ pub(crate) fn upgrade(root: &mut toml::Table) -> Vec<String> {
 /// # Errors
 /// [`SpecError`] at the offending field.
 pub(crate) fn desc(file: &str, src: &str, table: toml::Table) -> Result<ModelDesc, SpecError> {
+    refuse_unused_solver_fields(file, src, &table)?;
     ModelDesc::from_toml_table(table).map_err(|e| schema_error(file, src, &e))
+}
+
+/// A `[solver]` field the chosen method does not use is refused even at its default value
+/// (`max_order = 5` under `method = "dopri5"`): every input is used or refused.
+fn refuse_unused_solver_fields(
+    file: &str,
+    src: &str,
+    table: &toml::Table,
+) -> Result<(), SpecError> {
+    let Some(solver) = table.get("solver").and_then(toml::Value::as_table) else {
+        return Ok(());
+    };
+    let method = match solver.get("method").and_then(toml::Value::as_str) {
+        Some("dopri5") => clr_mbd::desc::SolverMethod::Dopri5,
+        _ => return Ok(()),
+    };
+    let unused = clr_mbd::desc::unused_solver_fields(method);
+    match unused.iter().find(|k| solver.contains_key(**k)) {
+        Some(k) => Err(SpecError::at(
+            file,
+            src,
+            &FieldPath::root().key("solver").key(k),
+            format!(
+                "method = \"dopri5\" does not use `{k}` (an NDF setting): remove it, or set \
+                 method = \"ndf\""
+            ),
+        )),
+        None => Ok(()),
+    }
 }
 
 /// A schema error of the description as a [`SpecError`]: the path gets the field a message

@@ -160,8 +160,25 @@ impl Job {
     pub fn with_knobs(mut self, knobs: clr_models::SolverKnobs) -> Result<Job, RunError> {
         knobs.validate().map_err(RunError::Input)?;
         match &mut self {
-            Job::Builtin { knobs: k, .. } => *k = knobs,
-            Job::Generic(s) => s.set_knobs(&knobs),
+            Job::Builtin {
+                knobs: k,
+                parameters,
+                name,
+            } => {
+                let ndf = knobs.ndf_options();
+                if parameters.get("solver").and_then(|s| s.as_str()) == Some("dopri5")
+                    && !ndf.is_empty()
+                {
+                    return Err(RunError::Input(format!(
+                        "{}: model `{name}` runs with Dormand–Prince (its `solver` parameter is \
+                         \"dopri5\"), which does not use NDF settings; add `--set solver=ndf` \
+                         or leave the option out",
+                        ndf.join(", ")
+                    )));
+                }
+                *k = knobs;
+            }
+            Job::Generic(s) => s.set_knobs(&knobs)?,
         }
         Ok(self)
     }
@@ -296,13 +313,8 @@ impl Outcome {
             source: "builtin".into(),
             results: clr_mbd::Results {
                 columns: vec!["t".into()],
-                data: Vec::new(),
-                stats: Default::default(),
-                onsets: 0,
-                projections: 0,
                 max_position_violation: f64::NAN,
-                y_final: Vec::new(),
-                notes: Vec::new(),
+                ..Default::default()
             },
             units: vec!["s".into()],
             metrics: Vec::new(),
@@ -393,20 +405,38 @@ fn max_abs(v: &[f64]) -> f64 {
 fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
     let mut m = Vec::new();
     for (c, radial) in &s.clearances {
+        let impacts = || r.impacts.iter().filter(|i| &i.joint == c);
         if let Some(f) = r.column(&format!("{c}.normal_force")) {
             m.push(Metric::new(
                 &format!("{c}.peak_normal_force"),
-                max_abs(&f),
+                impacts().fold(max_abs(&f), |a, i| a.max(i.peak_force)),
                 "N",
-                "largest normal contact force at the output times",
+                "largest normal contact force, located on the dense output over the impacts \
+                 (the output rows where larger, e.g. a contact at t0)",
             ));
         }
         if let Some(p) = r.column(&format!("{c}.penetration")) {
+            let rows = p.iter().fold(f64::NEG_INFINITY, |a, &x| a.max(x));
             m.push(Metric::new(
                 &format!("{c}.max_penetration"),
-                p.iter().fold(f64::NEG_INFINITY, |a, &x| a.max(x)),
+                impacts().fold(rows, |a, i| a.max(i.max_penetration)),
                 "m",
-                "largest penetration (negative: never in contact) at the output times",
+                "largest penetration, located on the dense output over the impacts (the \
+                 output rows where larger; negative: never in contact)",
+            ));
+        }
+        m.push(Metric::new(
+            &format!("{c}.impacts"),
+            impacts().count() as f64,
+            "-",
+            "impacts (located contact onsets to separation) of the clearance joint",
+        ));
+        if let Some(first) = impacts().map(|i| i.onset).reduce(f64::min) {
+            m.push(Metric::new(
+                &format!("{c}.first_impact"),
+                first,
+                "s",
+                "onset time of the first impact",
             ));
         }
         if let Some(radial) = radial {
@@ -433,8 +463,22 @@ fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
             "energy_change",
             drift,
             "J",
-            "largest |E(t) − E(0)| of the total mechanical energy (work of drivers, damping \
-             and contact included)",
+            "largest |E(t) − E(0)| of the mechanical energy E = kinetic + gravitational + \
+             elastic (springs, beams, contact); it changes by the work of drivers and applied \
+             loads and by dissipation (dampers, contact damping, friction), which it does not \
+             subtract: see energy_balance_error",
+        ));
+    }
+    if let Some(b) = r.column("energy.balance") {
+        let b0 = b.first().copied().unwrap_or(0.0);
+        let err = b.iter().fold(0.0f64, |a, &x| a.max((x - b0).abs()));
+        m.push(Metric::new(
+            "energy_balance_error",
+            err,
+            "J",
+            "largest |B(t) − B(0)| of the energy balance B = E + dissipated − work in (work \
+             of drivers and applied loads): zero but for the integration error and the work of \
+             joint reactions through constraint violations",
         ));
     }
     m.push(Metric::new(

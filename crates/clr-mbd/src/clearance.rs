@@ -177,7 +177,10 @@ pub struct ContactReport {
     /// translational: slider reference point in the guide frame, m.
     pub eccentricity: [f64; 2],
     /// Power dissipated by contact damping and friction, (F_N − F_e(δ))·δ̇ − F_T·v_T summed over
-    /// the active points, W.
+    /// the active points, W. For a revolute joint it is the power the applied force pair takes
+    /// out of the bodies minus the elastic storage F_e·δ̇, so v_T is the slip at the points the
+    /// pair is applied to: with the default common-point application it differs from the slip
+    /// of the contact points by (δ/2)(ω_i + ω_j).
     pub dissipated_power: f64,
 }
 
@@ -251,10 +254,12 @@ impl Clearance {
                     rep.active_points = 1;
                     rep.normal_force = jf.normal_force;
                     rep.friction_force = jf.tangential_force;
-                    rep.dissipated_power = (jf.normal_force
-                        - self.normal.elastic_force(ct.penetration))
-                        * ct.normal_velocity
-                        - jf.tangential_force * ct.tangential_velocity;
+                    rep.dissipated_power = revolute_dissipated_power(
+                        &jf,
+                        bi,
+                        bj,
+                        self.normal.elastic_force(ct.penetration) * ct.normal_velocity,
+                    );
                 }
             }
             ClearanceKind::Translational {
@@ -538,4 +543,24 @@ fn elastic_energy(law: &NormalLaw, delta: f64) -> f64 {
         s += w * (law.elastic_force(h * (1.0 - x)) + law.elastic_force(h * (1.0 + x)));
     }
     s * h
+}
+
+/// Power dissipated by the contact force pair `jf` of a revolute clearance joint, W: minus the
+/// power the pair delivers to the bearing body `bi` and the journal body `bj` (g·(v, ω) of each
+/// body's generalized force, which is q̇ᵀQ of what is added to Q) minus the elastic storage
+/// `elastic_power` = F_e(δ)·δ̇. It equals (F_N − F_e)δ̇ − F_T·v_T with v_T the slip at the points
+/// where the pair acts: the contact points ([`ForceApplication::ContactPoints`]) or their
+/// midpoint ([`ForceApplication::CommonPoint`], where the slip is v_T − (δ/2)(ω_i + ω_j)); taking
+/// it from the applied forces keeps `energy.balance` closed whichever application is chosen.
+#[inline]
+pub(crate) fn revolute_dissipated_power(
+    jf: &clr_contact::revolute::JointForces,
+    bi: &BodyState,
+    bj: &BodyState,
+    elastic_power: f64,
+) -> f64 {
+    let power = |g: &clr_contact::GeneralizedForce, b: &BodyState| {
+        g.force.dot(&b.velocity) + g.moment * b.angular_velocity
+    };
+    -power(&jf.bearing, bi) - power(&jf.journal, bj) - elastic_power
 }

@@ -122,6 +122,20 @@ pub enum MbdError {
         /// The most violated equation.
         worst: String,
     },
+    /// `initial_conditions = "exact"` and the given initial state does not satisfy the
+    /// constraints: the assembly would have changed given coordinates.
+    #[error(
+        "initial_conditions = \"exact\": the given initial state does not satisfy the \
+         constraints; the assembly would change {corrected}. Give consistent values (the \
+         assembled ones are shown), leave the coordinates to solve out of the model, or set \
+         initial_conditions = \"assemble\""
+    )]
+    InconsistentInitialConditions {
+        /// The changes as `body.coordinate given → assembled unit` items.
+        corrected: String,
+        /// The description field of the first change (`rod.angular_velocity`).
+        field: String,
+    },
     /// A field of the description is invalid (the path names it, e.g. `driver[0].motion.rate`
     /// or `crank_drive.motion.rate` for an element's field).
     #[error("field `{path}`: {message}")]

@@ -80,9 +80,10 @@ impl FlexBeam {
             .collect()
     }
 
-    /// Add −K u − C u̇ + f(t) to `qf` (free ordering at `offset`) and return the dissipated power
-    /// u̇ᵀ C u̇ (W).
-    pub(crate) fn forces(&self, t: f64, q: &[f64], qd: &[f64], qf: &mut [f64]) -> f64 {
+    /// Add −K u − C u̇ + f(t) to `qf` (free ordering at `offset`) and return (the dissipated
+    /// power u̇ᵀ C u̇, the power of the nodal loads f(t)ᵀu̇), W. Load components on supported DOF
+    /// do no work and are dropped.
+    pub(crate) fn forces(&self, t: f64, q: &[f64], qd: &[f64], qf: &mut [f64]) -> (f64, f64) {
         let (o, nf) = (self.offset, self.n_free());
         let (u, ud) = (&q[o..o + nf], &qd[o..o + nf]);
         let mut p = 0.0;
@@ -92,15 +93,17 @@ impl FlexBeam {
             qf[o + a] -= ku + cu;
             p += ud[a] * cu;
         }
+        let mut p_in = 0.0;
         for (idx, f) in &self.loads {
             let v = f(t);
             for (i, fi) in idx.iter().zip(v) {
                 if let Some(i) = i {
                     qf[o + i] += fi;
+                    p_in += fi * ud[*i];
                 }
             }
         }
-        p
+        (p, p_in)
     }
 
     /// (kinetic ½u̇ᵀMu̇, elastic ½uᵀKu), J.

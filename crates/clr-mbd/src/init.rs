@@ -18,6 +18,32 @@ use crate::system::Model;
 const RANK_TOL: f64 = 1e-9;
 /// Largest number of Newton iterations of the position assembly.
 const MAX_NEWTON: usize = 50;
+/// Weight of a solved (not given) coordinate relative to a fixed one in the assembly metric:
+/// the correction goes to the solved coordinates whenever they can satisfy the constraints,
+/// and a fixed one moves by about 1e-8 of the correction only where they cannot.
+const SOLVED_WEIGHT: f64 = 1e8;
+/// Relative size, against max(1, |value|), of a change of a fixed coordinate that the
+/// initial-conditions report counts as a correction (and `exact` mode refuses).
+pub const CORRECTION_TOL: f64 = 1e-9;
+
+/// Which of q (positions) or q̇ (velocities) an assembly step corrects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Phase {
+    /// Positions and angles (Φ = 0).
+    Position,
+    /// Velocities (Φ̇ = 0).
+    Velocity,
+}
+
+/// How the assembly weighs the coordinates.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Metric {
+    /// The kinetic metric W = M⁻¹ for every coordinate (drift projection during a run).
+    Kinetic,
+    /// W = M⁻¹ for fixed coordinates and [`SOLVED_WEIGHT`]·M⁻¹ for solved ones (initial
+    /// conditions).
+    FixedFirst,
+}
 
 impl Model {
     /// W^{1/2} for coordinate c (inverse square root of its mass or inertia).
@@ -92,8 +118,23 @@ impl Model {
         }
     }
 
+    /// The square root of the assembly weight W_cc of coordinate c in `phase` under `metric`.
+    fn weight_sqrt(&self, c: usize, phase: Phase, metric: Metric) -> f64 {
+        let w = self.w_sqrt(c);
+        let k = c / 3;
+        if metric == Metric::Kinetic || k >= self.fixed.len() {
+            return w;
+        }
+        let slot = c % 3 + if phase == Phase::Velocity { 3 } else { 0 };
+        if self.fixed[k][slot] {
+            w
+        } else {
+            SOLVED_WEIGHT.sqrt() * w
+        }
+    }
+
     /// Factor S = Φ_q W Φ_qᵀ (m × m) from the current Φ_q.
-    fn factor_s(&self, lu: &mut DenseLu) -> bool {
+    fn factor_s(&self, lu: &mut DenseLu, phase: Phase, metric: Metric) -> bool {
         let (n, m) = (self.n, self.m);
         lu.resize(m);
         let s = lu.matrix_mut();
@@ -101,7 +142,7 @@ impl Model {
             for b in 0..m {
                 let mut v = 0.0;
                 for c in 0..n {
-                    let w = self.w_sqrt(c);
+                    let w = self.weight_sqrt(c, phase, metric);
                     v += self.phiq[a * n + c] * self.phiq[b * n + c] * w * w;
                 }
                 s[a + b * m] = v;
@@ -111,11 +152,11 @@ impl Model {
     }
 
     /// x ← x − W Φ_qᵀ S⁻¹ r (r overwritten).
-    fn correct(&self, lu: &mut DenseLu, r: &mut [f64], x: &mut [f64]) {
+    fn correct(&self, lu: &mut DenseLu, r: &mut [f64], x: &mut [f64], ph: (Phase, Metric)) {
         let n = self.n;
         lu.solve(r);
         for (c, xc) in x.iter_mut().enumerate() {
-            let w = self.w_sqrt(c).powi(2);
+            let w = self.weight_sqrt(c, ph.0, ph.1).powi(2);
             let mut v = 0.0;
             for (a, ra) in r.iter().enumerate() {
                 v += self.phiq[a * n + c] * ra;
@@ -124,13 +165,24 @@ impl Model {
         }
     }
 
-    /// Project y = (q, q̇, …) onto Φ = 0 (Newton) and Φ̇ = 0 (one linear solve) at time t.
-    /// Returns the number of Newton iterations.
+    /// Project y = (q, q̇, …) onto Φ = 0 (Newton) and Φ̇ = 0 (one linear solve) at time t, in
+    /// the kinetic metric (the correction of least kinetic energy). Returns the number of Newton
+    /// iterations.
     ///
     /// # Errors
     /// [`MbdError::Assembly`] when Newton does not reach `tol` (‖Φ‖∞ in m or rad), and
     /// [`MbdError::RedundantConstraints`] when Φ_q loses rank.
     pub fn project(&mut self, t: f64, y: &mut [f64], tol: f64) -> Result<usize, MbdError> {
+        self.project_in(t, y, tol, Metric::Kinetic)
+    }
+
+    fn project_in(
+        &mut self,
+        t: f64,
+        y: &mut [f64],
+        tol: f64,
+        metric: Metric,
+    ) -> Result<usize, MbdError> {
         let (n, m) = (self.n, self.m);
         if m == 0 {
             return Ok(0);
@@ -139,6 +191,7 @@ impl Model {
         let zeros = vec![0.0; n];
         let mut r = vec![0.0; m];
         let mut it = 0;
+        let pos = (Phase::Position, metric);
         loop {
             let (q, _) = y.split_at_mut(n);
             self.eval_constraints(t, q, &zeros);
@@ -147,25 +200,9 @@ impl Model {
                 break;
             }
             if it >= MAX_NEWTON || !res.is_finite() {
-                let (k, _) = self
-                    .phi
-                    .iter()
-                    .enumerate()
-                    .fold((0, 0.0f64), |(bk, bv), (k, v)| {
-                        if v.abs() > bv {
-                            (k, v.abs())
-                        } else {
-                            (bk, bv)
-                        }
-                    });
-                return Err(MbdError::Assembly {
-                    t,
-                    residual: res,
-                    iterations: it,
-                    worst: self.row_labels()[k].clone(),
-                });
+                return Err(self.assembly_error(t, res, it));
             }
-            if !self.factor_s(&mut lu) {
+            if !self.factor_s(&mut lu, pos.0, pos.1) {
                 self.check_rank(t, &y[..n])?;
                 return Err(MbdError::Assembly {
                     t,
@@ -175,32 +212,150 @@ impl Model {
                 });
             }
             r.copy_from_slice(&self.phi);
-            self.correct(&mut lu, &mut r, q);
+            self.correct(&mut lu, &mut r, q, pos);
             it += 1;
         }
-        // velocities: Φ̇(q, q̇) = Φ_q q̇ + Φ_t is affine in q̇, so one correction is exact
-        let (q, rest) = y.split_at_mut(n);
-        let qd = &mut rest[..n];
-        self.eval_constraints(t, q, qd);
-        if !self.factor_s(&mut lu) {
-            self.check_rank(t, q)?;
-        }
-        r.copy_from_slice(&self.phid);
-        self.correct(&mut lu, &mut r, qd);
+        self.project_velocities(t, y, metric, &mut lu)?;
         Ok(it)
     }
 
+    /// Φ̇(q, q̇) = Φ_q q̇ + Φ_t is affine in q̇, so one correction is exact up to rounding; with
+    /// the fixed-first metric (weights 1e8 apart, S less well conditioned) a second one removes
+    /// that rounding.
+    fn project_velocities(
+        &mut self,
+        t: f64,
+        y: &mut [f64],
+        metric: Metric,
+        lu: &mut DenseLu,
+    ) -> Result<(), MbdError> {
+        let n = self.n;
+        let mut r = vec![0.0; self.m];
+        let passes = if metric == Metric::Kinetic { 1 } else { 2 };
+        let (q, rest) = y.split_at_mut(n);
+        let qd = &mut rest[..n];
+        self.eval_constraints(t, q, qd);
+        if !self.factor_s(lu, Phase::Velocity, metric) {
+            self.check_rank(t, q)?;
+        }
+        for _ in 0..passes {
+            r.copy_from_slice(&self.phid);
+            self.correct(lu, &mut r, qd, (Phase::Velocity, metric));
+            self.eval_constraints(t, q, qd);
+        }
+        Ok(())
+    }
+
+    /// The assembly failure at (t, residual, iterations), naming the most violated equation.
+    fn assembly_error(&self, t: f64, residual: f64, iterations: usize) -> MbdError {
+        let (k, _) = self
+            .phi
+            .iter()
+            .enumerate()
+            .fold((0, 0.0f64), |(bk, bv), (k, v)| {
+                if v.abs() > bv {
+                    (k, v.abs())
+                } else {
+                    (bk, bv)
+                }
+            });
+        MbdError::Assembly {
+            t,
+            residual,
+            iterations,
+            worst: self.row_labels()[k].clone(),
+        }
+    }
+
     /// A consistent initial state y0 = (q, q̇) at t0 from the poses and velocities given to the
-    /// builder: rank check, Newton on positions to ‖Φ‖∞ ≤ 1e-12, then velocities.
+    /// builder: rank check, Newton on positions to ‖Φ‖∞ ≤ 1e-12, then velocities. Coordinates
+    /// the description left out are solved first ([`Body`](crate::desc::Body)); see
+    /// [`Model::assemble_initial_state`] for the report of what changed.
     ///
     /// # Errors
     /// [`MbdError::RedundantConstraints`] or [`MbdError::Assembly`].
     pub fn initial_state(&mut self, t0: f64) -> Result<Vec<f64>, MbdError> {
-        let mut y = self.given_state();
+        self.assemble_initial_state(t0).map(|(y, _)| y)
+    }
+
+    /// As [`Model::initial_state`], with the report of every coordinate the assembly solved or
+    /// changed (Adams' initial-conditions analysis). Positions are assembled by Newton's
+    /// method on Φ(q, t0) = 0 and velocities by the linear solve of Φ_q q̇ = −Φ_t, both as the
+    /// correction of least weighted norm: the coordinates the description left out weigh 1e8
+    /// times less than the given ones, so they take the correction whenever they can satisfy
+    /// the constraints alone (a rod's angular velocity left out is solved from the crank's
+    /// motion and the given velocities are kept).
+    ///
+    /// # Errors
+    /// [`MbdError::RedundantConstraints`] or [`MbdError::Assembly`].
+    pub fn assemble_initial_state(
+        &mut self,
+        t0: f64,
+    ) -> Result<(Vec<f64>, InitialConditions), MbdError> {
+        let given = self.given_state();
+        let mut y = given.clone();
         let n = self.n;
         self.check_rank(t0, &y[..n])?;
-        self.project(t0, &mut y, 1e-12)?;
-        Ok(y)
+        // everything given: the kinetic metric (the same correction, one velocity pass)
+        let metric = if self.fixed.iter().flatten().all(|&f| f) {
+            Metric::Kinetic
+        } else {
+            Metric::FixedFirst
+        };
+        let iterations = self.project_in(t0, &mut y, 1e-12, metric)?;
+        if metric == Metric::FixedFirst {
+            // the weights leave about 1e-8 of the correction on fixed coordinates even where the
+            // solved ones suffice: put the fixed ones back and project again, which shrinks that
+            // share by 1e-8 per pass (and repeats the same change where it is needed)
+            for _ in 0..2 {
+                self.restore_fixed(&given, &mut y);
+                self.project_in(t0, &mut y, 1e-12, metric)?;
+            }
+        }
+        let report = InitialConditions {
+            newton_iterations: iterations,
+            bodies: self.body_corrections(&given, &y),
+        };
+        Ok((y, report))
+    }
+
+    /// Set the fixed coordinates of y back to their given values.
+    fn restore_fixed(&self, given: &[f64], y: &mut [f64]) {
+        let n = self.n;
+        for (k, fixed) in self.fixed.iter().enumerate() {
+            for (slot, _) in fixed.iter().enumerate().filter(|(_, f)| **f) {
+                let i = if slot < 3 {
+                    3 * k + slot
+                } else {
+                    n + 3 * k + slot - 3
+                };
+                y[i] = given[i];
+            }
+        }
+    }
+
+    /// The given and assembled coordinates of every rigid body.
+    fn body_corrections(&self, given: &[f64], y: &[f64]) -> Vec<BodyInitialState> {
+        let n = self.n;
+        (0..self.bodies.len())
+            .map(|k| {
+                let at = |c: usize| -> [f64; 2] {
+                    let i = if c < 3 { 3 * k + c } else { n + 3 * k + c - 3 };
+                    [given[i], y[i]]
+                };
+                BodyInitialState {
+                    body: self.body_names[k].clone(),
+                    coordinates: std::array::from_fn(|c| {
+                        let [g, a] = at(c);
+                        CoordinateInitialState {
+                            fixed: self.fixed[k][c],
+                            given: g,
+                            assembled: a,
+                        }
+                    }),
+                }
+            })
+            .collect()
     }
 
     /// Constraint violations (‖Φ‖∞ in m or rad, ‖Φ̇‖∞ in m/s or rad/s) at (t, y).
@@ -211,5 +366,126 @@ impl Model {
         let a = self.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let b = self.phid.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         (a, b)
+    }
+}
+
+/// The names of a rigid body's six initial coordinates in [`BodyInitialState::coordinates`]
+/// (centre of mass): x, y (m), θ (rad), v_x, v_y (m/s), ω (rad/s).
+pub const COORDINATE_NAMES: [&str; 6] = ["x", "y", "theta", "vx", "vy", "omega"];
+/// Units of [`COORDINATE_NAMES`].
+pub const COORDINATE_UNITS: [&str; 6] = ["m", "m", "rad", "m/s", "m/s", "rad/s"];
+
+/// One initial coordinate of a rigid body before and after the assembly.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CoordinateInitialState {
+    /// True when the description gave it (fixed), false when it was left out (solved).
+    pub fixed: bool,
+    /// The value the description implies (0 when left out), in the unit of
+    /// [`COORDINATE_UNITS`].
+    pub given: f64,
+    /// The value after the assembly (the start of the run).
+    pub assembled: f64,
+}
+
+impl CoordinateInitialState {
+    /// assembled − given.
+    pub fn correction(&self) -> f64 {
+        self.assembled - self.given
+    }
+
+    /// A fixed coordinate that moved by more than [`CORRECTION_TOL`]·max(1, |given|).
+    pub fn is_corrected(&self) -> bool {
+        self.fixed && self.correction().abs() > CORRECTION_TOL * self.given.abs().max(1.0)
+    }
+}
+
+/// A rigid body's initial centre-of-mass coordinates before and after the assembly.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyInitialState {
+    /// Body name.
+    pub body: String,
+    /// x, y, θ, v_x, v_y, ω in the order of [`COORDINATE_NAMES`].
+    pub coordinates: [CoordinateInitialState; 6],
+}
+
+/// What the assembly of consistent initial conditions did ([`Model::assemble_initial_state`]).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct InitialConditions {
+    /// Newton iterations on the positions (0: the given positions already closed every loop).
+    pub newton_iterations: usize,
+    /// Every rigid body, in definition order.
+    pub bodies: Vec<BodyInitialState>,
+}
+
+impl InitialConditions {
+    /// The coordinates left out of the description, with the values the assembly chose:
+    /// (body, coordinate name, value).
+    pub fn solved(&self) -> Vec<(&str, &'static str, f64)> {
+        self.each()
+            .filter(|(_, _, c)| !c.fixed)
+            .map(|(b, name, c)| (b, name, c.assembled))
+            .collect()
+    }
+
+    /// The given coordinates the assembly changed beyond [`CORRECTION_TOL`]: (body,
+    /// coordinate name, given, assembled).
+    pub fn corrected(&self) -> Vec<(&str, &'static str, f64, f64)> {
+        self.each()
+            .filter(|(_, _, c)| c.is_corrected())
+            .map(|(b, name, c)| (b, name, c.given, c.assembled))
+            .collect()
+    }
+
+    fn each(&self) -> impl Iterator<Item = (&str, &'static str, &CoordinateInitialState)> {
+        self.bodies.iter().flat_map(|b| {
+            b.coordinates
+                .iter()
+                .zip(COORDINATE_NAMES)
+                .map(move |(c, name)| (b.body.as_str(), name, c))
+        })
+    }
+
+    /// The report in words, one sentence for the solved coordinates that moved off 0 and one for
+    /// the corrected ones (empty when the given state was consistent and what was left out
+    /// stayed 0).
+    pub fn notes(&self) -> Vec<String> {
+        let unit = |name: &str| {
+            COORDINATE_NAMES
+                .iter()
+                .position(|n| *n == name)
+                .map_or("", |k| COORDINATE_UNITS[k])
+        };
+        let mut notes = Vec::new();
+        // a coordinate left out that stays at the 0 it started from needs no sentence (a body
+        // released from rest); it is still listed as solved in the report
+        let solved: Vec<_> = self
+            .solved()
+            .into_iter()
+            .filter(|(_, _, v)| v.abs() > CORRECTION_TOL)
+            .collect();
+        if !solved.is_empty() {
+            let list: Vec<String> = solved
+                .iter()
+                .map(|(b, c, v)| format!("{b}.{c} = {v:.6e} {}", unit(c)))
+                .collect();
+            notes.push(format!(
+                "initial conditions: not given in the model, solved from the constraints: {}",
+                list.join(", ")
+            ));
+        }
+        let corrected = self.corrected();
+        if !corrected.is_empty() {
+            let list: Vec<String> = corrected
+                .iter()
+                .map(|(b, c, g, a)| {
+                    format!("{b}.{c} {g:.6e} → {a:.6e} {} (Δ = {:.3e})", unit(c), a - g)
+                })
+                .collect();
+            notes.push(format!(
+                "initial conditions: given values changed to satisfy the constraints                  (initial_conditions = \"exact\" refuses this): {}",
+                list.join(", ")
+            ));
+        }
+        notes
     }
 }

@@ -38,6 +38,7 @@ pub mod error;
 mod field;
 mod flexible;
 pub mod floating;
+pub mod impacts;
 mod init;
 pub mod jacobian;
 pub mod linsys;
@@ -56,6 +57,11 @@ pub use desc::laws::{ContactFriction, FrictionLawDesc, FrictionSpec, NormalLawDe
 pub use desc::{BeamMesh, Body, FieldError, ModelDesc, Reduction};
 pub use element::Anchor;
 pub use error::MbdError;
+pub use impacts::Impact;
+pub use init::{
+    BodyInitialState, CoordinateInitialState, InitialConditions, COORDINATE_NAMES,
+    COORDINATE_UNITS, CORRECTION_TOL,
+};
 pub use jacobian::Jacobians;
 pub use linsys::{LinearSolver, SPARSE_FROM};
 pub use model::{
@@ -66,7 +72,7 @@ pub use runtime::{RigidBody, GROUND};
 pub use timefn::TimeFn;
 /// The former name of [`TimeFn`] for drivers' motions.
 pub type Motion = TimeFn;
-pub use sim::{Results, SimOptions, SolverKind};
+pub use sim::{InitialConditionsMode, Results, SimOptions, SolverKind};
 pub use system::{ContactReport, Energies, Model, DEFAULT_BAUMGARTE_ALPHA, DEFAULT_BAUMGARTE_BETA};
 
 #[cfg(test)]

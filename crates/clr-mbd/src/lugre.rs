@@ -20,10 +20,11 @@
 //!
 //! # State layout
 //!
-//! y = (q, q̇, E_d, z_1 … z_m): after the n coordinates, the n velocities and the dissipated
-//! energy, one bristle deflection per LuGre contact point, element by element in definition
-//! order: 1 for a revolute clearance joint, 4 for a translational one (its corners, numbered as
-//! clr-contact numbers them). Models without LuGre keep y = (q, q̇, E_d). Every state starts at
+//! y = (q, q̇, E_d, W_in, z_1 … z_m): after the n coordinates, the n velocities, the dissipated
+//! energy and the input work, one bristle deflection per LuGre contact point, element by element
+//! in definition order: 1 for a revolute clearance joint, 4 for a translational one (its
+//! corners, numbered as clr-contact numbers them). Models without LuGre keep
+//! y = (q, q̇, E_d, W_in). Every state starts at
 //! z = 0 ([`Model::given_state`](crate::Model::given_state)): undeflected bristles.
 //!
 //! # Contact loss
@@ -87,17 +88,17 @@ pub(crate) fn assign_bristles(clearances: &mut [Clearance]) -> Bristles {
 
 impl Model {
     /// Number of LuGre bristle states m (0 without LuGre friction): the state is
-    /// y = (q, q̇, E_d, z_1 … z_m) of dimension 2n + 1 + m, one z (m) per LuGre contact point,
-    /// element by element in definition order (1 per revolute, 4 per translational clearance
-    /// joint, corners as clr-contact numbers them), each starting at 0.
+    /// y = (q, q̇, E_d, W_in, z_1 … z_m) of dimension 2n + 2 + m, one z (m) per LuGre contact
+    /// point, element by element in definition order (1 per revolute, 4 per translational
+    /// clearance joint, corners as clr-contact numbers them), each starting at 0.
     pub fn n_bristle_states(&self) -> usize {
         self.bristles.len()
     }
 
-    /// Copy the bristle states of y = (q, q̇, E_d, z) into the workspace (a shorter y, without
-    /// them, leaves the workspace as it is).
+    /// Copy the bristle states of y = (q, q̇, E_d, W_in, z) into the workspace (a shorter y,
+    /// without them, leaves the workspace as it is).
     pub(crate) fn load_bristles(&mut self, y: &[f64]) {
-        let o = 2 * self.n + 1;
+        let o = self.bristle_offset();
         if let Some(z) = y.get(o..o + self.bristles.len()) {
             self.bristles.z.copy_from_slice(z);
         }
@@ -143,7 +144,7 @@ impl Model {
             }
             ev += events;
         }
-        let o = 2 * n + 1;
+        let o = self.bristle_offset();
         let mut changed = false;
         for s in zero {
             if y[o + s] != 0.0 {
@@ -155,12 +156,12 @@ impl Model {
     }
 
     /// Absolute tolerances of the whole state when the model has bristle states: `atol` for
-    /// (q, q̇, E_d), min(atol, rtol·z_max) for each z (`None` without LuGre friction).
+    /// (q, q̇, E_d, W_in), min(atol, rtol·z_max) for each z (`None` without LuGre friction).
     pub(crate) fn bristle_atol(&self, atol: f64, rtol: f64) -> Option<Vec<f64>> {
         if self.bristles.len() == 0 {
             return None;
         }
-        let o = 2 * self.n + 1;
+        let o = self.bristle_offset();
         let mut v = vec![atol; o + self.bristles.len()];
         for cl in &self.clearances {
             if let Some(l) = &cl.lugre {

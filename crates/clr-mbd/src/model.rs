@@ -156,10 +156,10 @@ impl ModelBuilder {
             name: name.into(),
             mass: body.mass,
             inertia: body.inertia,
-            position: body.position,
-            angle: body.angle,
-            velocity: body.velocity,
-            angular_velocity: body.angular_velocity,
+            position: Some(body.position),
+            angle: Some(body.angle),
+            velocity: Some(body.velocity),
+            angular_velocity: Some(body.angular_velocity),
             centre_of_mass: [0.0, 0.0],
         });
         self
@@ -505,6 +505,8 @@ impl ModelBuilder {
                 journal_radius: spec.journal_radius,
                 normal: spec.normal,
                 friction: spec.friction,
+                // the model-wide setting ([`ModelBuilder::clearance_force_application`])
+                force_application: None,
             }
             .into(),
         );

@@ -1,7 +1,7 @@
 //! The Newton systems of the implicit integrator in second-order form, from the analytic
 //! Jacobians of the elements ([`crate::jacobian`]).
 //!
-//! The first-order system is y = (q, v, E_d) with q̇ = v, v̇ = a(q, v) from the augmented
+//! The first-order system is y = (q, v, E_d, W_in) with q̇ = v, v̇ = a(q, v) from the augmented
 //! equations (see [`crate::system`]):
 //!
 //! ```text
@@ -11,7 +11,7 @@
 //!
 //! NDF asks for solutions of (I − cJ) Δy = r. Eliminating Δq = r_q + cΔv and writing the
 //! solution of the linearized augmented equations with an auxiliary multiplier μ gives a system
-//! of size n + m instead of 2n + 1 (the same reduction as the iteration matrix of implicit
+//! of size n + m instead of 2n + 2 (the same reduction as the iteration matrix of implicit
 //! integrators in second-order form, e.g. Géradin & Cardona, *Flexible Multibody Dynamics*,
 //! Wiley 2001, §11.3, and the HHT/generalized-α matrices of Negrut, Rampalli, Ottarsson & Sajdak,
 //! J. Comput. Nonlinear Dyn. 2 (2007) 73–85, eq. 16):
@@ -22,8 +22,9 @@
 //! ```
 //!
 //! with b_v = −2(Φ_q v)_q − 2αΦ_q and b_q = −2α(Φ_q v)_q − β²Φ_q − (Φ_q a)_q (the last term
-//! from differentiating Φ_q a = b). E_d is a passive integral (nothing depends on it): its row is
-//! taken as ΔE = r_E, which simplified Newton corrects at the next iteration.
+//! from differentiating Φ_q a = b). E_d and W_in are passive quadratures (nothing depends on
+//! them): their rows are taken as ΔE = r_E and ΔW = r_W (left in place by the solve), which
+//! simplified Newton corrects at the next iteration.
 //!
 //! Left out (the matrix is an approximation, as simplified Newton allows): the derivatives of
 //! M(q) of floating-frame bodies times a, the geometric stiffness (Φ_qᵀλ)_q and ∂γ/∂q. They
@@ -51,8 +52,8 @@ pub enum JacobianMode {
     /// [`JacobianMode::FiniteDifference`] (reported in the run's notes).
     #[default]
     Analytic,
-    /// Forward differences of the whole first-order right-hand side by clr-ode (2n + 2
-    /// evaluations, each with an augmented solve) and a dense LU of size 2n + 1 + bristles: the
+    /// Forward differences of the whole first-order right-hand side by clr-ode (2n + 3
+    /// evaluations, each with an augmented solve) and a dense LU of size 2n + 2 + bristles: the
     /// independent check, and the method of clr before the analytic Newton matrix.
     FiniteDifference,
 }
@@ -249,7 +250,7 @@ impl Model {
     }
 
     /// Solve (I − cJ) Δy = b in place through the reduced system: Δv and cμ from
-    /// [M r_v + c Q_q r_q; Φ_q r_v + c b_q r_q], then Δq = r_q + cΔv, ΔE = r_E.
+    /// [M r_v + c Q_q r_q; Φ_q r_v + c b_q r_q], then Δq = r_q + cΔv, ΔE = r_E, ΔW = r_W.
     fn reduced_solve(&self, ws: &mut NewtonWs, b: &mut [f64]) {
         let n = self.n;
         let c = ws.c;

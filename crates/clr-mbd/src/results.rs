@@ -17,9 +17,13 @@ use clr_ode::Stats;
 /// in m; for a translational joint the F_N-weighted mean over its loaded corners, so that
 /// σ₀·lugre_z·ΣF_N is the elastic bristle part of the friction force; the plain mean of its
 /// corners when none is loaded); `energy.kinetic energy.potential energy.elastic energy.total
-/// energy.dissipated` (energy dissipated since t0 by dampers, contact damping and friction);
+/// energy.dissipated energy.work_in energy.balance` (J: `dissipated` is the energy dissipated
+/// since t0 by dampers, contact damping and friction; `work_in` the work done on the system since
+/// t0 by drivers (their reaction forces) and applied forces, torques, actuator forces, nodal
+/// loads, bushings and custom loads; `balance` = total + dissipated − work_in, constant up to
+/// the integration error and the work of constraint reactions through violations);
 /// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Default)]
 pub struct Results {
     /// Column names.
     pub columns: Vec<String>,
@@ -33,12 +37,22 @@ pub struct Results {
     pub projections: usize,
     /// Largest ‖Φ‖∞ seen after accepted steps (before any projection), m or rad.
     pub max_position_violation: f64,
-    /// Final state (q, q̇, dissipated energy, LuGre bristle states; see
-    /// [`Model::n_bristle_states`](crate::Model::n_bristle_states)).
+    /// Final state (q, q̇, dissipated energy E_d in J, input work W_in in J, LuGre bristle
+    /// states in m; see [`Model::n_bristle_states`](crate::Model::n_bristle_states)).
     pub y_final: Vec<f64>,
     /// Automatic choices the run made for the user, in words (for example the Newton matrix
     /// falling back to finite differences for a model with LuGre bristle states).
     pub notes: Vec<String>,
+    /// Impacts of the clearance joints located on the dense output, in onset order
+    /// ([`Impact`](crate::Impact); onset, impact velocity m/s, peak normal force N and largest
+    /// penetration m with their times, separation and duration s). A failed run carries the
+    /// impacts up to its last accepted step, the one under way with `separation: None`.
+    pub impacts: Vec<crate::Impact>,
+    /// What the assembly of consistent initial conditions solved and changed (set by
+    /// [`Model::simulate`](crate::Model::simulate); `None` from
+    /// [`Model::simulate_from`](crate::Model::simulate_from), which starts from the state it is
+    /// given).
+    pub initial_conditions: Option<crate::InitialConditions>,
 }
 
 impl Results {

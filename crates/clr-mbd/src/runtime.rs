@@ -262,8 +262,12 @@ impl ForceEl {
 }
 
 impl ForceEl {
-    /// Add this element's generalized forces at (t, q, q̇) into `qf`; returns the power it
-    /// dissipates (W).
+    /// Add this element's generalized forces at (t, q, q̇) into `qf`; returns (the power it
+    /// dissipates, the power it puts into the system), W. Spring and damper terms go to the
+    /// elastic energy and the dissipation; applied loads (forces, torques, an actuator's push
+    /// F(t), bushings and custom loads, whose energy is not otherwise accounted) report their
+    /// power F·v of the application point, τ·ω, τ·(ω_j − ω_i), which is exactly q̇ᵀ of the
+    /// generalized force they add.
     pub(crate) fn eval(
         &self,
         frames: &[Frame],
@@ -271,8 +275,8 @@ impl ForceEl {
         q: &[f64],
         qd: &[f64],
         qf: &mut [f64],
-    ) -> f64 {
-        let mut p_diss = 0.0;
+    ) -> (f64, f64) {
+        let (mut p_diss, mut p_in) = (0.0, 0.0);
         match self {
             ForceEl::Spring {
                 i,
@@ -291,7 +295,7 @@ impl ForceEl {
                 let d = bj.position + aj - bi.position - ai;
                 let l = d.norm();
                 if l <= f64::MIN_POSITIVE {
-                    return 0.0;
+                    return (0.0, 0.0);
                 }
                 let u = d / l;
                 let vrel = bj.velocity + bj.angular_velocity * perp(aj)
@@ -301,6 +305,8 @@ impl ForceEl {
                 let pushing = push.as_ref().map_or(0.0, |f| f(t));
                 let tension = k * (l - l0) + c * ldot - pushing;
                 p_diss += c * ldot * ldot;
+                // the push lowers the tension: force +F·u on j and −F·u on i, power F·l̇
+                p_in += pushing * ldot;
                 add_force(frames, qf, *i, ai, tension * u);
                 add_force(frames, qf, *j, aj, -tension * u);
             }
@@ -318,21 +324,27 @@ impl ForceEl {
             ForceEl::Force { i, si, f, .. } => {
                 let bi = body_state(frames, *i, q, qd);
                 let force = f(t, &bi);
-                add_force(frames, qf, *i, bi.rotate(*si), force);
+                let arm = bi.rotate(*si);
+                // F·(v + ω × arm): the generalized force (F, arm × F) times the frame's rates
+                p_in += force.dot(&bi.velocity) + cross(arm, force) * bi.angular_velocity;
+                add_force(frames, qf, *i, arm, force);
             }
             ForceEl::Torque { i, f, .. } => {
                 let bi = body_state(frames, *i, q, qd);
-                add_torque(frames, qf, *i, f(t, &bi));
+                let tau = f(t, &bi);
+                p_in += tau * bi.angular_velocity;
+                add_torque(frames, qf, *i, tau);
             }
             ForceEl::PairTorque { i, j, f, .. } => {
                 let bi = body_state(frames, *i, q, qd);
                 let bj = body_state(frames, *j, q, qd);
                 let tau = f(t, &bi, &bj);
+                p_in += tau * (bj.angular_velocity - bi.angular_velocity);
                 add_torque(frames, qf, *j, tau);
                 add_torque(frames, qf, *i, -tau);
             }
         }
-        p_diss
+        (p_diss, p_in)
     }
 }
 

@@ -1,14 +1,15 @@
 //! The simulation driver and the output recorder.
 //!
-//! [`Model::simulate`] integrates y = (q, q̇, E_d, z) with clr-ode, one accepted step at a time: after
-//! each step the contact memory is committed (clr-contact memory rule 1), requested output
-//! times inside the step are recorded from the dense output, the state is optionally projected
-//! onto the constraint manifold, and contact onsets located as terminal events restart the
-//! solver at the onset with δ̇⁻ equal to the penetration rate there.
+//! [`Model::simulate`] integrates y = (q, q̇, E_d, W_in, z) with clr-ode, one accepted step at a
+//! time: after each step the contact memory is committed (clr-contact memory rule 1), requested
+//! output times inside the step are recorded from the dense output, the state is optionally
+//! projected onto the constraint manifold, and contact onsets located as terminal events restart
+//! the solver at the onset with δ̇⁻ equal to the penetration rate there.
 
 use clr_ode::{Control, Dopri5, Ndf, Observer, OdeSystem, Options, Output, Stats, StopReason};
 
 use crate::error::MbdError;
+use crate::impacts::ImpactTracker;
 use crate::linsys::LinearSolver;
 use crate::newton::{Integrand, JacobianMode, NewtonWs};
 pub use crate::results::Results;
@@ -23,6 +24,20 @@ pub enum SolverKind {
     Ndf,
     /// Dormand–Prince 5(4).
     Dopri5,
+}
+
+/// What the run does with given initial coordinates that violate the constraints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum InitialConditionsMode {
+    /// Assemble them (Newton projection, fixed coordinates moved only where needed) and report
+    /// every change in [`Results::initial_conditions`] and [`Results::notes`] (default).
+    #[default]
+    Assemble,
+    /// Refuse to run when a given coordinate would change by more than
+    /// [`CORRECTION_TOL`](crate::CORRECTION_TOL)·max(1, |value|)
+    /// ([`MbdError::InconsistentInitialConditions`]); coordinates left out are still solved.
+    Exact,
 }
 
 /// Settings of a run.
@@ -74,6 +89,9 @@ pub struct SimOptions {
     /// oscillation RMS from 0.323 to 0.428 rad/s² (that case is sensitive at 1e-8; 1e-9 and
     /// 1e-10 give 0.325 and 0.326), so it is off unless asked for.
     pub newton_rate_reuse: bool,
+    /// Given initial coordinates that violate the constraints: assembled and reported
+    /// (default) or refused.
+    pub initial_conditions: InitialConditionsMode,
 }
 
 impl Default for SimOptions {
@@ -95,6 +113,7 @@ impl Default for SimOptions {
             linear_solver: LinearSolver::Auto,
             scale_velocity_error: false,
             newton_rate_reuse: false,
+            initial_conditions: InitialConditionsMode::Assemble,
         }
     }
 }
@@ -201,6 +220,8 @@ impl Model {
             "energy.elastic",
             "energy.total",
             "energy.dissipated",
+            "energy.work_in",
+            "energy.balance",
             "violation.position",
             "violation.velocity",
         ] {
@@ -264,12 +285,17 @@ impl Model {
         let e = self.energies(q, qd);
         let pv = self.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
         let vv = self.phid.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+        let o = self.energy_offset();
+        let (dissipated, work_in) = (y[o], y[o + 1]);
         out.extend_from_slice(&[
             e.kinetic,
             e.potential,
             e.elastic,
             e.total(),
-            y[2 * n],
+            dissipated,
+            work_in,
+            // constant up to the integration error: what went in is stored or dissipated
+            e.total() + dissipated - work_in,
             pv,
             vv,
         ]);
@@ -308,13 +334,32 @@ impl Model {
         opts: &SimOptions,
         progress: &dyn Fn(f64),
     ) -> Result<Results, MbdError> {
-        let y0 = self.initial_state(opts.t0)?;
-        self.simulate_from_with(opts, &y0, progress)
+        let (y0, ic) = self.assemble_initial_state(opts.t0)?;
+        let corrected = ic.corrected();
+        if opts.initial_conditions == InitialConditionsMode::Exact && !corrected.is_empty() {
+            return Err(inconsistent(&corrected));
+        }
+        let with_report = |mut r: Results| {
+            let mut notes = ic.notes();
+            notes.append(&mut r.notes);
+            r.notes = notes;
+            r.initial_conditions = Some(ic.clone());
+            r
+        };
+        match self.simulate_from_with(opts, &y0, progress) {
+            Ok(r) => Ok(with_report(r)),
+            Err(MbdError::Failed { partial, source }) => Err(MbdError::Failed {
+                partial: Box::new(with_report(*partial)),
+                source,
+            }),
+            Err(e) => Err(e),
+        }
     }
 
-    /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d, z) of length
-    /// [`OdeSystem::dim`] = 2n + 1 + [`Model::n_bristle_states`] (not modified; project it first
-    /// with [`Model::project`] if it may violate the constraints).
+    /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d, W_in, z) of length
+    /// [`OdeSystem::dim`] = 2n + 2 + [`Model::n_bristle_states`] (not modified; project it first
+    /// with [`Model::project`] if it may violate the constraints). The recorded
+    /// `energy.dissipated` and `energy.work_in` continue from the E_d and W_in given in y0 (J).
     ///
     /// # Errors
     /// As [`Model::simulate`].
@@ -347,8 +392,8 @@ impl Model {
         }
         if y0.len() != self.dim() {
             return Err(MbdError::Options(format!(
-                "the initial state has {} components; the model needs 2n + 1 + m = {} (q, q̇, \
-                 dissipated energy, {} LuGre bristle states)",
+                "the initial state has {} components; the model needs 2n + 2 + m = {} (q, q̇, \
+                 dissipated energy, input work, {} LuGre bristle states)",
                 y0.len(),
                 self.dim(),
                 self.n_bristle_states()
@@ -387,6 +432,7 @@ impl Model {
             onsets: 0,
             projections: 0,
             max_viol: 0.0,
+            impacts: ImpactTracker::new(self, opts.t0, y0),
         };
         let mut newton = NewtonWs::new(self, opts.jacobian, opts.linear_solver);
         match self.integrate(opts, (&mut solver, &mut newton), &mut run, progress) {
@@ -467,6 +513,10 @@ impl Model {
                 self.record(to, &y_out, &mut run.data);
                 run.recorded += 1;
             }
+            // impacts from the same dense output, with the memory the step used (before commit)
+            let interp =
+                |tp: f64, out: &mut [f64]| with_solver!(&*solver, s => s.interpolate(tp, out));
+            run.impacts.step(self, (t, &run.y), &interp, &mut y_out);
             self.commit_contacts(&run.y);
             let (pv, _) = self.violation(t, &run.y);
             run.max_viol = run.max_viol.max(pv);
@@ -512,17 +562,40 @@ impl Model {
     }
 }
 
+/// The error of `exact` initial conditions for the given changes (body, coordinate, given,
+/// assembled).
+fn inconsistent(corrected: &[(&str, &'static str, f64, f64)]) -> MbdError {
+    let field_of = |c: &str| match c {
+        "x" | "y" => "position",
+        "theta" => "angle",
+        "vx" | "vy" => "velocity",
+        _ => "angular_velocity",
+    };
+    let list: Vec<String> = corrected
+        .iter()
+        .map(|(b, c, g, a)| format!("{b}.{c} from {g:.9e} to {a:.9e}"))
+        .collect();
+    MbdError::InconsistentInitialConditions {
+        corrected: list.join(", "),
+        field: corrected
+            .first()
+            .map_or(String::new(), |(b, c, _, _)| format!("{b}.{}", field_of(c))),
+    }
+}
+
 /// What [`Model::simulate_from_with`] has computed so far.
 struct Run {
     /// Recorded rows, row-major.
     data: Vec<f64>,
-    /// Current state (q, q̇, E_d, z).
+    /// Current state (q, q̇, E_d, W_in, z).
     y: Vec<f64>,
     /// Output times of the solver already recorded.
     recorded: usize,
     onsets: usize,
     projections: usize,
     max_viol: f64,
+    /// Impacts of the clearance joints located so far.
+    impacts: ImpactTracker,
 }
 
 impl Run {
@@ -536,6 +609,8 @@ impl Run {
             max_position_violation: self.max_viol,
             y_final: self.y,
             notes: Vec::new(),
+            impacts: self.impacts.into_impacts(),
+            initial_conditions: None,
         }
     }
 }

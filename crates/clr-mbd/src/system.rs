@@ -11,8 +11,20 @@
 //! [ Φ_q  0   ] [ λ  ] = [ γ − 2αΦ̇ − β²Φ     ]
 //! ```
 //!
-//! with γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt. The first-order system is y = (q, q̇),
-//! ẏ = (q̇, q̈).
+//! with γ = −(Φ_q q̇)_q q̇ − 2Φ_qt q̇ − Φ_tt. The first-order system is y = (q, q̇, E_d, W_in, z),
+//! ẏ = (q̇, q̈, P_diss, P_in, ż): after q and q̇ two energy quadratures, the energy dissipated
+//! E_d and the work done on the system W_in (see [`Model`]), then the LuGre bristle states.
+//!
+//! Sign of the driver power: the equations read M q̈ = Q − Φ_qᵀλ, so the generalized
+//! constraint force is −Φ_qᵀλ and its power is −λᵀΦ_q q̇. On the constraint manifold
+//! Φ̇ = Φ_q q̇ + Φ_t = 0 this is λᵀΦ_t: zero for joints (Φ_t = 0) and, for a driver
+//! θ_j − θ_i − f(t) = 0 (Φ_t = −ḟ), −λḟ = M_j ḟ with M_j = −λ the driver's reaction moment on
+//! body j (reaction forces −Φ_qᵀλ: Nikravesh 1988, ch. 6; E.J. Haug, *Computer Aided Kinematics
+//! and Dynamics of Mechanical Systems*, Allyn and Bacon 1989). The work W_in integrates
+//! −λ_r (Φ_q q̇)_r over the rows of the drivers only: the power of their reaction forces at the
+//! velocities the bodies actually have, so the work of joint reactions through
+//! Baumgarte-corrected violations (−λ_r Φ̇_r, zero on the manifold) is left in the balance
+//! error rather than hidden in W_in.
 
 use clr_contact::ContactMemory;
 
@@ -56,15 +68,20 @@ impl Energies {
 }
 
 /// A built multibody model and its solver workspace. It is a clr-ode [`OdeSystem`] on
-/// y = (q, q̇, E_d, z) of dimension 2·[`Model::n_coordinates`] + 1 +
+/// y = (q, q̇, E_d, W_in, z) of dimension 2·[`Model::n_coordinates`] + 2 +
 /// [`Model::n_bristle_states`]; use [`Model::initial_state`] for a consistent start, or
 /// [`Model::simulate`](crate::Model::simulate) for the full driver. After q and q̇ the state
-/// carries the dissipated energy E_d and, with LuGre friction in clearance joints, one bristle
-/// deflection z (m, starting at 0) per LuGre contact point, element by element in definition
-/// order (1 per revolute, 4 per translational clearance joint; see [`OdeSystem::dim`]).
+/// carries the dissipated energy E_d (J; y[2n]), the input work W_in (J; y[2n + 1]: the work done
+/// on the system by drivers and applied loads since t0) and, with LuGre friction in clearance
+/// joints, one bristle deflection z (m, starting at 0) per LuGre contact point, element by
+/// element in definition order (1 per revolute, 4 per translational clearance joint; see
+/// [`OdeSystem::dim`]).
 pub struct Model {
     pub(crate) body_names: Vec<String>,
     pub(crate) bodies: Vec<RigidBody>,
+    /// Which coordinates (x, y, θ, v_x, v_y, ω) of each rigid body the user fixed; the others
+    /// are solved by the assembly of initial conditions ([`Model::initial_state`]).
+    pub(crate) fixed: Vec<[bool; 6]>,
     pub(crate) beams: Vec<FlexBeam>,
     /// Floating-frame flexible bodies (coordinates after the beams).
     pub(crate) floating: Vec<FloatingBody>,
@@ -91,6 +108,8 @@ pub struct Model {
     /// Φ_q, row-major m × n.
     pub(crate) phiq: Vec<f64>,
     pub(crate) phid: Vec<f64>,
+    /// Φ_t (∂Φ/∂t) of the last constraint evaluation: −ḟ(t) on driver rows, 0 elsewhere.
+    pub(crate) phit: Vec<f64>,
     pub(crate) gamma: Vec<f64>,
     pub(crate) qf: Vec<f64>,
     /// [q̈; λ] of the last evaluation.
@@ -99,6 +118,10 @@ pub struct Model {
     pub(crate) solve_ok: bool,
     /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
     pub(crate) p_diss: f64,
+    /// Power of the applied loads (forces, torques, actuator forces, nodal loads, bushings and
+    /// custom loads) at the last evaluation of the forces, W; the drivers' power comes from the
+    /// multipliers ([`Model::driver_power`]).
+    pub(crate) p_loads: f64,
     /// LuGre bristle states of the clearance joints (loaded from y by `rhs`).
     pub(crate) bristles: crate::lugre::state::Bristles,
 }
@@ -168,8 +191,9 @@ impl Model {
         self.events_on = on;
     }
 
-    /// Initial state as given to the builder (not yet consistent): y = (q, q̇, E_d, z) with the
-    /// dissipated energy E_d = 0 and undeflected LuGre bristles z = 0.
+    /// Initial state as given to the builder (not yet consistent): y = (q, q̇, E_d, W_in, z)
+    /// with the dissipated energy E_d = 0, the input work W_in = 0 and undeflected LuGre
+    /// bristles z = 0.
     pub fn given_state(&self) -> Vec<f64> {
         let n = self.n;
         let mut y = vec![0.0; self.dim()];
@@ -257,6 +281,7 @@ impl Model {
                     };
                     self.phi[r] = bj.angle - bi.angle - f[0];
                     self.phid[r] = bj.angular_velocity - bi.angular_velocity - f[1];
+                    self.phit[r] = -f[1];
                     self.gamma[r] = f[2];
                     put(&self.frames, &mut self.phiq, n, r, i, [0.0, 0.0, -1.0]);
                     put(&self.frames, &mut self.phiq, n, r, j, [0.0, 0.0, 1.0]);
@@ -284,6 +309,7 @@ impl Model {
                     let dd = bj.velocity + omj * perp(aj) - bi.velocity - omi * perp(ai);
                     self.phi[r] = nv.dot(&d) - f[0];
                     self.phid[r] = omi * perp(nv).dot(&d) + nv.dot(&dd) - f[1];
+                    self.phit[r] = -f[1];
                     self.gamma[r] = omi * omi * nv.dot(&d) - 2.0 * omi * perp(nv).dot(&dd)
                         + omj * omj * nv.dot(&aj)
                         - omi * omi * nv.dot(&ai)
@@ -312,9 +338,11 @@ impl Model {
             self.qf[3 * k + 1] += b.mass * self.gravity.y;
         }
         let qf = &mut self.qf;
-        let mut p_diss = 0.0;
+        let (mut p_diss, mut p_loads) = (0.0, 0.0);
         for f in &self.forces {
-            p_diss += f.eval(&self.frames, t, q, qd, qf);
+            let (d, l) = f.eval(&self.frames, t, q, qd, qf);
+            p_diss += d;
+            p_loads += l;
         }
         for (k, cl) in self.clearances.iter_mut().enumerate() {
             let bi = body_state(&self.frames, cl.i, q, qd);
@@ -343,12 +371,56 @@ impl Model {
             p_diss += self.contacts[k].dissipated_power;
         }
         for b in &self.beams {
-            p_diss += b.forces(t, q, qd, &mut self.qf);
+            let (d, l) = b.forces(t, q, qd, &mut self.qf);
+            p_diss += d;
+            p_loads += l;
         }
+        // floating bodies: gravity (in the potential energy), inertia terms (in the kinetic
+        // energy) and modal damping; no applied loads of their own
         for f in &self.floating {
             p_diss += f.forces(q, qd, self.gravity, &mut self.qf);
         }
         self.p_diss = p_diss;
+        self.p_loads = p_loads;
+    }
+
+    /// Power of the drivers' reaction forces at the last solve, W: −Σ λ_r (Φ_q q̇)_r over the
+    /// rows of prescribed-motion constraints (`angle`, `relative_angle`, `displacement`
+    /// drivers), with (Φ_q q̇)_r = Φ̇_r − Φ_t,r. Equal to λᵀΦ_t on the constraint manifold (sign
+    /// derivation in the module docs). Needs `sol` and the constraint workspace of the same
+    /// (t, q, q̇).
+    pub(crate) fn driver_power(&self) -> f64 {
+        let n = self.n;
+        let mut p = 0.0;
+        for c in &self.cons {
+            if let ConKind::Angle {
+                motion: Some(_), ..
+            }
+            | ConKind::Project {
+                motion: Some(_), ..
+            } = c.kind
+            {
+                let r = c.row;
+                p -= self.sol[n + r] * (self.phid[r] - self.phit[r]);
+            }
+        }
+        p
+    }
+
+    /// Power put into the system at the last evaluation, W: applied loads and drivers
+    /// (dW_in/dt).
+    pub(crate) fn input_power(&self) -> f64 {
+        self.p_loads + self.driver_power()
+    }
+
+    /// Index in y of the dissipated energy E_d (J); the input work W_in (J) follows it.
+    pub(crate) fn energy_offset(&self) -> usize {
+        2 * self.n
+    }
+
+    /// Index in y of the first LuGre bristle state, after (q, q̇, E_d, W_in).
+    pub(crate) fn bristle_offset(&self) -> usize {
+        2 * self.n + 2
     }
 
     /// Solve the augmented system at (t, q, q̇): afterwards `sol` = [q̈; λ]. Returns false when
@@ -636,12 +708,13 @@ fn guide_ref<'a>(
 }
 
 impl OdeSystem for Model {
-    /// 2n + 1 + m: y = (q, q̇, E_d, z_1 … z_m), E_d the energy dissipated by dampers, contact
-    /// damping and friction (J), integrated alongside, and z the bristle deflections (m) of the
-    /// m LuGre contact points ([`Model::n_bristle_states`]; the `lugre` layout in the docs of
-    /// [`Model`]).
+    /// 2n + 2 + m: y = (q, q̇, E_d, W_in, z_1 … z_m), E_d the energy dissipated by dampers,
+    /// contact damping and friction (J) and W_in the work done on the system by drivers and
+    /// applied loads (J), both integrated alongside as quadratures, and z the bristle
+    /// deflections (m) of the m LuGre contact points ([`Model::n_bristle_states`]; the `lugre`
+    /// layout in the docs of [`Model`]).
     fn dim(&self) -> usize {
-        2 * self.n + 1 + self.bristles.len()
+        self.bristle_offset() + self.bristles.len()
     }
 
     fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
@@ -652,7 +725,8 @@ impl OdeSystem for Model {
         dydt[..n].copy_from_slice(qd);
         dydt[n..2 * n].copy_from_slice(&self.sol[..n]);
         dydt[2 * n] = self.p_diss;
-        dydt[2 * n + 1..].copy_from_slice(self.bristle_rates());
+        dydt[2 * n + 1] = self.input_power();
+        dydt[self.bristle_offset()..].copy_from_slice(self.bristle_rates());
     }
 
     fn n_events(&self) -> usize {

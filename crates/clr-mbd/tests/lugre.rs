@@ -139,7 +139,7 @@ fn translational_steady_sliding_gives_the_steady_state_coefficient() {
     );
     let mut m = b.build().unwrap();
     assert_eq!(m.n_bristle_states(), 4);
-    assert_eq!(m.dim(), 2 * m.n_coordinates() + 1 + 4);
+    assert_eq!(m.dim(), 2 * m.n_coordinates() + 2 + 4);
     let r = m
         .simulate(&SimOptions::span(0.0, 0.05, 10).tolerances(1e-8, 1e-12))
         .unwrap();
@@ -162,7 +162,7 @@ fn translational_steady_sliding_gives_the_steady_state_coefficient() {
     assert!(rel(f_n, M * G) < 1e-6, "F_N = {f_n}");
     assert_eq!(last(&r, "guide.contact"), 2.0);
     // the final state carries the four corner states: the two loaded ones at z_ss
-    let zs = &r.y_final[2 * m.n_coordinates() + 1..];
+    let zs = &r.y_final[2 * m.n_coordinates() + 2..];
     assert_eq!(zs.len(), 4);
     assert!(
         zs.iter().filter(|z| rel(**z, z_ss) < 1e-6).count() == 2,
@@ -231,7 +231,7 @@ fn revolute_steady_sliding_gives_the_steady_state_coefficient() {
     );
     assert!(rel(mu, expect) < 1e-6, "μ = {mu} vs {expect}");
     assert!(rel(z, z_ss) < 1e-6, "z = {z} vs {z_ss}");
-    assert_eq!(r.y_final.len(), 2 * m.n_coordinates() + 2);
+    assert_eq!(r.y_final.len(), 2 * m.n_coordinates() + 3);
     assert_eq!(*r.y_final.last().unwrap(), z);
 }
 
@@ -373,7 +373,7 @@ fn bristles_are_undeflected_after_contact_loss() {
     assert!(rel(z, z_ss) < 1e-6, "z = {z} vs {z_ss}");
     assert_eq!(last(&r, "guide.contact"), 0.0);
     let n = m.n_coordinates();
-    assert_eq!(&r.y_final[2 * n + 1..], &[0.0; 4]);
+    assert_eq!(&r.y_final[2 * n + 2..], &[0.0; 4]);
     assert_eq!(last(&r, "guide.lugre_z"), 0.0);
 }
 
@@ -500,11 +500,12 @@ fn lugre_clearance_jacobians_fall_back_to_central_differences() {
     let q = [0.0, -0.00011, 0.2];
     let qd = [0.003, -0.0005, 0.5];
     let mut y: Vec<f64> = q.iter().chain(&qd).copied().collect();
-    y.push(0.0);
+    // y = (q, q̇, E_d, W_in, z)
+    y.extend([0.0, 0.0]);
     y.push(0.5 * law().z_max());
     let mut dy = vec![0.0; m.dim()];
     m.rhs(0.0, &y, &mut dy);
-    assert!(dy[7] != 0.0, "the bristle state does not move");
+    assert!(dy[8] != 0.0, "the bristle state does not move");
     let a = m.jacobians(0.0, &q, &qd);
     let f = m.jacobians_fd(0.0, &q, &qd);
     assert!(

@@ -352,7 +352,7 @@ pub(crate) fn finish_desc(
     let s = &mut d.solver;
     s.method = solver.into();
     s.rtol = rtol;
-    s.atol = rtol * 1e-3;
+    s.atol = Some(rtol * 1e-3);
     s.h_max = None;
     s.max_steps = 1_000_000;
     s.projection = None;
@@ -385,7 +385,7 @@ pub(crate) fn run_desc(
     }
     if let Some(r) = settings.rtol {
         d.solver.rtol = r;
-        d.solver.atol = r * 1e-3;
+        d.solver.atol = Some(r * 1e-3);
     }
     settings.knobs.apply(&mut d.solver);
     let intervals = match record {

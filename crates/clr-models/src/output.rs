@@ -16,7 +16,7 @@ pub struct RunSettings {
 }
 
 /// Integrator settings a run may override (`clr run --max-steps`, `--max-order`,
-/// `--jacobian`, `--scale-velocity-error`); each `None`/`false` keeps the model's own value.
+/// `--jacobian`, `--scale-velocity-error`, `--atol`); each `None`/`false` keeps the model's own value.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SolverKnobs {
     /// Step budget (accepted steps, ≥ 1).
@@ -27,6 +27,9 @@ pub struct SolverKnobs {
     pub jacobian: Option<clr_mbd::JacobianMode>,
     /// Scale the velocities' error estimate by min(h, 1) (`clr_mbd::SimOptions::scale_velocity_error`).
     pub scale_velocity_error: bool,
+    /// Absolute tolerance in the units of q and q̇ (`clr run --atol`); `None` keeps the rule
+    /// atol = 1e-3·rtol (or the model file's own `atol` when `--rtol` is not given).
+    pub atol: Option<f64>,
 }
 
 impl SolverKnobs {
@@ -43,7 +46,31 @@ impl SolverKnobs {
                 return Err(format!("--max-order {k}: the NDF orders are 1 to 5"));
             }
         }
+        if let Some(a) = self.atol {
+            if !(a.is_finite() && a > 0.0) {
+                return Err(format!(
+                    "--atol {a}: give a positive absolute tolerance (units of the coordinates \
+                     and velocities: m, rad, m/s, rad/s)"
+                ));
+            }
+        }
         Ok(())
+    }
+
+    /// The command-line options of NDF-only knobs that are set (`--max-order`, `--jacobian`,
+    /// `--scale-velocity-error`), which a Dormand–Prince run refuses.
+    pub fn ndf_options(&self) -> Vec<&'static str> {
+        let mut v = Vec::new();
+        if self.max_order.is_some() {
+            v.push("--max-order");
+        }
+        if self.jacobian.is_some() {
+            v.push("--jacobian");
+        }
+        if self.scale_velocity_error {
+            v.push("--scale-velocity-error");
+        }
+        v
     }
 
     /// Write the knobs that are set into `solver`.
@@ -59,6 +86,9 @@ impl SolverKnobs {
         }
         if self.scale_velocity_error {
             solver.scale_velocity_error = true;
+        }
+        if let Some(a) = self.atol {
+            solver.atol = Some(a);
         }
     }
 }

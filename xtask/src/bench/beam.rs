@@ -222,12 +222,13 @@ fn model(
     if a.lateral_load.is_none() {
         // the upper pad resting on the upper face: slider centre one clearance below the axis
         for b in desc.bodies.iter_mut().filter(|b| b.name == "slider") {
-            b.position[1] = -p.clearance;
+            let x = b.position.map_or(0.0, |p| p[0]);
+            b.position = Some([x, -p.clearance]);
         }
     }
     desc.solver.method = SolverMethod::Ndf;
     desc.solver.rtol = rtol;
-    desc.solver.atol = 1e-3 * rtol;
+    desc.solver.atol = Some(1e-3 * rtol);
     let mut opts = desc.sim_options().map_err(|e| e.to_string())?;
     opts.solver = SolverKind::Ndf;
     opts.t0 = 0.0;

@@ -638,6 +638,68 @@ fn balance_case(out: &mut Vec<Case>) {
     });
 }
 
+/// Energy balance of a driven, dissipative mechanism: the benchmark slider–crank driven at
+/// 5000 rpm by an `angle` driver, with the 0.5 mm rod–slider clearance joint (Lankarani–Nikravesh,
+/// c_e = 0.9) and Ambrósio friction μ = 0.1, gravity, 0.1 s. The driver's work (W_in, from its
+/// reaction forces) is stored as kinetic, potential and contact energy or dissipated by contact
+/// damping and friction: `energy.balance` = E + E_d − W_in is constant.
+fn balance_driven_case(out: &mut Vec<Case>) {
+    const TOL: f64 = 1e-6;
+    let src = "energy balance (closed form: conservation) E(t) + E_dissipated(t) − W_in(t) = E(0) \
+               of a driven mechanism (driver work from its reaction forces, contact damping and \
+               friction integrated as extra states); tolerance 1e-6 relative to the largest \
+               kinetic energy (100·rtol)";
+    let run = || -> Result<(f64, String), String> {
+        let omega = 5000.0 * std::f64::consts::PI / 30.0;
+        let jb = JournalBearing {
+            bearing: Material::steel(),
+            journal: Material::steel(),
+            r_bearing: R_BEARING,
+            r_journal: R_JOURNAL,
+            length: 0.01,
+        };
+        let normal = NormalLaw::preset("LN", &jb, 0.9).map_err(|e| e.to_string())?;
+        let friction = FrictionLaw::ambrosio(0.1, 1e-4, 1e-3).map_err(|e| e.to_string())?;
+        let mut m = clearance_slider_crank(omega, normal, friction, R_BEARING, R_JOURNAL)?;
+        let opts = SimOptions::span(0.0, 0.1, 1000)
+            .tolerances(1e-8, 1e-11)
+            .solver(SolverKind::Dopri5);
+        let res = m.simulate(&opts).map_err(|e| e.to_string())?;
+        let bal = col(&res, "energy.balance");
+        let (w, d) = (col(&res, "energy.work_in"), col(&res, "energy.dissipated"));
+        let kmax = col(&res, "energy.kinetic")
+            .iter()
+            .fold(0.0f64, |a, &v| a.max(v));
+        let drift = bal
+            .iter()
+            .map(|b| (b - bal[0]).abs())
+            .fold(0.0f64, f64::max);
+        let wmax = w.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+        Ok((
+            drift / kmax,
+            format!(
+                "DOPRI5 rtol 1e-8, 0.1 s: work in {:.4e} J (largest |W_in| {wmax:.4e} J), \
+                 dissipated {:.4e} J, max E_kin {kmax:.4e} J, balance error {drift:.3e} J, {} \
+                 steps, {} onsets",
+                w.last().copied().unwrap_or(f64::NAN),
+                d.last().copied().unwrap_or(f64::NAN),
+                res.stats.accepted,
+                res.onsets
+            ),
+        ))
+    };
+    let case = Case::new(
+        "mbd.energy.balance_driven_friction",
+        "max |B(t) − B(0)| / max E_kin, B = E + E_d − W_in",
+        "-",
+        src,
+    );
+    out.push(match run() {
+        Ok((v, note)) => case.at_most(v, TOL).note(note),
+        Err(e) => case.failed(TOL, e),
+    });
+}
+
 /// Wan et al. (2022) slider–crank validation: peak slider acceleration after the first crank
 /// revolution for clearances 0.1, 0.3, 0.5 mm (paper-systems.md §1.1/§1.2).
 fn wan_cases(filter: &Filter, out: &mut Vec<Case>) {
@@ -775,6 +837,9 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
     }
     if filter.wants("mbd.energy.balance_dissipative") {
         balance_case(&mut out);
+    }
+    if filter.wants("mbd.energy.balance_driven_friction") {
+        balance_driven_case(&mut out);
     }
     if filter.wants("mbd.flexible.beam_step") {
         beam_step_case(&mut out);

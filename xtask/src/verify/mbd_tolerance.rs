@@ -121,7 +121,7 @@ fn run_builtin(model: &str, t_end: f64, rtol: f64) -> Result<Run, String> {
         .map_err(|e| e.to_string())?;
     desc.solver.method = SolverMethod::Ndf;
     desc.solver.rtol = rtol;
-    desc.solver.atol = 1e-3 * rtol;
+    desc.solver.atol = Some(1e-3 * rtol);
     let mut opts = desc.sim_options().map_err(|e| e.to_string())?;
     opts.solver = SolverKind::Ndf;
     opts.every_step = true;

@@ -141,6 +141,9 @@ pub enum Reduction {
     },
 }
 
+/// Most elements of one beam (its dense matrices of 3 (n + 1) rows stay below 100 MB).
+pub const MAX_ELEMENTS: usize = 1000;
+
 impl BeamMesh {
     /// Build the clr-beam model; `path` names the field in messages.
     ///
@@ -155,6 +158,17 @@ impl BeamMesh {
             return Err(FieldError::new(
                 format!("{path}.elements"),
                 "give at least one element",
+            ));
+        }
+        // the beam's matrices are assembled dense (3 DOF per node): a mesh beyond this would
+        // ask for gigabytes (found by `cargo xtask fuzz`)
+        if self.elements > MAX_ELEMENTS {
+            return Err(FieldError::new(
+                format!("{path}.elements"),
+                format!(
+                    "`elements` = {} is more than the {MAX_ELEMENTS} elements a beam may have",
+                    self.elements
+                ),
             ));
         }
         let m = &self.material;

@@ -20,7 +20,9 @@ pub use beam::{
 };
 pub use laws::{FrictionLawDesc, MaterialDesc, NormalLawDesc};
 pub use parts::{Body, ForceApplicationDesc, ModelInfo, Point};
-pub use settings::{OutputSettings, SolverMethod, SolverSettings};
+pub use settings::{
+    unused_solver_fields, OutputSettings, SolverMethod, SolverSettings, ATOL_PER_RTOL,
+};
 
 pub use crate::field::{closest, edit_distance, suggestion, FieldError};
 

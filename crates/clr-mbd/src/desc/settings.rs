@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::field::FieldError;
 use crate::linsys::LinearSolver;
 use crate::newton::JacobianMode;
-use crate::sim::{SimOptions, SolverKind};
+use crate::sim::{InitialConditionsMode, SimOptions, SolverKind};
 
 /// Integrator of a run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -26,8 +26,10 @@ pub struct SolverSettings {
     pub method: SolverMethod,
     /// Relative tolerance (default 1e-6).
     pub rtol: f64,
-    /// Absolute tolerance (default 1e-8, units of q and q̇).
-    pub atol: f64,
+    /// Absolute tolerance, in the units of q and q̇ (m, rad, m/s, rad/s). Absent: 1e-3·rtol,
+    /// the one rule of built-in models, model files and `clr run --rtol` (docs/model-file.md).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub atol: Option<f64>,
     /// Largest step, s (default unbounded).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub h_max: Option<f64>,
@@ -44,18 +46,27 @@ pub struct SolverSettings {
     pub contact_events: bool,
     /// NDF's Newton matrix: `analytic` (default; the elements' Jacobians in the reduced
     /// second-order system) or `finite_difference` (the whole right-hand side differenced).
+    #[serde(skip_serializing_if = "is_default")]
     pub jacobian: JacobianMode,
     /// Highest NDF order, 1–5 (default 5).
+    #[serde(skip_serializing_if = "is_five")]
     pub max_order: usize,
     /// Factorization of the augmented and Newton matrices: `auto` (default: sparse from
     /// n + m ≥ 32), `dense` or `sparse`.
+    #[serde(skip_serializing_if = "is_default")]
     pub linear_solver: LinearSolver,
     /// Scale the velocities' error estimate by min(h, 1) (default false; see
     /// [`SimOptions::scale_velocity_error`]).
+    #[serde(skip_serializing_if = "is_default")]
     pub scale_velocity_error: bool,
     /// Let Newton stop after one correction with an earlier contraction rate (default false;
     /// see [`SimOptions::newton_rate_reuse`]).
+    #[serde(skip_serializing_if = "is_default")]
     pub newton_rate_reuse: bool,
+    /// Given initial coordinates that violate the constraints: `assemble` (default: assembled
+    /// and every change reported) or `exact` (refused; see [`InitialConditionsMode`]).
+    #[serde(skip_serializing_if = "is_default")]
+    pub initial_conditions: InitialConditionsMode,
 }
 
 impl Default for SolverSettings {
@@ -63,7 +74,7 @@ impl Default for SolverSettings {
         Self {
             method: SolverMethod::Ndf,
             rtol: 1e-6,
-            atol: 1e-8,
+            atol: None,
             h_max: None,
             max_steps: 1_000_000,
             baumgarte_alpha: crate::system::DEFAULT_BAUMGARTE_ALPHA,
@@ -75,9 +86,64 @@ impl Default for SolverSettings {
             linear_solver: LinearSolver::Auto,
             scale_velocity_error: false,
             newton_rate_reuse: false,
+            initial_conditions: InitialConditionsMode::Assemble,
         }
     }
 }
+
+// Integrator knobs at their defaults are not written (an exported file names only what it
+// changes, and a Dormand–Prince file carries no NDF settings it would not use).
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
+}
+
+fn is_five(v: &usize) -> bool {
+    *v == 5
+}
+
+/// `[solver]` fields only NDF uses, with their defaults' test.
+const NDF_ONLY: [&str; 4] = [
+    "jacobian",
+    "max_order",
+    "scale_velocity_error",
+    "newton_rate_reuse",
+];
+
+/// A Dormand–Prince run refuses the NDF settings it would ignore.
+fn refuse_ndf_only(s: &SolverSettings) -> Result<(), FieldError> {
+    if s.method != SolverMethod::Dopri5 {
+        return Ok(());
+    }
+    let set = [
+        s.jacobian != JacobianMode::default(),
+        s.max_order != 5,
+        s.scale_velocity_error,
+        s.newton_rate_reuse,
+    ];
+    match NDF_ONLY.iter().zip(set).find(|(_, on)| *on) {
+        Some((field, _)) => Err(FieldError::new(
+            format!("solver.{field}"),
+            format!(
+                "method = \"dopri5\" does not use `{field}` (an NDF setting): remove it, or \
+                 set method = \"ndf\""
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The `[solver]` fields a method does not use (`NDF_ONLY` for `dopri5`).
+pub fn unused_solver_fields(method: SolverMethod) -> &'static [&'static str] {
+    match method {
+        SolverMethod::Dopri5 => &NDF_ONLY,
+        SolverMethod::Ndf => &[],
+    }
+}
+
+/// The absolute tolerance per unit of relative tolerance when `atol` is not given: atol =
+/// 1e-3·rtol in the units of q and q̇ (a millimetre-scale mechanism at rtol 1e-6 is then held
+/// to 1 nm and 1 nm/s where a coordinate passes through zero).
+pub const ATOL_PER_RTOL: f64 = 1e-3;
 
 /// `[output]`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -132,8 +198,9 @@ pub(crate) fn sim_options(
     s: &SolverSettings,
     o: &OutputSettings,
 ) -> Result<SimOptions, FieldError> {
+    refuse_ndf_only(s)?;
     let rtol = positive("solver.rtol", s.rtol)?;
-    let atol = positive("solver.atol", s.atol)?;
+    let atol = positive("solver.atol", s.atol.unwrap_or(ATOL_PER_RTOL * rtol))?;
     let h_max = match s.h_max {
         Some(h) => positive("solver.h_max", h)?,
         None => f64::INFINITY,
@@ -204,5 +271,6 @@ pub(crate) fn sim_options(
     options.linear_solver = s.linear_solver;
     options.scale_velocity_error = s.scale_velocity_error;
     options.newton_rate_reuse = s.newton_rate_reuse;
+    options.initial_conditions = s.initial_conditions;
     Ok(options)
 }

@@ -24,14 +24,17 @@ pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>), MbdError> {
             });
         }
     }
-    let finite = b
-        .position
+    let position = b.position.unwrap_or_default();
+    let angle = b.angle.unwrap_or_default();
+    let velocity = b.velocity.unwrap_or_default();
+    let omega = b.angular_velocity.unwrap_or_default();
+    let finite = position
         .iter()
-        .chain(b.velocity.iter())
+        .chain(velocity.iter())
         .chain(b.centre_of_mass.iter())
         .all(|v| v.is_finite())
-        && b.angle.is_finite()
-        && b.angular_velocity.is_finite();
+        && angle.is_finite()
+        && omega.is_finite();
     if !finite {
         return Err(MbdError::InvalidParameter {
             item: b.name.clone(),
@@ -42,14 +45,13 @@ pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>), MbdError> {
     }
     let com = Vector2::new(b.centre_of_mass[0], b.centre_of_mass[1]);
     // r_G = r_O + A c,  v_G = v_O + ω Ĩ A c
-    let arm = rot(b.angle, com);
-    let p = Vector2::new(b.position[0], b.position[1]) + arm;
-    let w = b.angular_velocity;
-    let v = Vector2::new(b.velocity[0] - w * arm.y, b.velocity[1] + w * arm.x);
+    let arm = rot(angle, com);
+    let p = Vector2::new(position[0], position[1]) + arm;
+    let v = Vector2::new(velocity[0] - omega * arm.y, velocity[1] + omega * arm.x);
     Ok((
         RigidBody::new(b.mass, b.inertia)
-            .at(p.x, p.y, b.angle)
-            .moving(v.x, v.y, w),
+            .at(p.x, p.y, angle)
+            .moving(v.x, v.y, omega),
         com,
     ))
 }

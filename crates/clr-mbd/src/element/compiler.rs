@@ -22,6 +22,8 @@ use crate::timefn::TimeFn;
 /// Everything resolved so far, and the runtime forms collected from the elements.
 pub(crate) struct Compiler {
     pub(crate) bodies: Vec<(String, RigidBody)>,
+    /// Which coordinates (x, y, θ, v_x, v_y, ω) of each rigid body the description fixes.
+    fixed: Vec<[bool; 6]>,
     /// Centre of mass of each rigid body in its drawing frame (subtracted from local anchors).
     com: Vec<Vector2<f64>>,
     body_ids: HashMap<String, usize>,
@@ -63,6 +65,7 @@ impl Compiler {
     pub(crate) fn new(desc: &Inputs) -> Result<Self, MbdError> {
         let mut c = Compiler {
             bodies: Vec::new(),
+            fixed: Vec::new(),
             com: Vec::new(),
             body_ids: HashMap::new(),
             known: desc
@@ -95,6 +98,7 @@ impl Compiler {
             let (rb, com) = crate::element::body::compile(b)?;
             c.body_ids.insert(b.name.clone(), k);
             c.bodies.push((b.name.clone(), rb));
+            c.fixed.push(b.fixed_coordinates());
             c.com.push(com);
         }
         // floating bodies: frame index after the rigid bodies, coordinates before the beams
@@ -304,6 +308,7 @@ impl Compiler {
         }
         let Compiler {
             bodies,
+            fixed,
             beams,
             floating,
             frames,
@@ -359,6 +364,7 @@ impl Compiler {
         Ok(Model {
             body_names,
             bodies,
+            fixed,
             beams,
             floating,
             frames,
@@ -379,12 +385,14 @@ impl Compiler {
             phi: vec![0.0; m],
             phiq: vec![0.0; m * n],
             phid: vec![0.0; m],
+            phit: vec![0.0; m],
             gamma: vec![0.0; m],
             qf: vec![0.0; n],
             sol: vec![0.0; n + m],
             contacts: vec![ContactReport::default(); nc],
             solve_ok: true,
             p_diss: 0.0,
+            p_loads: 0.0,
             bristles,
         })
     }

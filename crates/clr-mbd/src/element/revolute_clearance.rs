@@ -30,6 +30,15 @@ pub struct RevoluteClearance {
     /// Friction law (default none); `lugre` adds one bristle state to the model state.
     #[serde(default)]
     pub friction: FrictionSpec,
+    /// Where this joint's force pair acts: `common_point` (both forces at the midpoint of the
+    /// two contact points: action and reaction collinear, so the joint conserves the system's
+    /// angular momentum, friction included) or `contact_points` (each force at its own body's
+    /// contact point, Flores et al. 2004: the friction pair, δ apart along the normal, adds a
+    /// moment δ·F_T, so angular momentum drifts by ∫δ·F_T dt). Absent: `[model]
+    /// clearance_force_application`, itself `common_point` by default. Energy: both forms
+    /// dissipate the same normal-damping and friction power to first order in δ.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub force_application: Option<crate::desc::ForceApplicationDesc>,
 }
 
 impl Element for RevoluteClearance {
@@ -65,7 +74,13 @@ impl Element for RevoluteClearance {
             name: name.clone(),
             i,
             j,
-            kind: ClearanceKind::Revolute(geometry, c.force_application),
+            kind: ClearanceKind::Revolute(
+                geometry,
+                match self.force_application {
+                    Some(a) => a.into(),
+                    None => c.force_application,
+                },
+            ),
             normal,
             friction,
             mem: 0,

@@ -53,9 +53,12 @@ pub(crate) fn apply(
                 rep.active_points = 1;
                 rep.normal_force = jf.normal_force;
                 rep.friction_force = jf.tangential_force;
-                rep.dissipated_power = (jf.normal_force - cl.normal.elastic_force(ct.penetration))
-                    * ct.normal_velocity
-                    - jf.tangential_force * v;
+                rep.dissipated_power = crate::clearance::revolute_dissipated_power(
+                    &jf,
+                    bi,
+                    bj,
+                    cl.normal.elastic_force(ct.penetration) * ct.normal_velocity,
+                );
             }
         }
         ClearanceKind::Translational {

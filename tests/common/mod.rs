@@ -1,0 +1,28 @@
+//! Helpers shared by the end-to-end tests of the `clr` binary (each test crate uses a part).
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// Run the `clr` binary with `args`.
+pub fn clr(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_clr"))
+        .args(args)
+        .output()
+        .expect("the clr binary runs")
+}
+
+/// A fresh scratch folder `group/name` under the target dir.
+pub fn scratch_in(group: &str, name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join(group)
+        .join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Standard error of a finished command, as text.
+pub fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
