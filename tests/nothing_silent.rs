@@ -280,6 +280,24 @@ fn unused_law_parameter_is_refused_and_derived_stiffness_is_echoed() {
     assert!(err.contains("clearance[0].normal.stiffness"), "{err}");
     assert!(err.contains("does not use `stiffness`"), "{err}");
 
+    // the Hertz-type presets have no axial length: `length` is refused for `LN`, used by `Modified`
+    let preset = |label: &str| {
+        format!(
+            "{{ law = \"preset\", preset = \"{label}\", restitution = 0.8, length = 0.01, \
+             bearing_material = {steel}, journal_material = {steel} }}"
+        )
+    };
+    for (label, ok) in [("LN", false), ("Modified", true)] {
+        let text = free_journal_with("common_point", 0.0099, &preset(label))
+            .replace("t_end = 0.05", "t_end = 0.001");
+        std::fs::write(&file, text).unwrap();
+        let (code, err, _) = run(&dir, file.to_str().unwrap(), &[]);
+        assert_eq!(code == 0, ok, "{label}: {err}");
+        if !ok {
+            assert!(err.contains("clearance[0].normal.length"), "{err}");
+        }
+    }
+
     let text = free_journal_with("common_point", 0.0099, &normal(""))
         .replace("t_end = 0.05", "t_end = 0.001");
     std::fs::write(&file, text).unwrap();

@@ -64,7 +64,9 @@ fn toml_value(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
 
 /// The outcome as a dict: `time` and every other column as float64 arrays, `units` (column →
 /// unit, `time` → `s`), `metrics` (name → value), `metric_units`, `impacts` (list of dicts,
-/// [`impacts_list`]), `parameters` (JSON text), `model`, `source` and `error` (`None`, or the solver's message when the results are partial).
+/// [`impacts_list`]), `notes` (what the run changed or chose for the user, one sentence each),
+/// `initial_conditions` (JSON text: per body and coordinate fixed/solved/corrected with the given
+/// and assembled values, as in summary.json), `parameters` (JSON text), `model`, `source` and `error` (`None`, or the solver's message when the results are partial).
 fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let units = PyDict::new(py);
@@ -87,6 +89,11 @@ fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>
     d.set_item("metrics", metrics)?;
     d.set_item("metric_units", metric_units)?;
     d.set_item("impacts", impacts_list(py, &o.results.impacts)?)?;
+    d.set_item("notes", o.notes.clone())?;
+    d.set_item(
+        "initial_conditions",
+        clr::spec::run::initial_conditions_json(o.results.initial_conditions.as_ref()).to_string(),
+    )?;
     d.set_item("parameters", o.parameters.to_string())?;
     d.set_item("model", o.model)?;
     d.set_item("source", o.source)?;

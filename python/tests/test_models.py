@@ -203,3 +203,24 @@ def test_solver_failure_keeps_partial_results(tmp_path):
         cc.run_model(_pendulum(tmp_path), set={"solver.max_steps": 5})
     t = e.value.result["time"]
     assert len(t) >= 1 and t[-1] < 3.0
+
+
+def test_left_out_velocity_is_solved_and_reported(tmp_path):
+    """Issue 14: a rod angular velocity left out of a model file is solved from the constraints
+    (closed form ω_rod = −ω_crank·r/L at θ = 0) and reported in `notes` and
+    `initial_conditions`, as `clr run` reports it."""
+    repo = pathlib.Path(__file__).resolve().parents[2]
+    text = (repo / "models" / "slider_crank.toml").read_text()
+    line = "angular_velocity = -87.26646259971649\n"
+    assert line in text
+    f = tmp_path / "sc.toml"
+    f.write_text(text.replace(line, "", 1))
+    r = cc.run_model(str(f), t_end=0.001)
+    assert any("rod.omega" in n for n in r["notes"]), r["notes"]
+    import json
+
+    ic = json.loads(r["initial_conditions"])
+    omega = ic["bodies"]["rod"]["omega"]
+    assert omega["status"] == "solved"
+    expect = -5000.0 * 2.0 * math.pi / 60.0 * 0.05 / 0.3
+    assert abs(omega["assembled"] - expect) <= 1e-9 * abs(expect)

@@ -158,7 +158,9 @@ pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> se
             "projections": rec.results.projections,
             "max_position_violation": finite(rec.results.max_position_violation),
         },
-        "initial_conditions": initial_conditions(rec.results.initial_conditions.as_ref()),
+        "initial_conditions": clr::spec::run::initial_conditions_json(
+            rec.results.initial_conditions.as_ref()
+        ),
         "impacts": impacts_summary(&rec.results.impacts),
         "parameters": rec.parameters,
     })
@@ -217,47 +219,6 @@ fn impacts_summary(impacts: &[clr_mbd::Impact]) -> serde_json::Value {
         );
     }
     serde_json::Value::Object(per)
-}
-
-/// The initial-conditions report as JSON: per body and coordinate whether it was fixed (given)
-/// or solved, the given and assembled values and the correction, in the units named.
-fn initial_conditions(ic: Option<&clr_mbd::InitialConditions>) -> serde_json::Value {
-    let Some(ic) = ic else {
-        return serde_json::Value::Null;
-    };
-    let bodies: serde_json::Map<String, serde_json::Value> = ic
-        .bodies
-        .iter()
-        .map(|b| {
-            let coords: serde_json::Map<String, serde_json::Value> = b
-                .coordinates
-                .iter()
-                .zip(
-                    clr_mbd::COORDINATE_NAMES
-                        .iter()
-                        .zip(clr_mbd::COORDINATE_UNITS),
-                )
-                .map(|(c, (name, unit))| {
-                    let v = serde_json::json!({
-                        "status": if !c.fixed { "solved" } else if c.is_corrected() {
-                            "corrected" } else { "given" },
-                        "given": c.given,
-                        "assembled": c.assembled,
-                        "correction": c.correction(),
-                        "unit": unit,
-                    });
-                    (name.to_string(), v)
-                })
-                .collect();
-            (b.body.clone(), serde_json::Value::Object(coords))
-        })
-        .collect();
-    serde_json::json!({
-        "position_newton_iterations": ic.newton_iterations,
-        "solved": ic.solved().len(),
-        "corrected": ic.corrected().len(),
-        "bodies": bodies,
-    })
 }
 
 /// Write results.csv, summary.json and (optionally) the figures into `dir`.

@@ -496,6 +496,47 @@ fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
     m
 }
 
+/// The initial-conditions report as JSON (the `initial_conditions` of summary.json): per body and coordinate whether it was fixed (given)
+/// or solved, the given and assembled values and the correction, in the units named.
+pub fn initial_conditions_json(ic: Option<&clr_mbd::InitialConditions>) -> serde_json::Value {
+    let Some(ic) = ic else {
+        return serde_json::Value::Null;
+    };
+    let bodies: serde_json::Map<String, serde_json::Value> = ic
+        .bodies
+        .iter()
+        .map(|b| {
+            let coords: serde_json::Map<String, serde_json::Value> = b
+                .coordinates
+                .iter()
+                .zip(
+                    clr_mbd::COORDINATE_NAMES
+                        .iter()
+                        .zip(clr_mbd::COORDINATE_UNITS),
+                )
+                .map(|(c, (name, unit))| {
+                    let v = serde_json::json!({
+                        "status": if !c.fixed { "solved" } else if c.is_corrected() {
+                            "corrected" } else { "given" },
+                        "given": c.given,
+                        "assembled": c.assembled,
+                        "correction": c.correction(),
+                        "unit": unit,
+                    });
+                    (name.to_string(), v)
+                })
+                .collect();
+            (b.body.clone(), serde_json::Value::Object(coords))
+        })
+        .collect();
+    serde_json::json!({
+        "position_newton_iterations": ic.newton_iterations,
+        "solved": ic.solved().len(),
+        "corrected": ic.corrected().len(),
+        "bodies": bodies,
+    })
+}
+
 /// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`): `s`, `m`,
 /// `rad`, `N`, … or `-`.
 pub fn unit_of(column: &str) -> &'static str {

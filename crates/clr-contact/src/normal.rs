@@ -89,6 +89,15 @@ pub struct GuideFace {
 /// The flap paper's labels accepted by [`NormalLaw::preset`].
 pub const FLAP_PRESETS: [&str; 6] = ["Hertz", "LN", "Gonthier", "Bai", "Wang", "Modified"];
 
+/// True for the presets whose elastic part depends on the axial length L (`Wang` and
+/// `Modified`, the Liu conformal-cylinder law); the others ignore [`JournalBearing::length`].
+pub fn preset_uses_length(name: &str) -> bool {
+    matches!(
+        name.trim().to_ascii_lowercase().as_str(),
+        "wang" | "modified"
+    )
+}
+
 impl NormalLaw {
     /// Default floor of δ̇⁻ (m/s): below it the impact velocity is replaced by this value, so a
     /// contact that starts at rest (δ̇⁻ → 0) keeps a finite damping (contact-laws.md §1.6).

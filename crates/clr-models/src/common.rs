@@ -196,7 +196,8 @@ pub fn preset_desc(
         law: "preset".into(),
         preset: Some(name.into()),
         restitution,
-        length: Some(length),
+        // only the Liu-based presets take L (a file refuses it for the others)
+        length: clr_contact::normal::preset_uses_length(name).then_some(length),
         bearing_material: Some(mat),
         journal_material: Some(mat),
         ..NormalLawDesc::default()
@@ -514,6 +515,24 @@ pub fn peak_abs(t: &[f64], v: &[f64], t_from: f64) -> f64 {
         .filter(|(&ti, _)| ti >= t_from)
         .map(|(_, x)| x.abs())
         .fold(0.0, f64::max)
+}
+
+/// The located peak normal force (N) and penetration (m) of clearance joint `joint` over its
+/// impacts whose extremum lies at or after `t_from` (s), each no smaller than the largest row
+/// value `rows` = (force, penetration) after `t_from` (a contact already closed at t0 has no
+/// located onset, and the rows cover it). clr-mbd locates the extrema on the dense output
+/// (`clr_mbd::Impact`), so the result does not depend on where the output rows fall.
+pub fn located_peaks(res: &Results, joint: &str, t_from: f64, rows: (f64, f64)) -> (f64, f64) {
+    let of_joint = || res.impacts.iter().filter(move |i| i.joint == joint);
+    let force = of_joint()
+        .filter(|i| i.peak_force_time >= t_from)
+        .map(|i| i.peak_force)
+        .fold(rows.0, f64::max);
+    let pen = of_joint()
+        .filter(|i| i.max_penetration_time >= t_from)
+        .map(|i| i.max_penetration)
+        .fold(rows.1, f64::max);
+    (force, pen)
 }
 
 /// Largest v (signed) over rows with t ≥ t_from; 0 when every value is negative.

@@ -910,11 +910,18 @@ fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
         if c <= 0.0 {
             continue;
         }
+        let rows = (
+            common::peak_abs(&t, &col(res, &format!("{j}.normal_force")), t0),
+            0.0,
+        );
         m.push(Metric::new(
             &format!("{j}_peak_contact_force"),
-            common::peak_abs(&t, &col(res, &format!("{j}.normal_force")), t0),
+            common::located_peaks(res, j, t0, rows).0,
             "N",
-            &format!("largest normal force in clearance joint {j} after the transient"),
+            &format!(
+                "largest normal force in clearance joint {j} after the transient, located on \
+                 the dense output"
+            ),
         ));
         m.push(Metric::new(
             &format!("{j}_contact_time_fraction"),

@@ -259,7 +259,10 @@ impl NormalLawDesc {
             "liu" | "johnson" | "pereira" => {
                 &["damping", "bearing_material", "journal_material", "length"]
             }
-            "preset" => &["preset", "bearing_material", "journal_material", "length"],
+            "preset" if self.preset_uses_length() => {
+                &["preset", "bearing_material", "journal_material", "length"]
+            }
+            "preset" => &["preset", "bearing_material", "journal_material"],
             "flores-line" => &["slider_material", "guide_material", "edge_radius", "width"],
             _ => &[
                 "slider_material",
@@ -270,6 +273,13 @@ impl NormalLawDesc {
             ],
         };
         c.refuse(&given, used)
+    }
+
+    /// `law = "preset"` with a label whose elastic part takes the axial length.
+    fn preset_uses_length(&self) -> bool {
+        self.preset
+            .as_deref()
+            .is_some_and(clr_contact::normal::preset_uses_length)
     }
 
     fn radii(&self, c: &Ctx, radii: Radii) -> Result<(f64, f64), FieldError> {
@@ -304,12 +314,18 @@ impl NormalLawDesc {
                 ),
             ));
         }
+        let length = if self.preset_uses_length() {
+            c.positive("length", self.length, "the axial length L in m")?
+        } else {
+            // the Hertz-type presets have no L (a length given for them is refused above)
+            1.0
+        };
         let jb = JournalBearing {
             bearing: c.material("bearing_material", self.bearing_material)?,
             journal: c.material("journal_material", self.journal_material)?,
             r_bearing: rb,
             r_journal: rj,
-            length: c.positive("length", self.length, "the axial length L in m")?,
+            length,
         };
         NormalLaw::preset(label, &jb, self.restitution).map_err(|e| c.err("preset", e.to_string()))
     }
