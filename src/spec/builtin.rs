@@ -129,6 +129,12 @@ pub(crate) fn builtin(
 fn check(file: &str, src: &str, name: &str, params: &serde_json::Value) -> Result<(), SpecError> {
     let settings = clr_models::RunSettings::default();
     let result = clr_models::catalog::export(name, params, &settings).and_then(|d| {
+        // the run settings the parameters give (atol = 1e-3·rtol, the end time), then the model
+        d.sim_options()
+            .map_err(|e| clr_models::ModelsError::InvalidParameters {
+                model: name.to_string(),
+                message: e.to_string(),
+            })?;
         d.compile()
             .map(drop)
             .map_err(|e| clr_models::ModelsError::Build {

@@ -4,10 +4,13 @@
 //!   exit non-zero when a case fails;
 //! - `cargo xtask bench [GROUP]`: side-by-side benchmarks against peer solvers, written to
 //!   `target/bench/`;
-//! - `cargo xtask figures`: regenerate the figures under `docs/figures/`.
+//! - `cargo xtask figures`: regenerate the figures under `docs/figures/`;
+//! - `cargo xtask fuzz [--cases N] [--seed S] [--threads T]`: fuzz the model-file path and the C
+//!   ABI, write `target/fuzz/report.md` and reproducers in `target/fuzz/findings/`.
 
 mod bench;
 mod figures;
+mod fuzz;
 mod minimal_slider_crank;
 mod report;
 mod verify;
@@ -30,10 +33,12 @@ pub fn target_dir() -> PathBuf {
         .unwrap_or_else(|| workspace_root().join("target"))
 }
 
-const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures>
+const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS]>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
   bench    benchmarks against peers (groups: ode, mbd, beam); writes target/bench/<group>.json
-  figures  regenerate docs/figures/";
+  figures  regenerate docs/figures/
+  fuzz     fuzz the model files and the C ABI (--cases N, --seed S, --threads T; --help for all);
+           writes target/fuzz/report.md and target/fuzz/findings/";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -42,6 +47,7 @@ fn main() -> ExitCode {
         Some("verify") => verify::run(rest),
         Some("bench") => bench::run(rest),
         Some("figures") => figures::run(rest),
+        Some("fuzz") => fuzz::run(rest),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS
