@@ -114,7 +114,7 @@ fn mutated_model_files_never_panic_and_every_error_is_located() {
 /// line and field of the value to change (docs/fuzzing.md lists them).
 #[test]
 fn fuzz_findings_are_refused_at_their_place() {
-    let cases: [(&str, Option<usize>, &str, &str); 5] = [
+    let cases: [(&str, Option<usize>, &str, &str); 6] = [
         ("fuzz_empty.toml", None, "body", "nothing that moves"),
         (
             "fuzz_builtin_parameter.toml",
@@ -139,6 +139,12 @@ fn fuzz_findings_are_refused_at_their_place() {
             Some(7),
             "parameters.elements",
             "elements a beam may have",
+        ),
+        (
+            "fuzz_blank_name.toml",
+            Some(15),
+            "joint[0].name",
+            "is blank",
         ),
     ];
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad");

@@ -346,3 +346,72 @@ fn one_tolerance_rule_for_files_and_the_command_line() {
         Some(3e-11)
     );
 }
+
+/// impacts.csv against a closed form: a 1 kg journal (free, no gravity) crosses the 0.1 mm
+/// radial clearance of a ground-fixed bearing at v0 = 0.5 m/s and hits a linear, undamped
+/// contact spring K = 1e7 N/m: the contact is half a period of an undamped oscillator, so
+/// onset = c/v0, duration = π√(m/K), δ_max = v0√(m/K), F_max = K·δ_max and the impact velocity
+/// is v0 (tolerances 1e-6 relative, 1e-4 on the duration, as clr-mbd's unit test).
+#[test]
+fn impacts_csv_matches_the_closed_form_of_a_single_journal_impact() {
+    let dir = scratch("impacts");
+    let (m, k, v0, c) = (1.0f64, 1e7f64, 0.5f64, 1e-4f64);
+    let text = format!(
+        r#"[[body]]
+name = "journal"
+mass = {m}
+inertia = 1e-3
+position = [0.0, 0.0]
+angle = 0.0
+velocity = [{v0}, 0.0]
+angular_velocity = 0.0
+
+[[clearance]]
+name = "C"
+type = "revolute"
+bearing = {{ body = "ground", at = [0.0, 0.0] }}
+journal = {{ body = "journal", at = [0.0, 0.0] }}
+bearing_radius = 0.01
+journal_radius = {jr}
+normal = {{ law = "linear", stiffness = {k}, restitution = 1.0, damping = "none" }}
+
+[solver]
+method = "dopri5"
+rtol = 1e-12
+atol = 1e-15
+
+[output]
+t_end = 0.0015
+intervals = 10
+"#,
+        jr = 0.01 - c
+    );
+    let file = dir.join("model.toml");
+    std::fs::write(&file, text).unwrap();
+    let (code, err, summary) = run(&dir, file.to_str().unwrap(), &[]);
+    assert_eq!(code, 0, "{err}");
+    let csv = std::fs::read_to_string(dir.join("out/impacts.csv")).unwrap();
+    let rows: Vec<Vec<f64>> = csv
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').skip(1).map(|v| v.parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), 1, "{csv}");
+    let r = &rows[0];
+    let w = (k / m).sqrt();
+    let expect = [
+        (r[0], c / v0, 1e-6, "onset"),
+        (r[1], v0, 1e-6, "impact velocity"),
+        (r[2], k * v0 / w, 1e-6, "peak force"),
+        (r[4], v0 / w, 1e-6, "max penetration"),
+        (r[7], std::f64::consts::PI / w, 1e-4, "duration"),
+    ];
+    for (got, want, tol, what) in expect {
+        assert!(
+            (got / want - 1.0).abs() < tol,
+            "{what}: {got:e} vs {want:e}"
+        );
+    }
+    let s = summary.unwrap();
+    assert_eq!(s["impacts"]["C"]["count"], 1, "{}", s["impacts"]);
+}

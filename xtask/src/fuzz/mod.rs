@@ -191,7 +191,7 @@ impl Stats {
     fn line(&self, total: u64, rate: f64) -> String {
         format!(
             "fuzz: {}/{} cases ({:.1} %), {:.0}/s: accepted {} (simulated {}, solver failures {}), \
-             rejected {}, without location {}, panics {}, hangs {}",
+             rejected {}, without location {}, panics {}, over the timeout {}",
             self.done,
             total,
             100.0 * self.done as f64 / total.max(1) as f64,
@@ -260,6 +260,34 @@ fn spawn_worker(sh: &Arc<Shared>) {
             stats.run_secs += secs;
         })
         .expect("spawn a fuzz worker");
+}
+
+/// Run each flagged case alone with 30× the timeout: (cases with no result in that time, finished
+/// cases with their wall time in s). A case still running is left behind in its thread.
+fn confirm_hangs(seeds: &[Seed], o: &Options, flagged: &[u64]) -> (Vec<u64>, Vec<(u64, f64)>) {
+    let (mut hung, mut slow) = (Vec::new(), Vec::new());
+    for &i in flagged {
+        let text = mutate::generate(seeds, o.seed, i).text;
+        let lim = limits(i, o.simulate_every);
+        let (tx, rx) = std::sync::mpsc::channel();
+        let t = Instant::now();
+        let spawned = std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn(move || {
+                let _ = case::run(&text, &lim);
+                let _ = tx.send(());
+            });
+        let limit = Duration::from_secs_f64(30.0 * o.timeout);
+        match spawned.ok().and_then(|_| rx.recv_timeout(limit).ok()) {
+            Some(()) => slow.push((i, t.elapsed().as_secs_f64())),
+            None => hung.push(i),
+        }
+        eprintln!(
+            "fuzz: flagged case {i} re-run alone: {:.1} s",
+            t.elapsed().as_secs_f64()
+        );
+    }
+    (hung, slow)
 }
 
 /// Reduce a failing input line by line while it keeps the same signature (at most `budget`
@@ -409,8 +437,12 @@ pub fn run(args: &[String]) -> ExitCode {
         }
     }
     let wall = start.elapsed().as_secs_f64();
-    let stats = std::mem::take(&mut *sh.stats.lock().expect("stats"));
+    let mut stats = std::mem::take(&mut *sh.stats.lock().expect("stats"));
     eprintln!("{}", stats.line(o.cases, stats.done as f64 / wall));
+    // a case over the timeout under load is only flagged: run it again alone with a 30× longer
+    // limit; one that finishes is slow (its step budget bounds it), one that does not is a hang
+    let (hangs, slow) = confirm_hangs(&sh.seeds, &o, &hangs);
+    stats.hangs = hangs.len() as u64;
 
     // the C ABI
     let capi_start = Instant::now();
@@ -443,7 +475,14 @@ pub fn run(args: &[String]) -> ExitCode {
         ("rejected with a location (line or field)", stats.rejected),
         ("**rejected without a location**", stats.unlocated),
         ("**panics**", stats.panics),
-        ("**hangs** (> timeout)", stats.hangs),
+        (
+            "flagged over the timeout while running",
+            (hangs.len() + slow.len()) as u64,
+        ),
+        (
+            "**hangs** (no result within 30× the timeout, run alone)",
+            stats.hangs,
+        ),
     ] {
         let _ = writeln!(report, "| {k} | {v} |");
     }
@@ -458,6 +497,16 @@ pub fn run(args: &[String]) -> ExitCode {
         "Thread time: {:.1} s generating inputs, {:.1} s running them.\n",
         stats.gen_secs, stats.run_secs
     );
+    if !slow.is_empty() {
+        let _ = writeln!(
+            report,
+            "Flagged cases that finished when run alone (slow, not hung):\n"
+        );
+        for (i, secs) in &slow {
+            let _ = writeln!(report, "- case {i}: {secs:.1} s");
+        }
+        let _ = writeln!(report);
+    }
     let _ = writeln!(report, "Slowest cases (replay with `--case I`):\n");
     for (secs, i) in &stats.slowest {
         let input = mutate::generate(&sh.seeds, o.seed, *i);
