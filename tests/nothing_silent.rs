@@ -415,3 +415,43 @@ intervals = 10
     let s = summary.unwrap();
     assert_eq!(s["impacts"]["C"]["count"], 1, "{}", s["impacts"]);
 }
+
+/// A built-in parameter the model's other parameters make unused is refused where it is given:
+/// `axial_length` with the slider–crank's `LN` preset (only Wang and Modified use it), by
+/// `--set` and in a built-in file; `clr export --builtin` leaves it out, with the reason.
+#[test]
+fn unused_builtin_parameter_is_refused() {
+    let dir = scratch("builtin_unused");
+    let out = dir.join("out");
+    let o = clr(&[
+        "run",
+        "slider_crank",
+        "--set",
+        "axial_length=0.02",
+        "-q",
+        "--out",
+    ]
+    .into_iter()
+    .chain([out.to_str().unwrap()])
+    .collect::<Vec<_>>());
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("`axial_length` is not used"), "{err}");
+    let file = dir.join("b.toml");
+    std::fs::write(
+        &file,
+        "[model]\nbuiltin = \"slider_crank\"\n\n[parameters]\naxial_length = 0.02\n",
+    )
+    .unwrap();
+    let (code, err, _) = run(&dir, file.to_str().unwrap(), &[]);
+    assert_eq!(code, 2, "{err}");
+    assert!(err.contains("b.toml:5:"), "{err}");
+    assert!(err.contains("parameters.axial_length"), "{err}");
+    let o = clr(&["export", "slider_crank", "--builtin"]);
+    let text = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        text.contains("#   axial_length: normal_law = \"LN\""),
+        "{text}"
+    );
+    assert!(!text.contains("\naxial_length ="), "{text}");
+}

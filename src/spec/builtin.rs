@@ -117,11 +117,44 @@ pub(crate) fn builtin(
     for a in overrides {
         apply_json_override(&mut params, a)?;
     }
+    let table = root.get("parameters").and_then(toml::Value::as_table);
+    refuse_unused(file, src, name, &params, table, overrides)?;
     check(file, src, name, &params)?;
     Ok(Loaded::Builtin {
         name: name.to_string(),
         parameters: params,
     })
+}
+
+/// A parameter the user gave (under `[parameters]` or by `--set`) that the model's other
+/// parameters make unused (`clr_models::catalog::unused_parameters`, e.g. `axial_length` with
+/// the `LN` preset) is refused at its place: every input is used or refused.
+///
+/// # Errors
+/// [`SpecError`] at the parameter (or `--set` for an override).
+pub(crate) fn refuse_unused(
+    file: &str,
+    src: &str,
+    name: &str,
+    params: &serde_json::Value,
+    table: Option<&toml::Table>,
+    overrides: &[Assignment],
+) -> Result<(), SpecError> {
+    let unused = clr_models::catalog::unused_parameters(name, params).unwrap_or_default();
+    for (p, why) in unused {
+        let message = format!("`{p}` is not used: {why}; remove it");
+        if table.is_some_and(|t| t.contains_key(p)) {
+            let path = FieldPath::root().key("parameters").key(p);
+            return Err(SpecError::at(file, src, &path, message));
+        }
+        if overrides
+            .iter()
+            .any(|a| a.path.split('.').next() == Some(p))
+        {
+            return Err(SpecError::plain("--set", p, message));
+        }
+    }
+    Ok(())
 }
 
 /// Check the merged parameters as a run would (the catalog builds and compiles the model), so

@@ -123,6 +123,7 @@ pub fn resolve(
         for a in overrides {
             apply_json_override(&mut parameters, a)?;
         }
+        super::builtin::refuse_unused("--set", "", target, &parameters, None, overrides)?;
         Job::Builtin {
             name: target.to_string(),
             parameters,
@@ -205,6 +206,7 @@ impl Job {
                 for a in overrides {
                     apply_json_override(&mut parameters, a)?;
                 }
+                super::builtin::refuse_unused("--set", "", name, &parameters, None, overrides)?;
                 Job::Builtin {
                     name: name.clone(),
                     parameters,

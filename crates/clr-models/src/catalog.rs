@@ -68,6 +68,25 @@ fn unknown(name: &str) -> ModelsError {
     }
 }
 
+/// The parameters of a built-in model that its other parameters make unused, with the reason
+/// (e.g. `axial_length` with the `LN` preset): a front end refuses those the user gave. Models
+/// without such dependencies return an empty list.
+///
+/// # Errors
+/// [`ModelsError::UnknownModel`] or [`ModelsError::InvalidParameters`].
+pub fn unused_parameters(
+    name: &str,
+    parameters: &serde_json::Value,
+) -> Result<Vec<(&'static str, String)>, ModelsError> {
+    let merged = with_defaults(name, parameters)?;
+    Ok(match name {
+        "slider_crank" | "wan_slider_crank" => parse::<SliderCrankParams>(name, &merged)?.unused(),
+        "flap" => parse::<FlapParams>(name, &merged)?.unused(),
+        "guide" | "dual_guide" | "manipulator" => Vec::new(),
+        _ => return Err(unknown(name)),
+    })
+}
+
 /// The default parameters of a built-in model as JSON (every field resolved).
 pub fn default_parameters(name: &str) -> Result<serde_json::Value, ModelsError> {
     let v = match name {

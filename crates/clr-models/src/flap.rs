@@ -443,6 +443,46 @@ impl FlapParams {
         (m, i, rc)
     }
 
+    /// Parameters these settings do not use, with the reason: the contact-law parameters when no
+    /// joint has a clearance, `axial_length` unless the law is `Wang` or `Modified`, and the
+    /// flexible-body settings when every part is rigid.
+    pub fn unused(&self) -> Vec<(&'static str, String)> {
+        let mut v = Vec::new();
+        if self.clearances.iter().all(|&c| c <= 0.0) {
+            for p in [
+                "bearing_radius",
+                "axial_length",
+                "youngs_modulus",
+                "poisson_ratio",
+                "normal_law",
+                "restitution",
+                "friction",
+            ] {
+                v.push((
+                    p,
+                    "every joint is ideal (clearances all 0): no contact law".into(),
+                ));
+            }
+        } else if !clr_contact::normal::preset_uses_length(&self.normal_law) {
+            v.push((
+                "axial_length",
+                format!(
+                    "normal_law = \"{}\" has no axial length (only Wang and Modified use it)",
+                    self.normal_law
+                ),
+            ));
+        }
+        if !self.flexible.iter().any(|&f| f) {
+            for p in ["flexible_modes", "flexible_damping_ratios"] {
+                v.push((
+                    p,
+                    "every part is rigid (flexible = [false, false, false])".into(),
+                ));
+            }
+        }
+        v
+    }
+
     /// Check every value; the message names the field to change.
     ///
     /// # Errors

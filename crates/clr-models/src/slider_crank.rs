@@ -43,7 +43,7 @@ pub struct SliderCrankParams {
     pub bearing_radius: f64,
     /// Journal (pin) radius R_j, m (< R_i; clearance c = R_i − R_j).
     pub journal_radius: f64,
-    /// Axial length of the joint L, m (used by the `Bai`, `Wang`, `Modified` laws).
+    /// Axial length of the joint L, m (used by the `Wang` and `Modified` laws only; refused with the others).
     pub axial_length: f64,
     /// Young's modulus of journal and bearing, Pa (steel 207 GPa).
     pub youngs_modulus: f64,
@@ -133,6 +133,22 @@ impl SliderCrankParams {
     /// Crank speed ω, rad/s.
     pub fn omega(&self) -> f64 {
         self.crank_speed_rpm * std::f64::consts::PI / 30.0
+    }
+
+    /// Parameters these settings do not use, with the reason: `axial_length` is taken only by
+    /// the `Wang` and `Modified` presets (the Liu law).
+    pub fn unused(&self) -> Vec<(&'static str, String)> {
+        if clr_contact::normal::preset_uses_length(&self.normal_law) {
+            Vec::new()
+        } else {
+            vec![(
+                "axial_length",
+                format!(
+                    "normal_law = \"{}\" has no axial length (only Wang and Modified use it)",
+                    self.normal_law
+                ),
+            )]
+        }
     }
 
     /// Check every value; the message says which field to change.
