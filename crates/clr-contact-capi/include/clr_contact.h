@@ -27,16 +27,31 @@ typedef enum ClrStatus {
   CLR_STATUS_NO_CONVERGENCE = 7,
   // An internal panic was caught at the boundary (a bug: please report the message).
   CLR_STATUS_PANIC = 8,
+  // A model file could not be read or built, or a model was used before its first run (the
+  // message gives the line and field).
+  CLR_STATUS_MODEL_ERROR = 9,
+  // The solver failed during `clr_model_run`; the rows recorded up to the failure are kept.
+  CLR_STATUS_SIMULATION_FAILED = 10,
 } ClrStatus;
 
 // Opaque handle of a stateless friction law F_T = μ(v_T) F_N.
 typedef struct ClrFrictionLaw ClrFrictionLaw;
+
+// Opaque handle of a LuGre friction model (Canudas de Wit et al. 1995), whose bristle deflection
+// z (m) is a state the caller integrates.
+typedef struct ClrLuGre ClrLuGre;
+
+// Opaque handle of a model loaded from a model file, with the results of its last run.
+typedef struct ClrModel ClrModel;
 
 // Opaque handle of a normal-force law F_N = F_e(δ)(1 + χ δ̇/δ̇⁻).
 typedef struct ClrNormalLaw ClrNormalLaw;
 
 // Opaque handle of a planar revolute clearance joint (journal in bearing).
 typedef struct ClrRevoluteJoint ClrRevoluteJoint;
+
+// Opaque handle of a planar translational clearance joint (rectangular slider in a guide).
+typedef struct ClrTranslationalJoint ClrTranslationalJoint;
 
 // Geometry and materials of a journal in a bearing, for `clr_normal_law_preset`. SI units.
 typedef struct ClrJournalBearing {
@@ -112,6 +127,56 @@ typedef struct ClrRevoluteForces {
   // Generalized force on the journal body (j).
   struct ClrGeneralizedForce journal;
 } ClrRevoluteForces;
+
+// Result of `clr_lugre_evaluate`.
+typedef struct ClrLuGreOutput {
+  // Bristle rate ż = v_T − σ₀|v_T|z/g(v_T), m/s (integrate it to advance z).
+  double z_dot;
+  // Friction coefficient μ = σ₀z + σ₁ż + σ₂v_T, –, positive along the slip.
+  double coefficient;
+  // Friction force F_T = −μ F_N along the tangent, N; 0 for F_N ≤ 0.
+  double friction_force;
+} ClrLuGreOutput;
+
+// Configuration of a translational clearance joint (Flores et al. 2008, Fig. 3), one of the
+// `CLR_CONFIGURATION_*` constants.
+typedef uint32_t ClrConfiguration;
+
+// Contact of one slider corner in `ClrTranslationalForces`. All fields are 0 when the corner does
+// not penetrate a guide surface (`active` = 0).
+typedef struct ClrCornerContact {
+  // 1 when this corner penetrates a guide surface, 0 otherwise.
+  int32_t active;
+  // Surface penetrated: +1 the upper one (y = +W/2 of the guide frame), −1 the lower one
+  // (y = −W/2), 0 none.
+  int32_t side;
+  // Penetration δ beyond the surface, m (> 0 when active).
+  double penetration;
+  // Unit normal n (from the channel into the penetrated wall), x component.
+  double normal_x;
+  // Unit normal n, y component.
+  double normal_y;
+  // Relative normal velocity v_N = δ̇, m/s (> 0 approaching).
+  double normal_velocity;
+  // Relative tangential velocity v_T along t = k × n, m/s.
+  double tangential_velocity;
+  // Normal force F_N ≥ 0 at this corner, N.
+  double normal_force;
+  // Friction force F_T on the slider along t at this corner, N.
+  double tangential_force;
+} ClrCornerContact;
+
+// Result of `clr_translational_joint_forces`.
+typedef struct ClrTranslationalForces {
+  // Configuration of the corners (`CLR_CONFIGURATION_*`).
+  ClrConfiguration configuration;
+  // Per corner, numbered counter-clockwise from (−L/2, −h/2) of the slider frame.
+  struct ClrCornerContact corners[4];
+  // Generalized force on the guide body (i) about its reference point.
+  struct ClrGeneralizedForce guide;
+  // Generalized force on the slider body (j) about its reference point.
+  struct ClrGeneralizedForce slider;
+} ClrTranslationalForces;
 
 // Hertz F = K δ^1.5 with a given K. Parameters: K (N/m^1.5).
 #define CLR_ELASTIC_HERTZ 0
@@ -191,6 +256,22 @@ typedef struct ClrRevoluteForces {
 
 // Bai & Zhao / ADAMS-STEP Stribeck-type law. Parameters: mu_s, mu_d, v_s (m/s), v_d (m/s).
 #define CLR_FRICTION_STRIBECK 3
+
+// No corner touches a guide surface.
+#define CLR_CONFIGURATION_FREE_FLIGHT 0
+
+// Exactly one corner penetrates a guide surface.
+#define CLR_CONFIGURATION_ONE_CORNER 1
+
+// Two corners penetrate the same guide surface.
+#define CLR_CONFIGURATION_TWO_CORNERS_ONE_SURFACE 2
+
+// Two corners penetrate opposite guide surfaces (slider jammed diagonally).
+#define CLR_CONFIGURATION_TWO_CORNERS_OPPOSITE_SURFACES 3
+
+// Three or four corners penetrate (penetration comparable to the clearance, outside the validity
+// of the point-contact model; the contacts are still reported).
+#define CLR_CONFIGURATION_MORE_CORNERS 4
 
 #ifdef __cplusplus
 extern "C" {
@@ -373,6 +454,147 @@ enum ClrStatus clr_revolute_joint_forces(const struct ClrRevoluteJoint *joint,
 // # Safety
 // `joint` is NULL or a handle from `clr_revolute_joint_new` not freed yet.
 void clr_revolute_joint_free(struct ClrRevoluteJoint *joint);
+
+// Create a LuGre friction model (C. Canudas de Wit, H. Olsson, K.J. Åström, P. Lischinsky, IEEE
+// Trans. Autom. Control 40 (1995) 419–425) in friction-coefficient form:
+// μ = σ₀z + σ₁ż + σ₂v_T, ż = v_T − σ₀|v_T|z/g(v_T), g(v) = μ_c + (μ_s − μ_c)e^{−(v/v_s)²},
+// F_T = −μ F_N. Parameters: bristle stiffness σ₀ (1/m, > 0), bristle damping σ₁ (s/m, ≥ 0),
+// viscous coefficient σ₂ (s/m, ≥ 0), static μ_s (–, > 0) and Coulomb μ_c (–, > 0) coefficients,
+// Stribeck velocity v_s (m/s, > 0). On success `*out` receives a new handle to free with
+// `clr_lugre_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_lugre_new(double sigma0,
+                             double sigma1,
+                             double sigma2,
+                             double mu_s,
+                             double mu_c,
+                             double v_s,
+                             struct ClrLuGre **out);
+
+// Evaluate the LuGre model for the bristle deflection z (m), the slip velocity v_T (m/s) and the
+// normal force F_N (N): the bristle rate ż (m/s) to integrate, the coefficient μ (–) and the
+// friction force F_T = −μ F_N (N, 0 for F_N ≤ 0). The caller keeps z per contact. At constant
+// v_T ≠ 0 the steady state is z = sgn(v_T) g(v_T)/σ₀, where μ = sgn(v_T) g(v_T) + σ₂ v_T.
+// Allocates nothing.
+//
+// # Safety
+// `law` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_lugre_evaluate(const struct ClrLuGre *law,
+                                  double z,
+                                  double v_t,
+                                  double f_n,
+                                  struct ClrLuGreOutput *out);
+
+// Free a LuGre model. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `law` is NULL or a handle from `clr_lugre_new` not freed yet.
+void clr_lugre_free(struct ClrLuGre *law);
+
+// Create a planar translational clearance joint (P. Flores, J. Ambrósio, J.C.P. Claro, H.M.
+// Lankarani, J. Comput. Nonlinear Dyn. 3 (2008) 011007): a rectangular slider of length L and
+// height h (m, > 0) on body j, centred at (`slider_centre_x`, `slider_centre_y`) (m, local to
+// body j) and rotated by `slider_angle` (rad), moving in a straight guide of inner width W > h
+// (m) on body i whose frame sits at (`guide_origin_x`, `guide_origin_y`) (m, local to body i)
+// rotated by `guide_angle` (rad); the guide surfaces are the lines y = ±W/2 of the guide frame.
+// On success `*out` receives a new handle to free with `clr_translational_joint_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_translational_joint_new(double guide_width,
+                                           double slider_length,
+                                           double slider_height,
+                                           double guide_origin_x,
+                                           double guide_origin_y,
+                                           double guide_angle,
+                                           double slider_centre_x,
+                                           double slider_centre_y,
+                                           double slider_angle,
+                                           struct ClrTranslationalJoint **out);
+
+// Generalized forces of the translational clearance joint on both bodies (Flores et al. 2008):
+// every slider corner beyond a guide surface is a point contact with penetration δ, F_N from
+// `normal` with δ̇ = v_N and the impact velocity δ̇⁻ = `impact_velocities[k]` (m/s) of corner k,
+// F_T from `friction` (NULL: frictionless); the force on the slider is −F_N n + F_T t at the
+// corner, the opposite acts on the guide at its contact point, reduced to each body's reference
+// point. `impact_velocities` points to 4 doubles, one per corner (the caller keeps them per
+// contact: the corner's v_N at its first evaluation with δ > 0, until it separates; entries of
+// inactive corners are not read but must be finite). Zero forces in free flight.
+//
+// # Safety
+// `joint`, `normal` are NULL or live handles; `friction` is NULL or a live handle; `guide`,
+// `slider` are NULL or point to `ClrBodyState`; `impact_velocities` is NULL or points to 4
+// doubles; `out` is NULL or writable.
+enum ClrStatus clr_translational_joint_forces(const struct ClrTranslationalJoint *joint,
+                                              const struct ClrNormalLaw *normal,
+                                              const struct ClrFrictionLaw *friction,
+                                              const struct ClrBodyState *guide,
+                                              const struct ClrBodyState *slider,
+                                              const double *impact_velocities,
+                                              struct ClrTranslationalForces *out);
+
+// Free a translational joint. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `joint` is NULL or a handle from `clr_translational_joint_new` not freed yet.
+void clr_translational_joint_free(struct ClrTranslationalJoint *joint);
+
+// Create a model from the text of a model file (TOML, `docs/model-file.md`: a generic model or
+// `[model] builtin = "<name>"`), validated as `clr run` validates it. `[output] t_end` may be
+// missing: the end time is given to `clr_model_run`. On success `*out` receives a new handle to
+// free with `clr_model_free`. A malformed file gives `CLR_STATUS_MODEL_ERROR` and a message with
+// the line and field.
+//
+// # Safety
+// `text` is NULL or a NUL-terminated UTF-8 string; `out` is NULL or writable.
+enum ClrStatus clr_model_from_toml(const char *text, struct ClrModel **out);
+
+// Simulate the model from t = 0 to `t_end` (s, > 0) with the solver settings of its file; the
+// results replace those of an earlier run. `CLR_STATUS_SIMULATION_FAILED` when the solver
+// failed: the rows recorded up to the failure stay readable. The run may take from milliseconds
+// to minutes depending on the model.
+//
+// # Safety
+// `model` is NULL or a live handle not used by another thread during the call.
+enum ClrStatus clr_model_run(struct ClrModel *model, double t_end);
+
+// The column `name` of the last run (e.g. "t" in s, "<body>.x" in m, "<body>.theta" in rad,
+// "<clearance>.normal_force" in N; units as in `docs/model-file.md`): `*out_ptr` receives a
+// pointer to `*out_len` doubles, one per output row, owned by the handle and valid until the
+// next `clr_model_run` or `clr_model_free`. `CLR_STATUS_UNKNOWN_NAME` (the message lists the
+// columns) for an unknown name, `CLR_STATUS_MODEL_ERROR` before the first run.
+//
+// # Safety
+// `model` is NULL or a live handle; `name` is NULL or a NUL-terminated string; `out_ptr` and
+// `out_len` are NULL or writable.
+enum ClrStatus clr_model_column(const struct ClrModel *model,
+                                const char *name,
+                                const double **out_ptr,
+                                uintptr_t *out_len);
+
+// The scalar metric `name` of the last run (e.g. "<clearance>.peak_normal_force" in N), in SI.
+// `CLR_STATUS_UNKNOWN_NAME` (the message lists the metrics) for an unknown name,
+// `CLR_STATUS_MODEL_ERROR` before the first run.
+//
+// # Safety
+// `model` is NULL or a live handle; `name` is NULL or a NUL-terminated string; `out` is NULL or
+// writable.
+enum ClrStatus clr_model_metric(const struct ClrModel *model, const char *name, double *out);
+
+// Number of impacts (contact onsets of the clearance joints, –) in the last run.
+// `CLR_STATUS_MODEL_ERROR` before the first run.
+//
+// # Safety
+// `model` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_model_impact_count(const struct ClrModel *model, uintptr_t *out);
+
+// Free a model and its results. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `model` is NULL or a handle from `clr_model_from_toml` not freed yet.
+void clr_model_free(struct ClrModel *model);
 
 #ifdef __cplusplus
 }  // extern "C"

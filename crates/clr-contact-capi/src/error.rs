@@ -29,6 +29,11 @@ pub enum ClrStatus {
     NoConvergence = 7,
     /// An internal panic was caught at the boundary (a bug: please report the message).
     Panic = 8,
+    /// A model file could not be read or built, or a model was used before its first run (the
+    /// message gives the line and field).
+    ModelError = 9,
+    /// The solver failed during `clr_model_run`; the rows recorded up to the failure are kept.
+    SimulationFailed = 10,
 }
 
 /// Everything that can fail at the C boundary.
@@ -83,6 +88,12 @@ pub enum CapiError {
     /// A C string that is not UTF-8.
     #[error("argument `{0}` is not valid UTF-8; pass an ASCII name such as \"LN\"")]
     Utf8(&'static str),
+    /// A model file that cannot be loaded, built or run, or a model not run yet.
+    #[error("{0}")]
+    Model(String),
+    /// The solver failed during a model run.
+    #[error("simulation failed: {0}")]
+    Simulation(String),
     /// A panic caught at the boundary.
     #[error("internal error (caught panic: {0}); please report it with the inputs that caused it")]
     Panic(String),
@@ -105,6 +116,8 @@ impl CapiError {
             | CapiError::ParameterCount { .. }
             | CapiError::Utf8(_) => ClrStatus::InvalidArgument,
             CapiError::Panic(_) => ClrStatus::Panic,
+            CapiError::Model(_) => ClrStatus::ModelError,
+            CapiError::Simulation(_) => ClrStatus::SimulationFailed,
         }
     }
 }

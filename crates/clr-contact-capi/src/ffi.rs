@@ -12,7 +12,11 @@ use clr_contact::body::BodyState;
 use clr_contact::elastic::Material;
 use clr_contact::restitution::effective_restitution;
 use clr_contact::revolute::JointForces;
-use clr_contact::{FrictionLaw, JournalBearing, NormalLaw, RevoluteClearance};
+use clr_contact::translational::GuideSide;
+use clr_contact::{
+    Configuration, FrictionLaw, JournalBearing, LuGre, NormalLaw, RevoluteClearance, SliderShape,
+    TranslationalClearance,
+};
 
 use crate::error::{finite, guard, last_error_ptr, CapiError, ClrStatus};
 use crate::spec::{damping_from_code, ElasticKind, FrictionKind, Kind};
@@ -160,6 +164,80 @@ pub struct ClrRevoluteForces {
     pub bearing: ClrGeneralizedForce,
     /// Generalized force on the journal body (j).
     pub journal: ClrGeneralizedForce,
+}
+
+/// Opaque handle of a LuGre friction model (Canudas de Wit et al. 1995), whose bristle deflection
+/// z (m) is a state the caller integrates.
+pub struct ClrLuGre(pub(crate) LuGre);
+
+/// Opaque handle of a planar translational clearance joint (rectangular slider in a guide).
+pub struct ClrTranslationalJoint(pub(crate) TranslationalClearance);
+
+/// Configuration of a translational clearance joint (Flores et al. 2008, Fig. 3), one of the
+/// `CLR_CONFIGURATION_*` constants.
+pub type ClrConfiguration = u32;
+/// No corner touches a guide surface.
+pub const CLR_CONFIGURATION_FREE_FLIGHT: ClrConfiguration = 0;
+/// Exactly one corner penetrates a guide surface.
+pub const CLR_CONFIGURATION_ONE_CORNER: ClrConfiguration = 1;
+/// Two corners penetrate the same guide surface.
+pub const CLR_CONFIGURATION_TWO_CORNERS_ONE_SURFACE: ClrConfiguration = 2;
+/// Two corners penetrate opposite guide surfaces (slider jammed diagonally).
+pub const CLR_CONFIGURATION_TWO_CORNERS_OPPOSITE_SURFACES: ClrConfiguration = 3;
+/// Three or four corners penetrate (penetration comparable to the clearance, outside the validity
+/// of the point-contact model; the contacts are still reported).
+pub const CLR_CONFIGURATION_MORE_CORNERS: ClrConfiguration = 4;
+
+/// Result of `clr_lugre_evaluate`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClrLuGreOutput {
+    /// Bristle rate ż = v_T − σ₀|v_T|z/g(v_T), m/s (integrate it to advance z).
+    pub z_dot: f64,
+    /// Friction coefficient μ = σ₀z + σ₁ż + σ₂v_T, –, positive along the slip.
+    pub coefficient: f64,
+    /// Friction force F_T = −μ F_N along the tangent, N; 0 for F_N ≤ 0.
+    pub friction_force: f64,
+}
+
+/// Contact of one slider corner in `ClrTranslationalForces`. All fields are 0 when the corner does
+/// not penetrate a guide surface (`active` = 0).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClrCornerContact {
+    /// 1 when this corner penetrates a guide surface, 0 otherwise.
+    pub active: i32,
+    /// Surface penetrated: +1 the upper one (y = +W/2 of the guide frame), −1 the lower one
+    /// (y = −W/2), 0 none.
+    pub side: i32,
+    /// Penetration δ beyond the surface, m (> 0 when active).
+    pub penetration: f64,
+    /// Unit normal n (from the channel into the penetrated wall), x component.
+    pub normal_x: f64,
+    /// Unit normal n, y component.
+    pub normal_y: f64,
+    /// Relative normal velocity v_N = δ̇, m/s (> 0 approaching).
+    pub normal_velocity: f64,
+    /// Relative tangential velocity v_T along t = k × n, m/s.
+    pub tangential_velocity: f64,
+    /// Normal force F_N ≥ 0 at this corner, N.
+    pub normal_force: f64,
+    /// Friction force F_T on the slider along t at this corner, N.
+    pub tangential_force: f64,
+}
+
+/// Result of `clr_translational_joint_forces`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ClrTranslationalForces {
+    /// Configuration of the corners (`CLR_CONFIGURATION_*`).
+    pub configuration: ClrConfiguration,
+    /// Per corner, numbered counter-clockwise from (−L/2, −h/2) of the slider frame.
+    pub corners: [ClrCornerContact; 4],
+    /// Generalized force on the guide body (i) about its reference point.
+    pub guide: ClrGeneralizedForce,
+    /// Generalized force on the slider body (j) about its reference point.
+    pub slider: ClrGeneralizedForce,
 }
 
 /// Borrow a handle or report a NULL pointer.
@@ -629,6 +707,246 @@ pub unsafe extern "C" fn clr_revolute_joint_free(joint: *mut ClrRevoluteJoint) {
     }
 }
 
+/// Create a LuGre friction model (C. Canudas de Wit, H. Olsson, K.J. Åström, P. Lischinsky, IEEE
+/// Trans. Autom. Control 40 (1995) 419–425) in friction-coefficient form:
+/// μ = σ₀z + σ₁ż + σ₂v_T, ż = v_T − σ₀|v_T|z/g(v_T), g(v) = μ_c + (μ_s − μ_c)e^{−(v/v_s)²},
+/// F_T = −μ F_N. Parameters: bristle stiffness σ₀ (1/m, > 0), bristle damping σ₁ (s/m, ≥ 0),
+/// viscous coefficient σ₂ (s/m, ≥ 0), static μ_s (–, > 0) and Coulomb μ_c (–, > 0) coefficients,
+/// Stribeck velocity v_s (m/s, > 0). On success `*out` receives a new handle to free with
+/// `clr_lugre_free`.
+///
+/// # Safety
+/// `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_lugre_new(
+    sigma0: f64,
+    sigma1: f64,
+    sigma2: f64,
+    mu_s: f64,
+    mu_c: f64,
+    v_s: f64,
+    out: *mut *mut ClrLuGre,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = LuGre::new(sigma0, sigma1, sigma2, mu_s, mu_c, v_s)?;
+        out.write(Box::into_raw(Box::new(ClrLuGre(law))));
+        Ok(())
+    })
+}
+
+/// Evaluate the LuGre model for the bristle deflection z (m), the slip velocity v_T (m/s) and the
+/// normal force F_N (N): the bristle rate ż (m/s) to integrate, the coefficient μ (–) and the
+/// friction force F_T = −μ F_N (N, 0 for F_N ≤ 0). The caller keeps z per contact. At constant
+/// v_T ≠ 0 the steady state is z = sgn(v_T) g(v_T)/σ₀, where μ = sgn(v_T) g(v_T) + σ₂ v_T.
+/// Allocates nothing.
+///
+/// # Safety
+/// `law` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_lugre_evaluate(
+    law: *const ClrLuGre,
+    z: f64,
+    v_t: f64,
+    f_n: f64,
+    out: *mut ClrLuGreOutput,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let law = borrow("law", law)?;
+        let z = finite("z (m)", z)?;
+        let v = finite("v_t (m/s)", v_t)?;
+        let f = finite("f_n (N)", f_n)?;
+        out.write(lugre_evaluate(&law.0, z, v, f));
+        Ok(())
+    })
+}
+
+/// The LuGre evaluation shared by the C and Python bindings.
+pub fn lugre_evaluate(law: &LuGre, z: f64, v_t: f64, f_n: f64) -> ClrLuGreOutput {
+    let z_dot = law.z_dot(v_t, z);
+    ClrLuGreOutput {
+        z_dot,
+        coefficient: law.coefficient(v_t, z, z_dot),
+        friction_force: law.force(v_t, z, z_dot, f_n),
+    }
+}
+
+/// Free a LuGre model. NULL is ignored. Freeing a handle twice is undefined behaviour.
+///
+/// # Safety
+/// `law` is NULL or a handle from `clr_lugre_new` not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn clr_lugre_free(law: *mut ClrLuGre) {
+    if !law.is_null() {
+        drop(Box::from_raw(law));
+    }
+}
+
+/// Create a planar translational clearance joint (P. Flores, J. Ambrósio, J.C.P. Claro, H.M.
+/// Lankarani, J. Comput. Nonlinear Dyn. 3 (2008) 011007): a rectangular slider of length L and
+/// height h (m, > 0) on body j, centred at (`slider_centre_x`, `slider_centre_y`) (m, local to
+/// body j) and rotated by `slider_angle` (rad), moving in a straight guide of inner width W > h
+/// (m) on body i whose frame sits at (`guide_origin_x`, `guide_origin_y`) (m, local to body i)
+/// rotated by `guide_angle` (rad); the guide surfaces are the lines y = ±W/2 of the guide frame.
+/// On success `*out` receives a new handle to free with `clr_translational_joint_free`.
+///
+/// # Safety
+/// `out` is NULL or writable.
+#[no_mangle]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn clr_translational_joint_new(
+    guide_width: f64,
+    slider_length: f64,
+    slider_height: f64,
+    guide_origin_x: f64,
+    guide_origin_y: f64,
+    guide_angle: f64,
+    slider_centre_x: f64,
+    slider_centre_y: f64,
+    slider_angle: f64,
+    out: *mut *mut ClrTranslationalJoint,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let slider = SliderShape::new(
+            slider_length,
+            slider_height,
+            [slider_centre_x, slider_centre_y].into(),
+            slider_angle,
+        )?;
+        let joint = TranslationalClearance::new(
+            slider,
+            guide_width,
+            [guide_origin_x, guide_origin_y].into(),
+            guide_angle,
+        )?;
+        out.write(Box::into_raw(Box::new(ClrTranslationalJoint(joint))));
+        Ok(())
+    })
+}
+
+/// Generalized forces of the translational clearance joint on both bodies (Flores et al. 2008):
+/// every slider corner beyond a guide surface is a point contact with penetration δ, F_N from
+/// `normal` with δ̇ = v_N and the impact velocity δ̇⁻ = `impact_velocities[k]` (m/s) of corner k,
+/// F_T from `friction` (NULL: frictionless); the force on the slider is −F_N n + F_T t at the
+/// corner, the opposite acts on the guide at its contact point, reduced to each body's reference
+/// point. `impact_velocities` points to 4 doubles, one per corner (the caller keeps them per
+/// contact: the corner's v_N at its first evaluation with δ > 0, until it separates; entries of
+/// inactive corners are not read but must be finite). Zero forces in free flight.
+///
+/// # Safety
+/// `joint`, `normal` are NULL or live handles; `friction` is NULL or a live handle; `guide`,
+/// `slider` are NULL or point to `ClrBodyState`; `impact_velocities` is NULL or points to 4
+/// doubles; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_translational_joint_forces(
+    joint: *const ClrTranslationalJoint,
+    normal: *const ClrNormalLaw,
+    friction: *const ClrFrictionLaw,
+    guide: *const ClrBodyState,
+    slider: *const ClrBodyState,
+    impact_velocities: *const f64,
+    out: *mut ClrTranslationalForces,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        let joint = borrow("joint", joint)?;
+        let normal = borrow("normal", normal)?;
+        let friction = friction.as_ref();
+        let bi = body_state("guide state", borrow("guide", guide)?)?;
+        let bj = body_state("slider state", borrow("slider", slider)?)?;
+        if impact_velocities.is_null() {
+            return Err(CapiError::Null("impact_velocities"));
+        }
+        const NAMES: [&str; 4] = [
+            "impact_velocities[0] (m/s)",
+            "impact_velocities[1] (m/s)",
+            "impact_velocities[2] (m/s)",
+            "impact_velocities[3] (m/s)",
+        ];
+        let mut v0 = [0.0; 4];
+        for (k, v) in v0.iter_mut().enumerate() {
+            *v = finite(NAMES[k], impact_velocities.add(k).read())?;
+        }
+        out.write(translational_forces(
+            &joint.0,
+            &normal.0,
+            friction.map(|f| &f.0),
+            &bi,
+            &bj,
+            &v0,
+        ));
+        Ok(())
+    })
+}
+
+/// The translational joint evaluation shared by the C and Python bindings.
+pub fn translational_forces(
+    joint: &TranslationalClearance,
+    normal: &NormalLaw,
+    friction: Option<&FrictionLaw>,
+    guide: &BodyState,
+    slider: &BodyState,
+    impact_velocities: &[f64; 4],
+) -> ClrTranslationalForces {
+    let c = joint.contact(guide, slider);
+    let forces = c.generalized_forces(|cc| {
+        let p = &cc.contact;
+        let f_n = normal.force(
+            p.penetration,
+            p.normal_velocity,
+            impact_velocities[cc.corner],
+        );
+        let f_t = friction.map_or(0.0, |f| f.force(p.tangential_velocity, f_n));
+        (f_n, f_t)
+    });
+    let mut corners = [ClrCornerContact::default(); 4];
+    for cc in c.active() {
+        let p = &cc.contact;
+        let (f_n, f_t) = forces.corner_forces[cc.corner];
+        corners[cc.corner] = ClrCornerContact {
+            active: 1,
+            side: match cc.side {
+                GuideSide::Upper => 1,
+                GuideSide::Lower => -1,
+            },
+            penetration: p.penetration,
+            normal_x: p.normal.x,
+            normal_y: p.normal.y,
+            normal_velocity: p.normal_velocity,
+            tangential_velocity: p.tangential_velocity,
+            normal_force: f_n,
+            tangential_force: f_t,
+        };
+    }
+    ClrTranslationalForces {
+        configuration: match c.configuration {
+            Configuration::FreeFlight => CLR_CONFIGURATION_FREE_FLIGHT,
+            Configuration::OneCorner => CLR_CONFIGURATION_ONE_CORNER,
+            Configuration::TwoCornersOneSurface => CLR_CONFIGURATION_TWO_CORNERS_ONE_SURFACE,
+            Configuration::TwoCornersOppositeSurfaces => {
+                CLR_CONFIGURATION_TWO_CORNERS_OPPOSITE_SURFACES
+            }
+            Configuration::MoreCorners => CLR_CONFIGURATION_MORE_CORNERS,
+        },
+        corners,
+        guide: generalized(forces.guide),
+        slider: generalized(forces.slider),
+    }
+}
+
+/// Free a translational joint. NULL is ignored. Freeing a handle twice is undefined behaviour.
+///
+/// # Safety
+/// `joint` is NULL or a handle from `clr_translational_joint_new` not freed yet.
+#[no_mangle]
+pub unsafe extern "C" fn clr_translational_joint_free(joint: *mut ClrTranslationalJoint) {
+    if !joint.is_null() {
+        drop(Box::from_raw(joint));
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -684,5 +1002,160 @@ mod tests {
         for (code, k) in friction {
             assert_eq!(FrictionKind::from_code(code).unwrap(), k);
         }
+    }
+
+    #[test]
+    fn lugre_matches_the_rust_model_bit_for_bit() {
+        let (s0, s1, s2, mu_s, mu_c, v_s) = (1e5, 316.0, 0.4, 0.3, 0.2, 0.01);
+        let rust = LuGre::new(s0, s1, s2, mu_s, mu_c, v_s).unwrap();
+        let mut h: *mut ClrLuGre = std::ptr::null_mut();
+        let s = unsafe { clr_lugre_new(s0, s1, s2, mu_s, mu_c, v_s, &mut h) };
+        assert_eq!(s, ClrStatus::Ok);
+        for (z, v, f_n) in [
+            (0.0, 0.0, 100.0),
+            (1e-6, 0.005, 1000.0),
+            (-2e-6, -0.02, 250.0),
+            (3e-6, 0.1, -5.0),
+            (2.9e-6, 1e-4, 0.0),
+        ] {
+            let mut out = ClrLuGreOutput::default();
+            let s = unsafe { clr_lugre_evaluate(h, z, v, f_n, &mut out) };
+            assert_eq!(s, ClrStatus::Ok);
+            let z_dot = rust.z_dot(v, z);
+            assert_eq!(out.z_dot.to_bits(), z_dot.to_bits());
+            assert_eq!(
+                out.coefficient.to_bits(),
+                rust.coefficient(v, z, z_dot).to_bits()
+            );
+            assert_eq!(
+                out.friction_force.to_bits(),
+                rust.force(v, z, z_dot, f_n).to_bits()
+            );
+        }
+        let mut out = ClrLuGreOutput {
+            z_dot: 7.0,
+            ..Default::default()
+        };
+        let s = unsafe { clr_lugre_evaluate(h, f64::NAN, 0.1, 1.0, &mut out) };
+        assert_eq!(s, ClrStatus::NonFinite);
+        assert_eq!(out.z_dot, 7.0);
+        unsafe { clr_lugre_free(h) };
+        let mut bad: *mut ClrLuGre = std::ptr::null_mut();
+        let s = unsafe { clr_lugre_new(0.0, s1, s2, mu_s, mu_c, v_s, &mut bad) };
+        assert_eq!(s, ClrStatus::InvalidParameter);
+        assert!(bad.is_null());
+        assert_eq!(
+            unsafe { clr_lugre_evaluate(std::ptr::null(), 0.0, 0.0, 0.0, &mut out) },
+            ClrStatus::NullPointer
+        );
+    }
+
+    #[test]
+    fn translational_forces_match_the_rust_api_bit_for_bit() {
+        // Slider 40 mm x 20 mm in a 20.2 mm guide, tilted by 2 mrad and pushed 50 um below the
+        // lower face, moving down-right and spinning: corners 0 and 3 touch the faces.
+        let (w, l, h) = (0.0202, 0.04, 0.02);
+        let shape = SliderShape::new(l, h, [0.001, 0.0].into(), 0.0).unwrap();
+        let rust = TranslationalClearance::new(shape, w, [0.0, 0.002].into(), 0.01).unwrap();
+        let mut joint: *mut ClrTranslationalJoint = std::ptr::null_mut();
+        let s = unsafe {
+            clr_translational_joint_new(w, l, h, 0.0, 0.002, 0.01, 0.001, 0.0, 0.0, &mut joint)
+        };
+        assert_eq!(s, ClrStatus::Ok);
+        let jb = JournalBearing::flap_paper_test();
+        let normal = NormalLaw::preset("LN", &jb, 0.5).unwrap();
+        let friction = FrictionLaw::ambrosio(0.1, 1e-4, 1e-3).unwrap();
+        let (cn, cf) = (ClrNormalLaw(normal), ClrFrictionLaw(friction));
+        let guide = ClrBodyState {
+            x: 0.01,
+            y: -0.002,
+            theta: -0.01,
+            vx: 0.1,
+            vy: 0.0,
+            omega: 0.5,
+        };
+        let slider = ClrBodyState {
+            x: 0.3,
+            y: -0.00015,
+            theta: 0.002,
+            vx: 0.5,
+            vy: -0.2,
+            omega: 3.0,
+        };
+        let v0 = [0.2, 0.3, 0.4, 0.5];
+        let mut out = ClrTranslationalForces::default();
+        let s = unsafe {
+            clr_translational_joint_forces(joint, &cn, &cf, &guide, &slider, v0.as_ptr(), &mut out)
+        };
+        assert_eq!(s, ClrStatus::Ok);
+        let bi = body_state("g", &guide).unwrap();
+        let bj = body_state("s", &slider).unwrap();
+        let c = rust.contact(&bi, &bj);
+        assert_ne!(c.configuration, Configuration::FreeFlight);
+        let f = c.generalized_forces(|cc| {
+            let p = &cc.contact;
+            let f_n = normal.force(p.penetration, p.normal_velocity, v0[cc.corner]);
+            (f_n, friction.force(p.tangential_velocity, f_n))
+        });
+        let bits = |g: &ClrGeneralizedForce| [g.fx.to_bits(), g.fy.to_bits(), g.moment.to_bits()];
+        assert_eq!(bits(&out.guide), bits(&generalized(f.guide)));
+        assert_eq!(bits(&out.slider), bits(&generalized(f.slider)));
+        let mut active = 0;
+        for k in 0..4 {
+            let o = &out.corners[k];
+            match &c.corners[k] {
+                Some(cc) => {
+                    active += 1;
+                    assert_eq!(o.active, 1);
+                    assert!(o.normal_force > 0.0);
+                    assert_eq!(o.normal_force.to_bits(), f.corner_forces[k].0.to_bits());
+                    assert_eq!(o.tangential_force.to_bits(), f.corner_forces[k].1.to_bits());
+                    assert_eq!(o.penetration.to_bits(), cc.contact.penetration.to_bits());
+                    assert_eq!(o.normal_y.to_bits(), cc.contact.normal.y.to_bits());
+                    assert_eq!(
+                        o.tangential_velocity.to_bits(),
+                        cc.contact.tangential_velocity.to_bits()
+                    );
+                }
+                None => assert_eq!(*o, ClrCornerContact::default()),
+            }
+        }
+        assert!(active >= 1);
+
+        // Errors: NULL impact velocities, NaN state, W <= h.
+        let s = unsafe {
+            clr_translational_joint_forces(
+                joint,
+                &cn,
+                &cf,
+                &guide,
+                &slider,
+                std::ptr::null(),
+                &mut out,
+            )
+        };
+        assert_eq!(s, ClrStatus::NullPointer);
+        let nan = ClrBodyState {
+            omega: f64::NAN,
+            ..slider
+        };
+        let s = unsafe {
+            clr_translational_joint_forces(
+                joint,
+                &cn,
+                std::ptr::null(),
+                &guide,
+                &nan,
+                v0.as_ptr(),
+                &mut out,
+            )
+        };
+        assert_eq!(s, ClrStatus::NonFinite);
+        unsafe { clr_translational_joint_free(joint) };
+        let mut bad: *mut ClrTranslationalJoint = std::ptr::null_mut();
+        let s =
+            unsafe { clr_translational_joint_new(h, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, &mut bad) };
+        assert_eq!(s, ClrStatus::InvalidParameter);
+        assert!(bad.is_null());
     }
 }

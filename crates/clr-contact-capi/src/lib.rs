@@ -1,5 +1,6 @@
-//! C ABI of `clr-contact`: normal-force laws, friction laws and the planar revolute clearance
-//! joint, for user force subroutines of other codes (C, C++, Fortran through `bind(C)`, MATLAB
+//! C ABI of `clr-contact`: normal-force laws, friction laws (stateless and LuGre), the planar
+//! revolute and translational clearance joints, and whole models loaded from model-file text
+//! and run as `clr run` runs them ([`model`]), for user force subroutines of other codes (C, C++, Fortran through `bind(C)`, MATLAB
 //! `loadlibrary`, Python `ctypes`).
 //!
 //! The crate builds `libclr_contact_capi.so` (cdylib) and `libclr_contact_capi.a` (staticlib)
@@ -22,7 +23,9 @@
 
 pub mod error;
 pub mod ffi;
+pub mod model;
 pub mod spec;
 
 pub use error::{CapiError, ClrStatus};
 pub use ffi::*;
+pub use model::*;

@@ -262,6 +262,196 @@ static void revolute(void) {
     clr_friction_law_free(fr);
 }
 
+/* LuGre (Canudas de Wit et al. 1995): at the steady state of a constant slip v, z_ss =
+ * sgn(v) g(v)/sigma0 with g(v) = mu_c + (mu_s - mu_c) exp(-(v/v_s)^2), so z_dot = 0 and the
+ * coefficient is mu = sgn(v) g(v) + sigma2 v, F_T = -mu F_N. Rel tol 1e-12: only rounding of
+ * sigma0 z_ss/g separates the library from this closed form. */
+static void lugre(void) {
+    const double s0 = 1e5, s1 = 316.0, s2 = 0.4, mu_s = 0.3, mu_c = 0.2, v_s = 0.01, fn = 1000.0;
+    ClrLuGre *law = NULL;
+    status_is("create LuGre", clr_lugre_new(s0, s1, s2, mu_s, mu_c, v_s, &law), CLR_STATUS_OK);
+    const double v[3] = {0.005, -0.02, 0.1};
+    for (int i = 0; i < 3; i++) {
+        double r = v[i] / v_s;
+        double g = mu_c + (mu_s - mu_c) * exp(-r * r);
+        double sgn = v[i] > 0.0 ? 1.0 : -1.0;
+        double mu = sgn * g + s2 * v[i];
+        ClrLuGreOutput out;
+        memset(&out, 0, sizeof out);
+        char what[96];
+        snprintf(what, sizeof what, "LuGre evaluate status (v = %g)", v[i]);
+        status_is(what, clr_lugre_evaluate(law, sgn * g / s0, v[i], fn, &out), CLR_STATUS_OK);
+        snprintf(what, sizeof what, "LuGre steady state z_dot = 0 (v = %g)", v[i]);
+        close_abs(what, out.z_dot, 0.0, 1e-15);
+        snprintf(what, sizeof what, "LuGre steady mu = sgn(v) g(v) + sigma2 v (v = %g)", v[i]);
+        close_rel(what, out.coefficient, mu, 1e-12);
+        snprintf(what, sizeof what, "LuGre steady F_T = -mu F_N (v = %g)", v[i]);
+        close_rel(what, out.friction_force, -mu * fn, 1e-12);
+    }
+    /* At rest with no deflection: no rate, no force. */
+    ClrLuGreOutput rest;
+    clr_lugre_evaluate(law, 0.0, 0.0, fn, &rest);
+    check("LuGre at rest: z_dot = 0, F_T = 0", rest.z_dot == 0.0 && rest.friction_force == 0.0);
+    status_is("LuGre NaN z -> NON_FINITE", clr_lugre_evaluate(law, NAN, 0.1, fn, &rest),
+              CLR_STATUS_NON_FINITE);
+    status_is("LuGre NULL out -> NULL_POINTER", clr_lugre_evaluate(law, 0.0, 0.1, fn, NULL),
+              CLR_STATUS_NULL_POINTER);
+    clr_lugre_free(law);
+    ClrLuGre *bad = NULL;
+    status_is("LuGre sigma0 = 0 -> INVALID_PARAMETER",
+              clr_lugre_new(0.0, s1, s2, mu_s, mu_c, v_s, &bad), CLR_STATUS_INVALID_PARAMETER);
+    check("LuGre: no handle on failure", bad == NULL);
+    clr_lugre_free(NULL);
+}
+
+/* Translational clearance joint (Flores et al. 2008): a 40 mm x 20 mm slider in a 20.2 mm
+ * guide fixed at the origin, at rest and pressed 10 um into the lower face. Linear normal law
+ * k = 1e8 N/m, no damping: both lower corners carry F_N = k delta = 1000 N and the slider is
+ * pushed up by 2000 N. */
+static void translational(void) {
+    const double w = 0.0202, l = 0.04, h = 0.02, delta = 10e-6, k = 1e8;
+    ClrTranslationalJoint *joint = NULL;
+    status_is("create translational joint",
+              clr_translational_joint_new(w, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, &joint),
+              CLR_STATUS_OK);
+    double kp[1] = {k};
+    ClrNormalLaw *lin = NULL;
+    status_is("create linear law", clr_normal_law_new(CLR_ELASTIC_LINEAR, kp, 1, CLR_DAMPING_NONE, 1.0, &lin),
+              CLR_STATUS_OK);
+    ClrBodyState guide = {0};
+    ClrBodyState slider = {0.0, -0.5 * (w - h) - delta, 0.0, 0.0, 0.0, 0.0};
+    const double v0[4] = {0.1, 0.1, 0.1, 0.1};
+    ClrTranslationalForces out;
+    memset(&out, 0, sizeof out);
+    status_is("translational forces status",
+              clr_translational_joint_forces(joint, lin, NULL, &guide, &slider, v0, &out),
+              CLR_STATUS_OK);
+    check("slider on the lower face: two corners, one surface",
+          out.configuration == CLR_CONFIGURATION_TWO_CORNERS_ONE_SURFACE);
+    check("corners 0 and 1 on the lower face, 2 and 3 free",
+          out.corners[0].active == 1 && out.corners[0].side == -1 && out.corners[1].active == 1 &&
+              out.corners[1].side == -1 && out.corners[2].active == 0 && out.corners[3].active == 0);
+    check("positive normal force at corner 0", out.corners[0].normal_force > 0.0);
+    close_rel("corner 0 penetration = 10 um", out.corners[0].penetration, delta, 1e-6);
+    close_rel("corner 0 F_N = k delta = 1000 N", out.corners[0].normal_force, k * delta, 1e-6);
+    close_rel("slider pushed up by 2000 N", out.slider.fy, 2.0 * k * delta, 1e-6);
+    close_rel("guide pushed down by 2000 N", out.guide.fy, -2.0 * k * delta, 1e-6);
+    close_abs("no net moment on the slider", out.slider.moment, 0.0, 1e-9);
+
+    /* Centred slider: free flight, zero forces. */
+    ClrBodyState centred = {0};
+    clr_translational_joint_forces(joint, lin, NULL, &guide, &centred, v0, &out);
+    check("centred slider: free flight, zero forces",
+          out.configuration == CLR_CONFIGURATION_FREE_FLIGHT && out.slider.fy == 0.0 &&
+              out.corners[0].active == 0);
+    status_is("NULL impact velocities -> NULL_POINTER",
+              clr_translational_joint_forces(joint, lin, NULL, &guide, &slider, NULL, &out),
+              CLR_STATUS_NULL_POINTER);
+    ClrTranslationalJoint *bad = NULL;
+    status_is("W <= h -> INVALID_PARAMETER",
+              clr_translational_joint_new(h, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, &bad),
+              CLR_STATUS_INVALID_PARAMETER);
+    check("translational: no handle on failure", bad == NULL);
+    clr_translational_joint_free(joint);
+    clr_translational_joint_free(NULL);
+    clr_normal_law_free(lin);
+}
+
+/* Whole model from a model file's text: a driven crank whose pin sits with 0.1 mm radial
+ * clearance in a spring-held link (tests/data/journal_bearing.toml without [output] t_end, which
+ * clr_model_run gives). Checks the run reaches t_end, columns have one value per row, the
+ * contact force is never negative and the metric and impact count are readable. */
+static const char *JOURNAL_MODEL =
+    "[model]\n"
+    "name = \"journal_bearing\"\n"
+    "gravity = [0.0, -9.81]\n"
+    "[[body]]\n"
+    "name = \"crank\"\n"
+    "mass = 0.5\n"
+    "inertia = 1.7e-3\n"
+    "position = [0.05, 0.0]\n"
+    "[[body]]\n"
+    "name = \"link\"\n"
+    "mass = 1.0\n"
+    "inertia = 1.0e-2\n"
+    "position = [0.25, 0.0]\n"
+    "[[joint]]\n"
+    "name = \"shaft\"\n"
+    "type = \"revolute\"\n"
+    "a = { body = \"ground\", at = [0.0, 0.0] }\n"
+    "b = { body = \"crank\", at = [-0.05, 0.0] }\n"
+    "[[driver]]\n"
+    "name = \"motor\"\n"
+    "type = \"angle\"\n"
+    "body = \"crank\"\n"
+    "motion = { type = \"ramp\", initial = 0.0, rate = 20.0, duration = 0.05 }\n"
+    "[[force]]\n"
+    "name = \"holder\"\n"
+    "type = \"spring_damper\"\n"
+    "a = { body = \"ground\", at = [0.5, 0.0] }\n"
+    "b = { body = \"link\", at = [0.15, 0.0] }\n"
+    "stiffness = 2000.0\n"
+    "damping = 5.0\n"
+    "free_length = 0.1\n"
+    "[[clearance]]\n"
+    "name = \"pin\"\n"
+    "type = \"revolute\"\n"
+    "bearing = { body = \"link\", at = [-0.15, 0.0] }\n"
+    "journal = { body = \"crank\", at = [0.05, 0.0] }\n"
+    "bearing_radius = 0.0100\n"
+    "journal_radius = 0.0099\n"
+    "normal = { law = \"hertz-internal-cylinder\", damping = \"lankarani-nikravesh\", "
+    "restitution = 0.9, bearing_material = { youngs_modulus = 2.07e11, poisson_ratio = 0.3 }, "
+    "journal_material = { youngs_modulus = 2.07e11, poisson_ratio = 0.3 } }\n"
+    "friction = { law = \"coulomb\", mu = 0.05, v_reg = 1e-3 }\n"
+    "[solver]\n"
+    "rtol = 1e-6\n"
+    "atol = 1e-9\n";
+
+static void model(void) {
+    ClrModel *m = NULL;
+    status_is("model from TOML text", clr_model_from_toml(JOURNAL_MODEL, &m), CLR_STATUS_OK);
+    const double *t = NULL;
+    size_t n = 0;
+    status_is("column before the first run -> MODEL_ERROR", clr_model_column(m, "t", &t, &n),
+              CLR_STATUS_MODEL_ERROR);
+    status_is("run to 0.1 s", clr_model_run(m, 0.1), CLR_STATUS_OK);
+    status_is("column t", clr_model_column(m, "t", &t, &n), CLR_STATUS_OK);
+    check("several output rows", n > 10);
+    close_abs("first row at t = 0 s", t[0], 0.0, 0.0);
+    close_rel("last row at t_end = 0.1 s", t[n - 1], 0.1, 1e-12);
+    const double *fn = NULL;
+    size_t n_fn = 0;
+    status_is("column pin.normal_force", clr_model_column(m, "pin.normal_force", &fn, &n_fn),
+              CLR_STATUS_OK);
+    int nonneg = n_fn == n;
+    double peak_rows = 0.0;
+    for (size_t i = 0; i < n_fn; i++) {
+        nonneg = nonneg && fn[i] >= 0.0;
+        if (fn[i] > peak_rows) peak_rows = fn[i];
+    }
+    check("pin.normal_force: one value per row, all >= 0 N", nonneg);
+    double peak = NAN;
+    status_is("metric pin.peak_normal_force", clr_model_metric(m, "pin.peak_normal_force", &peak),
+              CLR_STATUS_OK);
+    check("peak metric >= largest recorded row", peak >= peak_rows);
+    size_t impacts = 12345;
+    status_is("impact count", clr_model_impact_count(m, &impacts), CLR_STATUS_OK);
+    check("impact count written", impacts != 12345);
+    printf("     model: %zu rows, %zu impacts, peak F_N = %.6g N\n", n, impacts, peak);
+    status_is("unknown column -> UNKNOWN_NAME", clr_model_column(m, "pin.nope", &t, &n),
+              CLR_STATUS_UNKNOWN_NAME);
+    check("message lists the columns", strstr(clr_last_error_message(), "pin.normal_force") != NULL);
+    status_is("t_end <= 0 -> MODEL_ERROR", clr_model_run(m, 0.0), CLR_STATUS_MODEL_ERROR);
+    clr_model_free(m);
+
+    ClrModel *bad = NULL;
+    status_is("malformed model -> MODEL_ERROR", clr_model_from_toml("[model]\nname = 3\n", &bad),
+              CLR_STATUS_MODEL_ERROR);
+    check("model: no handle on failure", bad == NULL);
+    clr_model_free(NULL);
+}
+
 /* Error handling: status codes, messages, outputs untouched on failure. */
 static void errors(void) {
     ClrNormalLaw *law = NULL;
@@ -339,6 +529,9 @@ int main(void) {
     restitution();
     friction();
     revolute();
+    lugre();
+    translational();
+    model();
     errors();
     printf("%d passed, %d failed\n", passed, failed);
     return failed == 0 ? 0 : 1;
