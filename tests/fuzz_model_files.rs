@@ -14,7 +14,7 @@ mod mutate;
 
 use std::path::Path;
 use std::sync::mpsc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 const CASES: u64 = 3000;
 const SEED: u64 = 20_240_607;
@@ -37,7 +37,6 @@ fn mutated_model_files_never_panic_and_every_error_is_located() {
     let seeds = seeds();
     assert!(seeds.len() >= 20, "{} seeds", seeds.len());
     case::quiet_panics();
-    let start = Instant::now();
     // CLR_FUZZ_TRACE=1: one thread, each case's index printed before it runs (to find a case
     // that aborts the process)
     let trace = std::env::var_os("CLR_FUZZ_TRACE").is_some();
@@ -69,8 +68,9 @@ fn mutated_model_files_never_panic_and_every_error_is_located() {
     let mut findings = Vec::new();
     let (mut accepted, mut rejected) = (0, 0);
     loop {
-        // a hang: no case may take more than 10 s
-        match rx.recv_timeout(Duration::from_secs(10)) {
+        // a hang guard, not a speed test: a simulated dual-guide case takes up to ~15 s on a
+        // loaded 2-core machine (docs/fuzzing.md), so only a case silent for 300 s fails
+        match rx.recv_timeout(Duration::from_secs(300)) {
             Ok((i, v, input)) => {
                 match &v {
                     case::Verdict::Accepted { .. } | case::Verdict::SolverFailure(_) => {
@@ -90,7 +90,7 @@ fn mutated_model_files_never_panic_and_every_error_is_located() {
             }
             Err(mpsc::RecvTimeoutError::Disconnected) => break,
             Err(mpsc::RecvTimeoutError::Timeout) => {
-                panic!("a case ran for more than 10 s (replay with `cargo xtask fuzz --seed {SEED} --case I` around the last cases)")
+                panic!("a case ran for more than 300 s (replay with `cargo xtask fuzz --seed {SEED} --case I` around the last cases)")
             }
         }
     }
@@ -104,10 +104,7 @@ fn mutated_model_files_never_panic_and_every_error_is_located() {
         accepted > 30 && rejected > 1000,
         "{accepted} accepted, {rejected} rejected"
     );
-    eprintln!(
-        "{CASES} cases in {:.1} s: {accepted} accepted, {rejected} rejected with a location",
-        start.elapsed().as_secs_f64()
-    );
+    eprintln!("{CASES} cases: {accepted} accepted, {rejected} rejected with a location");
 }
 
 /// The bugs the fuzzer found, one file each in tests/data/bad/: each is now refused with the
