@@ -38,7 +38,7 @@ pub struct RevoluteClearance {
     /// clearance_force_application`, itself `common_point` by default. Energy: both forms
     /// dissipate the same normal-damping and friction power to first order in δ.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub force_application: Option<crate::desc::ForceApplicationDesc>,
+    pub force_application: Option<crate::desc::parts::ForceApplicationDesc>,
 }
 
 impl Element for RevoluteClearance {
