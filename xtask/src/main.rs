@@ -6,12 +6,15 @@
 //!   `target/bench/`;
 //! - `cargo xtask figures`: regenerate the figures under `docs/figures/`;
 //! - `cargo xtask fuzz [--cases N] [--seed S] [--threads T]`: fuzz the model-file path and the C
-//!   ABI, write `target/fuzz/report.md` and reproducers in `target/fuzz/findings/`.
+//!   ABI, write `target/fuzz/report.md` and reproducers in `target/fuzz/findings/`;
+//! - `cargo xtask octave`: build the MATLAB/Octave MEX gateway `matlab/clr_mex.c` with Octave
+//!   (installed with apt-get if missing), run its tests and the journal-impact example.
 
 mod bench;
 mod figures;
 mod fuzz;
 mod minimal_slider_crank;
+mod octave;
 mod report;
 mod verify;
 
@@ -33,12 +36,14 @@ pub fn target_dir() -> PathBuf {
         .unwrap_or_else(|| workspace_root().join("target"))
 }
 
-const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS]>
+const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS] | octave>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
   bench    benchmarks against peers (groups: ode, mbd, beam); writes target/bench/<group>.json
   figures  regenerate docs/figures/
   fuzz     fuzz the model files and the C ABI (--cases N, --seed S, --threads T; --help for all);
-           writes target/fuzz/report.md and target/fuzz/findings/";
+           writes target/fuzz/report.md and target/fuzz/findings/
+  octave   build matlab/clr_mex.c with Octave's mkoctfile (apt-get install if missing), run
+           matlab/test_clr.m and matlab/journal_impact.m, compare the restitution with Rust";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -48,6 +53,7 @@ fn main() -> ExitCode {
         Some("bench") => bench::run(rest),
         Some("figures") => figures::run(rest),
         Some("fuzz") => fuzz::run(rest),
+        Some("octave") => octave::run(rest),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

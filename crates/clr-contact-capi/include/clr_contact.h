@@ -590,6 +590,26 @@ enum ClrStatus clr_model_metric(const struct ClrModel *model, const char *name, 
 // `model` is NULL or a live handle; `out` is NULL or writable.
 enum ClrStatus clr_model_impact_count(const struct ClrModel *model, uintptr_t *out);
 
+// Number of columns (`kind` 0) or metrics (`kind` 1) of the last run, –: the names are read
+// with `clr_model_name`. `CLR_STATUS_MODEL_ERROR` before the first run or for a `kind` other
+// than 0 or 1.
+//
+// # Safety
+// `model` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_model_name_count(const struct ClrModel *model, int32_t kind, uintptr_t *out);
+
+// The name of column (`kind` 0) or metric (`kind` 1) number `index` (0-based) of the last run:
+// `*out` receives a NUL-terminated string owned by the handle, valid until the next
+// `clr_model_run` or `clr_model_free`. `CLR_STATUS_MODEL_ERROR` for an index past the count,
+// a `kind` other than 0 or 1, or before the first run.
+//
+// # Safety
+// `model` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_model_name(const struct ClrModel *model,
+                              int32_t kind,
+                              uintptr_t index,
+                              const char **out);
+
 // Free a model and its results. NULL is ignored. Freeing a handle twice is undefined behaviour.
 //
 // # Safety

@@ -3,7 +3,7 @@
 //! (`clr::spec::load_str`, then `clr::spec::run::execute`), so the numbers are the same bit for
 //! bit.
 
-use std::ffi::{c_char, CStr};
+use std::ffi::{c_char, CStr, CString};
 
 use clr::spec::run::{execute, Job, Outcome};
 use clr::spec::{load_str, Assignment, Loaded};
@@ -20,6 +20,15 @@ pub struct ClrModel {
 struct Run {
     outcome: Outcome,
     columns: Vec<Vec<f64>>,
+    /// Column names as C strings (for `clr_model_column_name`).
+    column_names: Vec<CString>,
+    /// Metric names as C strings (for `clr_model_metric_name`).
+    metric_names: Vec<CString>,
+}
+
+/// A name as a C string (names never contain NUL; one that did would read as empty).
+fn c_name(s: &str) -> CString {
+    CString::new(s).unwrap_or_default()
 }
 
 /// File name used for the text in messages.
@@ -92,7 +101,14 @@ impl ClrModel {
             .map(|k| r.data.chunks_exact(w).map(|row| row[k]).collect())
             .collect();
         let error = outcome.error.clone();
-        self.run = Some(Run { outcome, columns });
+        let column_names = r.columns.iter().map(|c| c_name(c)).collect();
+        let metric_names = outcome.metrics.iter().map(|m| c_name(&m.name)).collect();
+        self.run = Some(Run {
+            outcome,
+            columns,
+            column_names,
+            metric_names,
+        });
         match error {
             Some(message) => Err(CapiError::Simulation(message)),
             None => Ok(()),
@@ -146,6 +162,19 @@ impl ClrModel {
                     .collect::<Vec<_>>()
                     .join(", "),
             })
+    }
+
+    /// The names of the last run's columns (`columns = true`) or metrics, in order.
+    ///
+    /// # Errors
+    /// [`CapiError::Model`] before the first run.
+    fn names(&self, columns: bool) -> Result<&[CString], CapiError> {
+        let run = self.last_run()?;
+        Ok(if columns {
+            &run.column_names
+        } else {
+            &run.metric_names
+        })
     }
 
     /// Number of impacts (contact onsets of clearance joints) recorded in the last run.
@@ -240,10 +269,7 @@ pub unsafe extern "C" fn clr_model_metric(
     out: *mut f64,
 ) -> ClrStatus {
     guard(|| {
-        if out.is_null() {
-            return Err(CapiError::Null("out"));
-        }
-        let model = model.as_ref().ok_or(CapiError::Null("model"))?;
+        let model = with_out(model, out)?;
         out.write(model.metric(c_str("name", name)?)?);
         Ok(())
     })
@@ -260,13 +286,79 @@ pub unsafe extern "C" fn clr_model_impact_count(
     out: *mut usize,
 ) -> ClrStatus {
     guard(|| {
-        if out.is_null() {
-            return Err(CapiError::Null("out"));
-        }
-        let model = model.as_ref().ok_or(CapiError::Null("model"))?;
+        let model = with_out(model, out)?;
         out.write(model.impact_count()?);
         Ok(())
     })
+}
+
+/// Number of columns (`kind` 0) or metrics (`kind` 1) of the last run, –: the names are read
+/// with `clr_model_name`. `CLR_STATUS_MODEL_ERROR` before the first run or for a `kind` other
+/// than 0 or 1.
+///
+/// # Safety
+/// `model` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_model_name_count(
+    model: *const ClrModel,
+    kind: i32,
+    out: *mut usize,
+) -> ClrStatus {
+    guard(|| {
+        let model = with_out(model, out)?;
+        out.write(model.names(name_kind(kind)?)?.len());
+        Ok(())
+    })
+}
+
+/// The name of column (`kind` 0) or metric (`kind` 1) number `index` (0-based) of the last run:
+/// `*out` receives a NUL-terminated string owned by the handle, valid until the next
+/// `clr_model_run` or `clr_model_free`. `CLR_STATUS_MODEL_ERROR` for an index past the count,
+/// a `kind` other than 0 or 1, or before the first run.
+///
+/// # Safety
+/// `model` is NULL or a live handle; `out` is NULL or writable.
+#[no_mangle]
+pub unsafe extern "C" fn clr_model_name(
+    model: *const ClrModel,
+    kind: i32,
+    index: usize,
+    out: *mut *const c_char,
+) -> ClrStatus {
+    guard(|| {
+        let model = with_out(model, out)?;
+        let names = model.names(name_kind(kind)?)?;
+        let name = names.get(index).ok_or_else(|| {
+            CapiError::Model(format!(
+                "name index {index} is past the {} names of the run",
+                names.len()
+            ))
+        })?;
+        out.write(name.as_ptr());
+        Ok(())
+    })
+}
+
+/// The model behind the handle, after checking the output pointer (a NULL names itself).
+///
+/// # Safety
+/// `model` is NULL or a live handle.
+unsafe fn with_out<'a, T>(model: *const ClrModel, out: *mut T) -> Result<&'a ClrModel, CapiError> {
+    if out.is_null() {
+        return Err(CapiError::Null("out"));
+    }
+    model.as_ref().ok_or(CapiError::Null("model"))
+}
+
+/// `kind` 0 (columns) or 1 (metrics) of `clr_model_name_count`/`clr_model_name`.
+fn name_kind(kind: i32) -> Result<bool, CapiError> {
+    match kind {
+        0 => Ok(true),
+        1 => Ok(false),
+        k => Err(CapiError::Model(format!(
+            "kind = {k}: give 0 for the columns or 1 for the metrics"
+        ))),
+    }
 }
 
 /// Free a model and its results. NULL is ignored. Freeing a handle twice is undefined behaviour.
@@ -326,6 +418,38 @@ mod tests {
             ClrStatus::Ok
         );
         assert_eq!(count, 0);
+        // the names are listed in the order and spelling of the results
+        for (kind, names) in [
+            (0, reference.results.columns.clone()),
+            (
+                1,
+                reference.metrics.iter().map(|m| m.name.clone()).collect(),
+            ),
+        ] {
+            let mut k = 0usize;
+            assert_eq!(
+                unsafe { clr_model_name_count(h, kind, &mut k) },
+                ClrStatus::Ok
+            );
+            assert_eq!(k, names.len());
+            for (i, want) in names.iter().enumerate() {
+                let mut ptr = std::ptr::null::<c_char>();
+                assert_eq!(
+                    unsafe { clr_model_name(h, kind, i, &mut ptr) },
+                    ClrStatus::Ok
+                );
+                assert_eq!(unsafe { CStr::from_ptr(ptr) }.to_str().unwrap(), want);
+            }
+            let mut ptr = std::ptr::null::<c_char>();
+            assert_eq!(
+                unsafe { clr_model_name(h, kind, k, &mut ptr) },
+                ClrStatus::ModelError
+            );
+        }
+        assert_eq!(
+            unsafe { clr_model_name_count(h, 2, &mut count) },
+            ClrStatus::ModelError
+        );
         let bad = CString::new("rod.nope").unwrap();
         assert_eq!(
             unsafe { clr_model_column(h, bad.as_ptr(), &mut p, &mut n) },
