@@ -638,6 +638,18 @@ fn balance_case(out: &mut Vec<Case>) {
     });
 }
 
+/// The largest value of `v` (0 for an empty or all-negative series).
+fn largest(v: &[f64]) -> f64 {
+    v.iter().fold(0.0f64, |a, &x| a.max(x))
+}
+
+/// The largest |v(t) − v(0)| of a recorded series (0 when empty).
+fn largest_change(v: &[f64]) -> f64 {
+    v.first().map_or(0.0, |&v0| {
+        v.iter().fold(0.0f64, |a, &x| a.max((x - v0).abs()))
+    })
+}
+
 /// Energy balance of a driven, dissipative mechanism: the benchmark slider–crank driven at
 /// 5000 rpm by an `angle` driver, with the 0.5 mm rod–slider clearance joint (Lankarani–Nikravesh,
 /// c_e = 0.9) and Ambrósio friction μ = 0.1, gravity, 0.1 s. The driver's work (W_in, from its
@@ -667,14 +679,9 @@ fn balance_driven_case(out: &mut Vec<Case>) {
         let res = m.simulate(&opts).map_err(|e| e.to_string())?;
         let bal = col(&res, "energy.balance");
         let (w, d) = (col(&res, "energy.work_in"), col(&res, "energy.dissipated"));
-        let kmax = col(&res, "energy.kinetic")
-            .iter()
-            .fold(0.0f64, |a, &v| a.max(v));
-        let drift = bal
-            .iter()
-            .map(|b| (b - bal[0]).abs())
-            .fold(0.0f64, f64::max);
-        let wmax = w.iter().fold(0.0f64, |a, &v| a.max(v.abs()));
+        let kmax = largest(&col(&res, "energy.kinetic"));
+        let drift = largest_change(&bal);
+        let wmax = largest(&w.iter().map(|v| v.abs()).collect::<Vec<_>>());
         Ok((
             drift / kmax,
             format!(
