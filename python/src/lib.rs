@@ -1,4 +1,5 @@
-//! Python bindings of `clr-contact`: the extension module `clr_contact._native`.
+//! The extension module `clr._native` of the Python package `clr`: the clr-contact laws (this
+//! file), whole models ([`models`]) and sweeps ([`sweep`]).
 //!
 //! The native classes evaluate the laws in loops over contiguous 1-D `float64` numpy arrays of
 //! equal length (2-D `(n, 6)` for body states); the Python package `clr_contact` wraps them with
@@ -16,33 +17,34 @@ use clr_contact_capi::spec::{ElasticKind, FrictionKind, Kind};
 use clr_contact_capi::CapiError;
 use numpy::ndarray::Array2;
 use numpy::{IntoPyArray, PyArray1, PyArray2, PyReadonlyArray1, PyReadonlyArray2};
-use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+mod convert;
+mod errors;
 mod models;
+mod sweep;
 
-create_exception!(
-    _native,
-    ContactError,
-    PyValueError,
-    "Invalid contact-law parameter or input; the message says what to change."
-);
-
+/// An invalid law parameter (field `parameters`): `clr.errors.ContactError`.
 fn err(e: impl Into<CapiError>) -> PyErr {
-    ContactError::new_err(e.into().to_string())
+    contact_error("parameters", &e.into().to_string())
+}
+
+/// `clr.errors.ContactError` at the argument or parameter `field`.
+fn contact_error(field: &str, message: &str) -> PyErr {
+    Python::attach(|py| errors::contact_error(py, field, message))
 }
 
 /// Borrow a 1-D array as a slice and check that every entry is finite.
 fn finite_slice<'a>(name: &'static str, a: &'a PyReadonlyArray1<'_, f64>) -> PyResult<&'a [f64]> {
     let s = a
         .as_slice()
-        .map_err(|_| ContactError::new_err(format!("`{name}` must be a contiguous array")))?;
+        .map_err(|_| contact_error(name, &format!("`{name}` must be a contiguous array")))?;
     if let Some((i, v)) = s.iter().enumerate().find(|(_, v)| !v.is_finite()) {
-        return Err(ContactError::new_err(format!(
-            "element {i} of `{name}` is {v}; pass finite numbers"
-        )));
+        return Err(contact_error(
+            &format!("{name}[{i}]"),
+            &format!("element {i} of `{name}` is {v}; pass finite numbers"),
+        ));
     }
     Ok(s)
 }
@@ -50,16 +52,19 @@ fn finite_slice<'a>(name: &'static str, a: &'a PyReadonlyArray1<'_, f64>) -> PyR
 fn same_length(lengths: &[(&'static str, usize)]) -> PyResult<usize> {
     let n = lengths[0].1;
     match lengths.iter().find(|(_, m)| *m != n) {
-        Some((name, m)) => Err(ContactError::new_err(format!(
-            "`{name}` has {m} elements but `{}` has {n}; pass arrays of the same length",
-            lengths[0].0
-        ))),
+        Some((name, m)) => Err(contact_error(
+            name,
+            &format!(
+                "`{name}` has {m} elements but `{}` has {n}; pass arrays of the same length",
+                lengths[0].0
+            ),
+        )),
         None => Ok(n),
     }
 }
 
 /// A normal-force law F_N = F_e(δ)(1 + χ δ̇/δ̇⁻) (N, m, m/s).
-#[pyclass(frozen, module = "clr_contact._native")]
+#[pyclass(frozen, module = "clr._native")]
 struct NormalLawCore {
     law: NormalLaw,
 }
@@ -200,7 +205,7 @@ impl NormalLawCore {
 }
 
 /// A stateless friction law F_T = μ(v_T) F_N.
-#[pyclass(frozen, module = "clr_contact._native")]
+#[pyclass(frozen, module = "clr._native")]
 struct FrictionLawCore {
     law: FrictionLaw,
 }
@@ -253,7 +258,7 @@ impl FrictionLawCore {
 }
 
 /// A planar revolute clearance joint (journal in bearing).
-#[pyclass(frozen, module = "clr_contact._native")]
+#[pyclass(frozen, module = "clr._native")]
 struct RevoluteJointCore {
     joint: RevoluteClearance,
 }
@@ -261,19 +266,23 @@ struct RevoluteJointCore {
 fn states(name: &'static str, a: &PyReadonlyArray2<'_, f64>) -> PyResult<Vec<BodyState>> {
     let view = a.as_array();
     if view.ncols() != 6 {
-        return Err(ContactError::new_err(format!(
-            "`{name}` must have shape (n, 6) = (x, y, theta, vx, vy, omega), got {:?}",
-            view.shape()
-        )));
+        return Err(contact_error(
+            name,
+            &format!(
+                "`{name}` must have shape (n, 6) = (x, y, theta, vx, vy, omega), got {:?}",
+                view.shape()
+            ),
+        ));
     }
     view.rows()
         .into_iter()
         .enumerate()
         .map(|(i, r)| {
             if let Some(v) = r.iter().find(|v| !v.is_finite()) {
-                return Err(ContactError::new_err(format!(
-                    "row {i} of `{name}` contains {v}; pass finite states"
-                )));
+                return Err(contact_error(
+                    &format!("{name}[{i}]"),
+                    &format!("row {i} of `{name}` contains {v}; pass finite states"),
+                ));
             }
             Ok(BodyState::new(
                 [r[0], r[1]].into(),
@@ -377,8 +386,9 @@ impl RevoluteJointCore {
 }
 
 fn matrix(py: Python<'_>, n: usize, m: usize, v: Vec<f64>) -> PyResult<Bound<'_, PyArray2<f64>>> {
-    let a = Array2::from_shape_vec((n, m), v)
-        .map_err(|e| ContactError::new_err(format!("internal shape error: {e}")))?;
+    let a = Array2::from_shape_vec((n, m), v).map_err(|e| {
+        pyo3::exceptions::PyRuntimeError::new_err(format!("internal shape error: {e}; report this"))
+    })?;
     Ok(a.into_pyarray(py))
 }
 
@@ -446,7 +456,6 @@ fn preset_names() -> Vec<&'static str> {
 #[pymodule]
 #[pyo3(name = "_native")]
 fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.add("ContactError", m.py().get_type::<ContactError>())?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     m.add_class::<NormalLawCore>()?;
     m.add_class::<FrictionLawCore>()?;
@@ -457,8 +466,12 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(elastic_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(friction_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(preset_names, m)?)?;
-    m.add("ModelError", m.py().get_type::<models::ModelError>())?;
+    m.add_class::<models::JobCore>()?;
+    m.add_class::<sweep::SweepRun>()?;
     m.add_function(wrap_pyfunction!(models::list_models, m)?)?;
-    m.add_function(wrap_pyfunction!(models::run_model, m)?)?;
+    m.add_function(wrap_pyfunction!(models::list_studies, m)?)?;
+    m.add_function(wrap_pyfunction!(models::run_study, m)?)?;
+    m.add_function(wrap_pyfunction!(models::element_kinds, m)?)?;
+    m.add_function(wrap_pyfunction!(models::kind_fields, m)?)?;
     Ok(())
 }

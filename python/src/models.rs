@@ -1,21 +1,20 @@
-//! Whole clr models from Python: `list_models` and `run_model`, through the same library path
-//! as `clr run` (`clr::spec::run::resolve` then `execute`), so a run from Python and one from
-//! the command line with the same input give the same numbers bit for bit.
+//! Whole clr models from Python: [`JobCore`] (a resolved built-in or generic model, from a
+//! name, a file, TOML text or the dict a `clr.Model` builds), `list_models`, the studies, and
+//! what the builder checks itself against (`element_kinds`, `kind_fields`). Everything goes
+//! through the library path of `clr run` (`clr::spec::run::resolve` then `execute`), so a run
+//! from Python and one from the command line with the same input give the same numbers bit for
+//! bit.
 
-use clr::spec::run::{self, Outcome};
-use clr::spec::{overrides_value, Assignment};
+use std::time::Instant;
+
+use clr::spec::run::{self, Job, Outcome};
+use clr::spec::Assignment;
 use numpy::{IntoPyArray, PyArray1};
-use pyo3::create_exception;
-use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+use pyo3::types::{PyDict, PyList};
 
-create_exception!(
-    _native,
-    ModelError,
-    PyValueError,
-    "Invalid model name, model file or override; the message says what to change."
-);
+use crate::convert;
+use crate::errors::{override_error, run_error};
 
 /// Every built-in model as `(name, description)`.
 #[pyfunction]
@@ -26,48 +25,12 @@ pub(crate) fn list_models() -> Vec<(&'static str, &'static str)> {
         .collect()
 }
 
-/// A Python override value as the TOML value `clr run --set` would parse: bool, int, float,
-/// lists of these, or a string (parsed as TOML text when it is one, else a bare word).
-fn toml_value(path: &str, v: &Bound<'_, PyAny>) -> PyResult<toml::Value> {
-    if v.is_instance_of::<PyBool>() {
-        return Ok(toml::Value::Boolean(v.extract()?));
-    }
-    if v.is_instance_of::<PyInt>() {
-        return Ok(toml::Value::Integer(v.extract().map_err(|_| {
-            ModelError::new_err(format!(
-                "set[{path:?}]: the integer does not fit in 64 bits"
-            ))
-        })?));
-    }
-    if v.is_instance_of::<PyFloat>() {
-        return Ok(toml::Value::Float(v.extract()?));
-    }
-    if let Ok(s) = v.cast::<PyString>() {
-        return Ok(overrides_value(&s.to_cow()?));
-    }
-    if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
-        let items = v
-            .try_iter()?
-            .map(|x| toml_value(path, &x?))
-            .collect::<PyResult<Vec<_>>>()?;
-        return Ok(toml::Value::Array(items));
-    }
-    // numpy scalars and other numbers
-    if let Ok(f) = v.extract::<f64>() {
-        return Ok(toml::Value::Float(f));
-    }
-    Err(ModelError::new_err(format!(
-        "set[{path:?}]: a {} cannot be a parameter value; give a number, bool, string or list",
-        v.get_type().name()?
-    )))
-}
-
 /// The outcome as a dict: `time` and every other column as float64 arrays, `units` (column →
 /// unit, `time` → `s`), `metrics` (name → value), `metric_units`, `impacts` (list of dicts,
 /// [`impacts_list`]), `notes` (what the run changed or chose for the user, one sentence each),
 /// `initial_conditions` (JSON text: per body and coordinate fixed/solved/corrected with the given
 /// and assembled values, as in summary.json), `parameters` (JSON text), `model`, `source` and `error` (`None`, or the solver's message when the results are partial).
-fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>> {
+pub(crate) fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     let units = PyDict::new(py);
     let n = o.results.columns.len();
@@ -126,34 +89,224 @@ fn impacts_list<'py>(
     Ok(list)
 }
 
-/// Run a built-in model (by name) or a model file (a path ending in `.toml`, or any existing
-/// file) as `clr run` does, with `set` overrides (dotted name → value), end time `t_end` (s) and
-/// relative tolerance `rtol`; the simulation runs without the GIL.
-#[pyfunction]
-#[pyo3(signature = (target, set=None, t_end=None, rtol=None))]
-pub(crate) fn run_model<'py>(
-    py: Python<'py>,
-    target: &str,
-    set: Option<&Bound<'py, PyDict>>,
-    t_end: Option<f64>,
-    rtol: Option<f64>,
-) -> PyResult<Bound<'py, PyDict>> {
+/// `set=` overrides (dotted name → value; strings read as on the command line).
+pub(crate) fn assignments(set: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Assignment>> {
     let mut overrides = Vec::new();
     if let Some(set) = set {
         for (k, v) in set.iter() {
             let path: String = k.extract().map_err(|_| {
-                ModelError::new_err("the keys of `set` must be dotted names like \"solver.rtol\"")
+                override_error(
+                    set.py(),
+                    &k.to_string(),
+                    "the keys of `set` must be dotted names like \"solver.rtol\"",
+                )
             })?;
-            let value = toml_value(&path, &v)?;
+            let value = convert::value(&path, &v, true)?;
             overrides.push(Assignment { path, value });
         }
     }
-    let target = target.to_string();
-    let outcome = py
-        .detach(move || {
-            let job = run::resolve(&target, &overrides, t_end, rtol)?;
-            run::execute(&job, t_end, rtol, None)
+    Ok(overrides)
+}
+
+/// A resolved model, ready to run: a built-in with its parameters or a checked generic model
+/// (plain data, run without the GIL), with the end time (s) and relative tolerance it was
+/// resolved with.
+#[pyclass(frozen, module = "clr._native")]
+pub(crate) struct JobCore {
+    pub(crate) job: Job,
+    pub(crate) t_end: Option<f64>,
+    pub(crate) rtol: Option<f64>,
+}
+
+impl JobCore {
+    fn resolved(
+        py: Python<'_>,
+        r: Result<Job, run::RunError>,
+        t_end: Option<f64>,
+        rtol: Option<f64>,
+    ) -> PyResult<Self> {
+        r.map(|job| Self { job, t_end, rtol })
+            .map_err(|e| run_error(py, &e))
+    }
+}
+
+#[pymethods]
+impl JobCore {
+    /// A built-in model by name or a model file by path, as `clr run TARGET --set ...`.
+    #[staticmethod]
+    #[pyo3(signature = (target, set=None, t_end=None, rtol=None))]
+    fn from_target(
+        py: Python<'_>,
+        target: &str,
+        set: Option<&Bound<'_, PyDict>>,
+        t_end: Option<f64>,
+        rtol: Option<f64>,
+    ) -> PyResult<Self> {
+        let sets = assignments(set)?;
+        let target = target.to_string();
+        let r = py.detach(move || run::resolve(&target, &sets, t_end, rtol));
+        Self::resolved(py, r, t_end, rtol)
+    }
+
+    /// A model from the text of a model file (either form); `label` names it in errors.
+    #[staticmethod]
+    #[pyo3(signature = (text, label, set=None, t_end=None, rtol=None))]
+    fn from_text(
+        py: Python<'_>,
+        text: &str,
+        label: &str,
+        set: Option<&Bound<'_, PyDict>>,
+        t_end: Option<f64>,
+        rtol: Option<f64>,
+    ) -> PyResult<Self> {
+        let sets = assignments(set)?;
+        let (text, label) = (text.to_string(), label.to_string());
+        let r = py.detach(move || run::resolve_text(&label, &text, &sets, t_end, rtol));
+        Self::resolved(py, r, t_end, rtol)
+    }
+
+    /// A model from the dict of a model file (`{"model": {...}, "body": [...], ...}`, what
+    /// `clr.Model` builds); `label` names it in errors.
+    #[staticmethod]
+    #[pyo3(signature = (doc, label, set=None, t_end=None, rtol=None))]
+    fn from_dict(
+        py: Python<'_>,
+        doc: &Bound<'_, PyDict>,
+        label: &str,
+        set: Option<&Bound<'_, PyDict>>,
+        t_end: Option<f64>,
+        rtol: Option<f64>,
+    ) -> PyResult<Self> {
+        let text = dict_to_toml(doc)?;
+        Self::from_text(py, &text, label, set, t_end, rtol)
+    }
+
+    /// `builtin` for a catalog model, `generic` for a model description.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        match self.job {
+            Job::Builtin { .. } => "builtin",
+            Job::Generic(_) => "generic",
+        }
+    }
+
+    /// The model's name.
+    #[getter]
+    fn name(&self) -> String {
+        match &self.job {
+            Job::Builtin { name, .. } => name.clone(),
+            Job::Generic(s) => s.name.clone(),
+        }
+    }
+
+    /// What reading the model changed on its own, one sentence each.
+    #[getter]
+    fn notes(&self) -> Vec<String> {
+        match &self.job {
+            Job::Builtin { .. } => Vec::new(),
+            Job::Generic(s) => s.notes.clone(),
+        }
+    }
+
+    /// The checked description as model-file text (every default written out), as `clr
+    /// export` writes it; a built-in model as its `[model] builtin` form with every parameter.
+    fn to_toml(&self, py: Python<'_>) -> PyResult<String> {
+        match &self.job {
+            Job::Generic(s) => s
+                .desc()
+                .to_toml()
+                .map_err(|m| run_error(py, &run::RunError::Input(m))),
+            Job::Builtin {
+                name, parameters, ..
+            } => run::builtin_file_text(name, parameters).map_err(|e| run_error(py, &e)),
+        }
+    }
+
+    /// Run it (without the GIL) as `clr run` does; the outcome dict of [`outcome_dict`] with
+    /// `wall_s`, the wall time (s).
+    fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let start = Instant::now();
+        let outcome = py
+            .detach(|| run::execute(&self.job, self.t_end, self.rtol, None))
+            .map_err(|e| run_error(py, &e))?;
+        let d = outcome_dict(py, outcome)?;
+        d.set_item("wall_s", start.elapsed().as_secs_f64())?;
+        Ok(d)
+    }
+}
+
+/// The dict of a model file as TOML text (model-file structure; `None` values left out).
+fn dict_to_toml(doc: &Bound<'_, PyDict>) -> PyResult<String> {
+    let table = convert::table("", doc, false)?;
+    toml::to_string(&toml::Value::Table(table))
+        .map_err(|e| override_error(doc.py(), "", &format!("cannot be written as TOML: {e}")))
+}
+
+/// The paper studies as `(name, model, description)`.
+#[pyfunction]
+pub(crate) fn list_studies() -> Vec<(&'static str, &'static str, &'static str)> {
+    clr_models::studies::studies()
+        .iter()
+        .map(|s| (s.name, s.model, s.description))
+        .collect()
+}
+
+/// Run the paper study `name` into the folder `out` (CSV per run, summary.csv, figures), as
+/// `clr study`; returns the number of runs. Runs without the GIL.
+#[pyfunction]
+pub(crate) fn run_study(py: Python<'_>, name: &str, out: std::path::PathBuf) -> PyResult<usize> {
+    let study = clr_models::studies::find(name).map_err(|m| {
+        run_error(
+            py,
+            &run::RunError::Input(format!("unknown built-in model study: {m}")),
+        )
+    })?;
+    py.detach(|| {
+        std::fs::create_dir_all(&out)
+            .map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+        (study.run)(&out)
+    })
+    .map_err(pyo3::exceptions::PyRuntimeError::new_err)
+}
+
+/// Every section of a model file with its element kinds (`type` values), for the builder's
+/// consistency check.
+#[pyfunction]
+pub(crate) fn element_kinds() -> Vec<(&'static str, Vec<&'static str>)> {
+    use clr::mbd::element::{Clearance, Driver, Force, Joint};
+    vec![
+        ("joint", Joint::KINDS.to_vec()),
+        ("driver", Driver::KINDS.to_vec()),
+        ("force", Force::KINDS.to_vec()),
+        ("clearance", Clearance::KINDS.to_vec()),
+    ]
+}
+
+/// The fields an item of `section` (of kind `kind` for the sections with a `type`) accepts, as
+/// the model-file reader lists them: the builder's methods are checked against these.
+#[pyfunction]
+#[pyo3(signature = (section, kind=None))]
+pub(crate) fn kind_fields(section: &str, kind: Option<&str>) -> PyResult<Vec<String>> {
+    const PROBE: &str = "zz_probe_field_zz";
+    let item = match kind {
+        Some(k) => format!("type = \"{k}\"\n{PROBE} = 0\n"),
+        None => format!("{PROBE} = 0\n"),
+    };
+    let header = match section {
+        "model" | "solver" | "output" => format!("[{section}]"),
+        _ => format!("[[{section}]]"),
+    };
+    let text = format!("{header}\n{item}");
+    let message = match clr::spec::load_str("<probe>", &text, &[]) {
+        Err(e) => e.message,
+        Ok(_) => String::new(),
+    };
+    message
+        .split_once("valid fields here: ")
+        .map(|(_, list)| list.split(", ").map(|f| f.trim().to_string()).collect())
+        .ok_or_else(|| {
+            pyo3::exceptions::PyValueError::new_err(format!(
+                "no field list for [{section}] {kind:?}: {message}"
+            ))
         })
-        .map_err(|e| ModelError::new_err(e.to_string()))?;
-    outcome_dict(py, outcome)
 }

@@ -193,7 +193,7 @@ def test_bad_overrides_and_settings_raise():
         cc.run_model("slider_crank", set={"restitutio": 0.5})
     with pytest.raises(cc.ModelError, match="must be > 0"):
         cc.run_model("slider_crank", t_end=-1.0)
-    with pytest.raises(cc.ModelError, match="cannot be a parameter value"):
+    with pytest.raises(cc.ModelError, match="expected a number"):
         cc.run_model("slider_crank", set={"restitution": {"a": 1}})
     assert issubclass(cc.ModelError, ValueError)
 

@@ -196,49 +196,5 @@ pub(crate) fn desc_text(
 
 /// The model file of a built-in model with its full parameters (`clr export --builtin`).
 pub(crate) fn export_text(name: &str, parameters: &serde_json::Value) -> Result<String, CliError> {
-    #[derive(serde::Serialize)]
-    struct ModelPart<'a> {
-        builtin: &'a str,
-    }
-    #[derive(serde::Serialize)]
-    struct File<'a> {
-        model: ModelPart<'a>,
-        parameters: &'a serde_json::Value,
-    }
-    // parameters the others make unused are left out (a file giving them is refused); they
-    // keep their defaults, so the file still reproduces the run
-    let unused = clr_models::catalog::unused_parameters(name, parameters)
-        .map_err(|e| CliError::Input(e.to_string()))?;
-    let mut parameters = parameters.clone();
-    if let Some(obj) = parameters.as_object_mut() {
-        for (p, _) in &unused {
-            obj.remove(*p);
-        }
-    }
-    let left_out = if unused.is_empty() {
-        String::new()
-    } else {
-        let list: Vec<String> = unused
-            .iter()
-            .map(|(p, why)| format!("#   {p}: {why}\n"))
-            .collect();
-        format!(
-            "# Not written, because these settings do not use them:\n{}",
-            list.concat()
-        )
-    };
-    let body = toml::to_string(&File {
-        model: ModelPart { builtin: name },
-        parameters: &parameters,
-    })
-    .map_err(|e| {
-        CliError::Input(format!(
-            "the parameters of `{name}` cannot be written as TOML ({e}); report this"
-        ))
-    })?;
-    Ok(format!(
-        "# clr model file: the built-in model `{name}` with every parameter resolved.\n\
-         # `clr run <this file>` reproduces `clr run {name}` (with the same --set) bit for bit.\n\
-         # Edit any value under [parameters]; units as in docs/model-file.md.\n{left_out}\n{body}"
-    ))
+    Ok(run::builtin_file_text(name, parameters)?)
 }

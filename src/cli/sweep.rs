@@ -4,7 +4,8 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use clr::spec::{overrides_value, Assignment};
+use clr::spec::overrides_value;
+use clr::spec::sweep::{self, Axis};
 use clr_plot::Figure;
 use rayon::prelude::*;
 
@@ -54,16 +55,6 @@ fn parse_shard(s: &str) -> Result<(usize, usize), CliError> {
     Ok((i, n))
 }
 
-/// Index → one value index per varied parameter (the last varies fastest).
-fn combination(mut k: usize, varies: &[Vary]) -> Vec<usize> {
-    let mut idx = vec![0; varies.len()];
-    for (j, v) in varies.iter().enumerate().rev() {
-        idx[j] = k % v.values.len();
-        k /= v.values.len();
-    }
-    idx
-}
-
 struct Row {
     point: usize,
     values: Vec<String>,
@@ -84,35 +75,33 @@ pub(crate) fn sweep_command(
         .iter()
         .map(|v| parse_vary(v))
         .collect::<Result<_, _>>()?;
-    let total: usize = varies.iter().map(|v| v.values.len()).product();
     let (si, sn) = match shard {
         Some(s) => parse_shard(s)?,
         None => (0, 1),
     };
+    let axes: Vec<Axis> = varies
+        .iter()
+        .map(|v| Axis {
+            name: v.name.clone(),
+            values: v.values.iter().map(|t| overrides_value(t)).collect(),
+        })
+        .collect();
+    let total = sweep::total(&axes);
     // the target is read once; every point clones it and applies its values, so bad input
     // stops the sweep before anything runs
     let base_job = resolve(&args.target, &base, args.t_end, args.rtol)?.with_knobs(args.knobs())?;
-    let mut points: Vec<(usize, Vec<String>, Job)> = Vec::new();
-    for k in (0..total).filter(|k| k % sn == si) {
-        let idx = combination(k, &varies);
-        let values: Vec<String> = varies
-            .iter()
-            .zip(&idx)
-            .map(|(v, &i)| v.values[i].clone())
-            .collect();
-        let sets: Vec<Assignment> = varies
-            .iter()
-            .zip(&values)
-            .map(|(v, val)| Assignment {
-                path: v.name.clone(),
-                value: overrides_value(val),
+    let points: Vec<(usize, Vec<String>, Job)> =
+        sweep::points(&base_job, &axes, (si, sn), args.t_end, args.rtol)?
+            .into_iter()
+            .map(|p| {
+                let labels = varies
+                    .iter()
+                    .zip(&p.choice)
+                    .map(|(v, &i)| v.values[i].clone())
+                    .collect();
+                (p.index, labels, p.job)
             })
             .collect();
-        let job = base_job
-            .with_overrides(&sets, args.t_end, args.rtol)
-            .map_err(|e| CliError::Input(format!("sweep point {k}: {e}")))?;
-        points.push((k, values, job));
-    }
     if !args.quiet {
         if let Job::Generic(s) = &base_job {
             for n in &s.notes {

@@ -21,6 +21,7 @@ mod model;
 mod overrides;
 mod parse;
 pub mod run;
+pub mod sweep;
 
 use std::path::Path;
 

@@ -62,25 +62,51 @@ pub struct Outcome {
     pub notes: Vec<String>,
 }
 
-/// Load a model file; a generic file without `[output] t_end` takes `t_end` (the `--t-end`
-/// option) instead of being refused.
-fn load_file(
-    target: &str,
+/// Load a model with `load` (from a file or text, with the given overrides); a generic model
+/// without `[output] t_end` takes `t_end` (the `--t-end` option) instead of being refused.
+fn load_with(
+    load: impl Fn(&[Assignment]) -> Result<Loaded, SpecError>,
     overrides: &[Assignment],
     t_end: Option<f64>,
 ) -> Result<Loaded, SpecError> {
-    let path = Path::new(target);
-    match (super::load(path, overrides), t_end) {
+    match (load(overrides), t_end) {
         (Err(e), Some(t)) if e.field == "output.t_end" && t.is_finite() && t > 0.0 => {
             let mut sets = overrides.to_vec();
             sets.push(Assignment {
                 path: "output.t_end".into(),
                 value: toml::Value::Float(t),
             });
-            super::load(path, &sets)
+            load(&sets)
         }
         (r, _) => r,
     }
+}
+
+fn loaded_job(l: Loaded) -> Job {
+    match l {
+        Loaded::Builtin { name, parameters } => Job::Builtin {
+            name,
+            parameters,
+            knobs: Default::default(),
+        },
+        Loaded::Generic(s) => Job::Generic(s),
+    }
+}
+
+/// As [`resolve`] for the text `src` of a model file (either form); `file` names it in
+/// messages.
+///
+/// # Errors
+/// As [`resolve`].
+pub fn resolve_text(
+    file: &str,
+    src: &str,
+    overrides: &[Assignment],
+    t_end: Option<f64>,
+    rtol: Option<f64>,
+) -> Result<Job, RunError> {
+    let loaded = load_with(|o| super::load_str(file, src, o), overrides, t_end)?;
+    finish(loaded_job(loaded), t_end, rtol)
 }
 
 /// True when `target` names a model file rather than a built-in model.
@@ -100,15 +126,12 @@ pub fn resolve(
     t_end: Option<f64>,
     rtol: Option<f64>,
 ) -> Result<Job, RunError> {
-    let mut job = if is_file(target) {
-        match load_file(target, overrides, t_end)? {
-            Loaded::Builtin { name, parameters } => Job::Builtin {
-                name,
-                parameters,
-                knobs: Default::default(),
-            },
-            Loaded::Generic(s) => Job::Generic(s),
-        }
+    let job = if is_file(target) {
+        loaded_job(load_with(
+            |o| super::load(Path::new(target), o),
+            overrides,
+            t_end,
+        )?)
     } else {
         let mut parameters = clr_models::catalog::default_parameters(target).map_err(|_| {
             let names: Vec<&str> = clr_models::catalog::entries()
@@ -130,6 +153,11 @@ pub fn resolve(
             knobs: Default::default(),
         }
     };
+    finish(job, t_end, rtol)
+}
+
+/// Check `t_end` (s) and `rtol` and set them on a generic model.
+fn finish(mut job: Job, t_end: Option<f64>, rtol: Option<f64>) -> Result<Job, RunError> {
     if let Some(t) = t_end {
         if !(t.is_finite() && t > 0.0) {
             return Err(SpecError::plain("--t-end", "", format!("{t} s must be > 0")).into());
@@ -149,6 +177,58 @@ pub fn resolve(
         }
     }
     Ok(job)
+}
+
+/// The model file of a built-in model with its full parameters (`clr export --builtin`).
+///
+/// # Errors
+/// [`RunError::Input`] for parameters the catalog refuses.
+pub fn builtin_file_text(name: &str, parameters: &serde_json::Value) -> Result<String, RunError> {
+    #[derive(serde::Serialize)]
+    struct ModelPart<'a> {
+        builtin: &'a str,
+    }
+    #[derive(serde::Serialize)]
+    struct File<'a> {
+        model: ModelPart<'a>,
+        parameters: &'a serde_json::Value,
+    }
+    // parameters the others make unused are left out (a file giving them is refused); they
+    // keep their defaults, so the file still reproduces the run
+    let unused = clr_models::catalog::unused_parameters(name, parameters)
+        .map_err(|e| RunError::Input(e.to_string()))?;
+    let mut parameters = parameters.clone();
+    if let Some(obj) = parameters.as_object_mut() {
+        for (p, _) in &unused {
+            obj.remove(*p);
+        }
+    }
+    let left_out = if unused.is_empty() {
+        String::new()
+    } else {
+        let list: Vec<String> = unused
+            .iter()
+            .map(|(p, why)| format!("#   {p}: {why}\n"))
+            .collect();
+        format!(
+            "# Not written, because these settings do not use them:\n{}",
+            list.concat()
+        )
+    };
+    let body = toml::to_string(&File {
+        model: ModelPart { builtin: name },
+        parameters: &parameters,
+    })
+    .map_err(|e| {
+        RunError::Input(format!(
+            "the parameters of `{name}` cannot be written as TOML ({e}); report this"
+        ))
+    })?;
+    Ok(format!(
+        "# clr model file: the built-in model `{name}` with every parameter resolved.\n\
+         # `clr run <this file>` reproduces `clr run {name}` (with the same --set) bit for bit.\n\
+         # Edit any value under [parameters]; units as in docs/model-file.md.\n{left_out}\n{body}"
+    ))
 }
 
 impl Job {

@@ -1,0 +1,196 @@
+"""clr: planar mechanisms with clearance joints, contact, friction and flexible links.
+
+Build a model (:class:`Model`, or a model file, or a built-in model by name), run it
+(:func:`simulate`) and sweep its parameters in parallel (:func:`sweep`); the contact and
+friction laws on their own are in :mod:`clr.contact`. Everything runs in Rust through the same
+code as the ``clr`` command, so the numbers are those of ``clr run`` and ``clr sweep`` bit for
+bit. SI units throughout (docs/python.md).
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _native, contact, errors
+from .contact import FrictionLaw, NormalLaw, RevoluteJoint
+from .errors import (
+    ClrError,
+    ContactError,
+    FieldError,
+    ModelError,
+    OverrideError,
+    SimulationError,
+    UnknownModelError,
+)
+from .model import Model, at, friction, material, motion, node, normal
+from .progress import Progress
+from .result import Result, SweepResult, _rows
+
+__version__ = _native.__version__
+
+__all__ = [
+    "Model",
+    "at",
+    "node",
+    "material",
+    "normal",
+    "friction",
+    "motion",
+    "simulate",
+    "sweep",
+    "Result",
+    "SweepResult",
+    "list_models",
+    "list_studies",
+    "run_study",
+    "run_model",
+    "contact",
+    "NormalLaw",
+    "FrictionLaw",
+    "RevoluteJoint",
+    *errors.__all__,
+]
+
+#: What :func:`simulate` and :func:`sweep` run: a :class:`Model`, a built-in model name
+#: (:func:`list_models`) or the path of a model file.
+Target = Union[Model, str, "os.PathLike[str]"]
+
+
+def _positive(name: str, v: Optional[float]) -> Optional[float]:
+    if v is None:
+        return None
+    try:
+        f = float(v)
+    except (TypeError, ValueError):
+        raise ModelError(f"{v!r} is not a number", field=name) from None
+    if not (f > 0.0 and f < float("inf")):
+        raise ModelError(f"{f} must be > 0 and finite", field=name)
+    return f
+
+
+def _job(model: Target, set: Optional[Mapping[str, Any]], t_end, rtol) -> "_native.JobCore":
+    t_end, rtol = _positive("t_end", t_end), _positive("rtol", rtol)
+    if isinstance(model, Model):
+        return model._job(set, t_end, rtol)
+    if isinstance(model, (str, os.PathLike)):
+        return _native.JobCore.from_target(
+            os.fspath(model), None if set is None else dict(set), t_end, rtol
+        )
+    raise ModelError(
+        f"cannot run a {type(model).__name__}; give a clr.Model, a built-in model name or a "
+        "model file path",
+        field="model",
+    )
+
+
+def simulate(
+    model: Target,
+    t_end: Optional[float] = None,
+    *,
+    rtol: Optional[float] = None,
+    set: Optional[Mapping[str, Any]] = None,
+    check: bool = True,
+) -> Result:
+    """Run ``model`` as ``clr run`` does (without writing files; the GIL is released).
+
+    ``t_end`` (s) and ``rtol`` override the model's end time and relative tolerance (``rtol``
+    also sets ``atol`` = 1e-3·rtol, reported in ``notes``); ``set`` maps dotted names to values
+    like ``clr run --set`` (``{"clearance.B.journal_radius": 0.0099}``, a built-in's
+    ``{"restitution": 0.5}``).
+
+    Returns a :class:`Result`. Raises :class:`ModelError` and its subclasses for input that
+    cannot run (with the field to change), and, when ``check`` is true,
+    :class:`SimulationError` when the integration fails (its ``result`` keeps the rows up to
+    the failure); with ``check=False`` such a result is returned with ``error`` set.
+    """
+    result = Result(dict(_job(model, set, t_end, rtol).run()))
+    if check and result.error is not None:
+        raise SimulationError(result.error, result)
+    return result
+
+
+def sweep(
+    model: Target,
+    vary: Mapping[str, Sequence[Any]],
+    *,
+    t_end: Optional[float] = None,
+    rtol: Optional[float] = None,
+    set: Optional[Mapping[str, Any]] = None,
+    jobs: Optional[int] = None,
+    progress: bool = True,
+) -> SweepResult:
+    """Run the cartesian product of the values in ``vary`` (dotted name → values, the last
+    varying fastest) over ``model``, as ``clr sweep --vary name=v1,v2 ...`` does: the same
+    points in the same order, the same numbers.
+
+    The points run on ``jobs`` Rust threads (default: one per core) without the GIL; a progress
+    line is shown (terminal or Jupyter; ``progress=False`` hides it). Every point is checked
+    before the first runs. Ctrl-C (KeyboardInterrupt) skips the points not yet started, waits
+    for those running and raises. A point whose integration fails does not stop the sweep: its
+    result has ``error`` set and ``SweepResult.failed`` lists it.
+    """
+    if not isinstance(vary, Mapping) or not vary:
+        raise OverrideError(
+            "give the varied parameters as a dict of dotted name → list of values",
+            field="vary",
+        )
+    axes: List[Tuple[str, list]] = []
+    for name, values in vary.items():
+        if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+            raise OverrideError(
+                f"the values of {name!r} must be a list (got {type(values).__name__})",
+                field=str(name),
+            )
+        axes.append((str(name), list(values)))
+    if jobs is not None and (not isinstance(jobs, int) or jobs < 1):
+        raise ModelError(f"{jobs!r}: give a positive number of threads", field="jobs")
+    run = _native.SweepRun(_job(model, set, t_end, rtol), axes, jobs)
+    bar = Progress(run.total, enabled=progress)
+    try:
+        while not run.wait(0.1):
+            bar.update(run.done())
+    except KeyboardInterrupt:
+        run.cancel()
+        bar.close(run.done())
+        raise
+    bar.close(run.done())
+    return SweepResult([a for a, _ in axes], _rows(run.results()))
+
+
+def list_models() -> List[Tuple[str, str]]:
+    """The built-in models as ``(name, description)`` pairs (as ``clr list`` prints them)."""
+    return list(_native.list_models())
+
+
+def list_studies() -> List[Tuple[str, str, str]]:
+    """The paper studies as ``(name, model, description)`` (``clr list``)."""
+    return list(_native.list_studies())
+
+
+def run_study(name: str, out: Union[str, "os.PathLike[str]"]) -> int:
+    """Run the paper study ``name`` into the folder ``out`` as ``clr study`` does (a CSV per
+    run, summary.csv, figures); returns the number of runs. Long: minutes for some."""
+    return int(_native.run_study(name, os.fspath(out)))
+
+
+def run_model(
+    name_or_path: str,
+    set: Optional[Mapping[str, Any]] = None,
+    t_end: Optional[float] = None,
+    rtol: Optional[float] = None,
+) -> Dict[str, Any]:
+    """The former dict interface: :func:`simulate` of a built-in name or a model file, as a
+    dict (``time`` and every column, ``units``, ``metrics``, ``metric_units``, ``impacts``,
+    ``notes``, ``initial_conditions`` (JSON text), ``parameters``, ``model``, ``source``,
+    ``wall_s``). Raises
+    :class:`SimulationError` with that dict as ``result`` when the integration fails."""
+    result = simulate(str(name_or_path), t_end, rtol=rtol, set=set, check=False)
+    d = result.to_dict()
+    # this interface gave the assembly report as JSON text
+    d["initial_conditions"] = json.dumps(d["initial_conditions"])
+    error = d.pop("error")
+    if error is not None:
+        raise SimulationError(error, d)
+    return d

@@ -1,0 +1,580 @@
+"""Build a model in Python: :class:`Model` mirrors the model file (docs/model-file.md) section
+by section, one method per element kind, and holds plain data (the dict of the file). It is
+read by the same Rust code as a model file, so a model built here and the same model written
+as TOML give the same numbers bit for bit.
+
+SI units everywhere (m, kg, s, N, Pa, J), angles in rad, angular rates in rad/s. An argument
+left at ``None`` is not written (the file's default applies); every argument given is used or
+refused with a :class:`clr.errors.FieldError` naming its field (``joint[1].axis``).
+
+Attachment points (``a``, ``b``, ``bearing``, ``journal``, ``guide``, ``slider``, ``at``) are a
+point name (``"O"``), a body and local coordinates (:func:`at`) or a beam node (:func:`node`).
+Laws and time functions are dicts as in the file; :func:`normal`, :func:`friction`,
+:func:`material` and :func:`motion` write them.
+"""
+
+from __future__ import annotations
+
+import copy
+import os
+from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+
+from . import _native
+from .errors import ModelError
+
+__all__ = ["Model", "at", "node", "material", "normal", "friction", "motion"]
+
+#: A 2-vector (m, m/s or N): a tuple, list or numpy array of two numbers.
+Vec2 = Union[Sequence[float], Tuple[float, float]]
+#: Where an element attaches: a point name, ``at(body, x, y)`` or ``node(beam, k)``.
+Anchor = Union[str, Mapping[str, Any]]
+#: A law or time function as its file table (``{"law": "hertz", ...}``).
+Table = Mapping[str, Any]
+
+# The sections of a model file, in the order `clr export` writes them.
+_LISTS = ("body", "point", "beam", "flexible_body", "joint", "driver", "force", "clearance")
+_TABLES = ("model", "solver", "output")
+
+
+def at(body: str, x: float = 0.0, y: float = 0.0) -> Dict[str, Any]:
+    """The point (x, y) (m) in the frame of ``body`` (``"ground"`` for the fixed frame)."""
+    return {"body": body, "at": [float(x), float(y)]}
+
+
+def node(beam: str, k: int) -> Dict[str, Any]:
+    """Node ``k`` (0 at the beam's start) of the beam or flexible body ``beam``."""
+    return {"beam": beam, "node": int(k)}
+
+
+def material(youngs_modulus: float, poisson_ratio: float) -> Dict[str, float]:
+    """An elastic material: Young's modulus E (Pa) and Poisson's ratio ν (–)."""
+    return {"youngs_modulus": float(youngs_modulus), "poisson_ratio": float(poisson_ratio)}
+
+
+def normal(law: str, restitution: float, **params: Any) -> Dict[str, Any]:
+    """A normal-force law (``[clearance.normal]``): ``law`` (``hertz``, ``lankarani-nikravesh``,
+    ``flores``, ``preset``, ...; docs/model-file.md), the coefficient of restitution c_e (–) and
+    the law's parameters (``stiffness`` in N/m^n, ``exponent``, ``bearing_material`` and
+    ``journal_material`` from :func:`material`, ``preset``, ``length`` in m, ...)."""
+    return {"law": law, "restitution": float(restitution), **params}
+
+
+def friction(law: str = "none", **params: Any) -> Dict[str, Any]:
+    """A friction law (``[clearance.friction]``): ``none``, ``coulomb`` (``mu``, ``v_reg`` in
+    m/s), ``ambrosio`` (``mu``, ``v0``, ``v1`` in m/s), ``threlfall``, ``stribeck``, ``lugre``
+    (``sigma0`` N/m, ``sigma1`` N·s/m, ``sigma2`` N·s/m, ...)."""
+    return {"law": law, **params}
+
+
+def motion(kind: str, **params: Any) -> Dict[str, Any]:
+    """A time function (drivers' ``motion``, actuators' ``force``, torques): ``constant``
+    (``value``), ``linear`` (``initial``, ``rate``), ``ramp``, ``sine``, ``polynomial``,
+    ``table``, ``sum``, ``product`` (docs/model-file.md, "Time functions")."""
+    return {"type": kind, **params}
+
+
+def _vec(v: Any) -> Any:
+    """Two-vectors and other sequences as lists of floats (numpy arrays included)."""
+    if v is None or isinstance(v, (str, dict)):
+        return v
+    if hasattr(v, "tolist"):
+        v = v.tolist()
+    if isinstance(v, (list, tuple)):
+        return [_vec(x) for x in v]
+    return v
+
+
+class Model:
+    """A model under construction: the dict of a model file, filled by one method per element.
+
+    >>> m = Model("pendulum", gravity=(0.0, -9.81))
+    >>> m.body("rod", mass=1.0, inertia=0.0833, position=(0.5, 0.0))
+    >>> m.revolute("O", a=at("ground"), b=at("rod", -0.5, 0.0))
+    >>> m.output(t_end=1.0)
+
+    Every method returns the model, so calls can be chained. Nothing is checked until the model
+    is used (:meth:`check`, :meth:`to_toml`, :func:`clr.simulate`); then every problem is a
+    :class:`clr.errors.FieldError` with the path of its field (``body[0].mass``: the first
+    :meth:`body`).
+    """
+
+    def __init__(
+        self,
+        name: Optional[str] = None,
+        *,
+        description: Optional[str] = None,
+        gravity: Optional[Vec2] = None,
+        clearance_force_application: Optional[str] = None,
+    ):
+        """``name`` and ``description`` for reports, ``gravity`` [g_x, g_y] (m/s²; default
+        none), ``clearance_force_application`` (``common_point`` or ``contact_points``)."""
+        self._doc: Dict[str, Any] = {}
+        self._set_table(
+            "model",
+            name=name,
+            description=description,
+            gravity=gravity,
+            clearance_force_application=clearance_force_application,
+        )
+        self._label = f"<clr.Model {name!r}>" if name else "<clr.Model>"
+
+    # ----- reading and writing -----------------------------------------------------------
+
+    @classmethod
+    def from_dict(cls, doc: Mapping[str, Any]) -> "Model":
+        """A model from the dict of a model file (``{"model": {...}, "body": [{...}], ...}``),
+        e.g. ``tomllib.load`` of a file or :meth:`to_dict` of another model (copied)."""
+        m = cls()
+        m._doc = copy.deepcopy(dict(doc))
+        name = m._doc.get("model", {}).get("name")
+        m._label = f"<clr.Model {name!r}>" if name else "<clr.Model>"
+        return m
+
+    @classmethod
+    def from_toml(cls, text: str) -> "Model":
+        """A model from the text of a model file (either form: generic, or ``[model] builtin``
+        with ``[parameters]``). Errors name the line and column of ``text``."""
+        m = cls()
+        m._doc = {}
+        m._text = text
+        m._label = "<toml text>"
+        return m
+
+    @classmethod
+    def from_file(cls, path: Union[str, "os.PathLike[str]"]) -> "Model":
+        """A model from a model file; errors name the file, line and field."""
+        m = cls()
+        m._doc = {}
+        m._path = os.fspath(path)
+        m._label = m._path
+        return m
+
+    def to_dict(self) -> Dict[str, Any]:
+        """The model-file dict (a deep copy) of a model built in Python or from a dict."""
+        if self._source() is not None:
+            raise ModelError(
+                "a model read from TOML is held as text; use to_toml() for its checked form",
+                field="",
+            )
+        return copy.deepcopy(self._doc)
+
+    def to_toml(self) -> str:
+        """The checked model as model-file text, every section written as ``clr export`` writes
+        it (a built-in model file: its ``[model] builtin`` form with every parameter).
+
+        Raises :class:`clr.errors.FieldError` for anything the model file would refuse."""
+        return self._job().to_toml()
+
+    def check(self) -> List[str]:
+        """Check the model as ``clr run`` would read it; returns the notes (what reading it
+        changed on its own, one sentence each). Raises :class:`clr.errors.FieldError`."""
+        return list(self._job().notes)
+
+    def _source(self) -> Optional[Tuple[str, str]]:
+        if getattr(self, "_text", None) is not None:
+            return ("text", self._text)
+        if getattr(self, "_path", None) is not None:
+            return ("path", self._path)
+        return None
+
+    def _job(
+        self,
+        set: Optional[Mapping[str, Any]] = None,
+        t_end: Optional[float] = None,
+        rtol: Optional[float] = None,
+    ) -> "_native.JobCore":
+        sets = None if set is None else dict(set)
+        src = self._source()
+        if src is None:
+            return _native.JobCore.from_dict(self._doc, self._label, sets, t_end, rtol)
+        kind, value = src
+        if kind == "text":
+            return _native.JobCore.from_text(value, self._label, sets, t_end, rtol)
+        return _native.JobCore.from_target(value, sets, t_end, rtol)
+
+    def __repr__(self) -> str:
+        src = self._source()
+        if src is not None:
+            return f"Model.from_{'toml' if src[0] == 'text' else 'file'}({self._label!r})"
+        counts = ", ".join(
+            f"{len(self._doc[s])} {s}" for s in _LISTS if self._doc.get(s)
+        )
+        return f"Model({self._doc.get('model', {}).get('name')!r}: {counts or 'empty'})"
+
+    # ----- plumbing ----------------------------------------------------------------------
+
+    def _builder(self) -> Dict[str, Any]:
+        if self._source() is not None:
+            raise ModelError(
+                "this model was read from TOML; build in Python with Model() or "
+                "Model.from_dict(), or edit the file",
+                field="",
+            )
+        return self._doc
+
+    def _set_table(self, section: str, **fields: Any) -> "Model":
+        table = self._builder().setdefault(section, {})
+        for k, v in fields.items():
+            if v is not None:
+                table[k] = _vec(v)
+        if not table:
+            del self._doc[section]
+        return self
+
+    def _add(self, section: str, kind: Optional[str], name: str, **fields: Any) -> "Model":
+        item: Dict[str, Any] = {"name": name}
+        if kind is not None:
+            item["type"] = kind
+        item.update({k: _vec(v) for k, v in fields.items() if v is not None})
+        self._builder().setdefault(section, []).append(item)
+        return self
+
+    # ----- [model], [solver], [output] ---------------------------------------------------
+
+    def solver(
+        self,
+        *,
+        method: Optional[str] = None,
+        rtol: Optional[float] = None,
+        atol: Optional[float] = None,
+        h_max: Optional[float] = None,
+        max_steps: Optional[int] = None,
+        baumgarte_alpha: Optional[float] = None,
+        baumgarte_beta: Optional[float] = None,
+        projection: Optional[bool] = None,
+        contact_events: Optional[bool] = None,
+        jacobian: Optional[str] = None,
+        max_order: Optional[int] = None,
+        linear_solver: Optional[str] = None,
+        scale_velocity_error: Optional[bool] = None,
+        newton_rate_reuse: Optional[bool] = None,
+        initial_conditions: Optional[str] = None,
+    ) -> "Model":
+        """``[solver]``: ``method`` (``ndf`` or ``dopri5``), ``rtol`` (–), ``atol`` (mixed
+        units; default 1e-3·rtol), ``h_max`` (s), ``max_steps``, Baumgarte ``baumgarte_alpha``
+        (1/s) and ``baumgarte_beta`` (1/s²), ``projection``, ``contact_events``, NDF settings
+        (``jacobian``, ``max_order``, ``linear_solver``, ``scale_velocity_error``,
+        ``newton_rate_reuse``) and ``initial_conditions`` (``assemble`` or ``exact``)."""
+        return self._set_table("solver", **{k: v for k, v in locals().items() if k != "self"})
+
+    def output(
+        self,
+        *,
+        t_end: Optional[float] = None,
+        t_start: Optional[float] = None,
+        intervals: Optional[int] = None,
+        every_step: Optional[bool] = None,
+    ) -> "Model":
+        """``[output]``: the span [``t_start``, ``t_end``] (s), recorded at ``intervals`` equal
+        intervals and/or after ``every_step`` accepted step."""
+        return self._set_table("output", **{k: v for k, v in locals().items() if k != "self"})
+
+    # ----- bodies, points, beams ---------------------------------------------------------
+
+    def body(
+        self,
+        name: str,
+        *,
+        mass: float,
+        inertia: float,
+        position: Optional[Vec2] = None,
+        angle: Optional[float] = None,
+        velocity: Optional[Vec2] = None,
+        angular_velocity: Optional[float] = None,
+        centre_of_mass: Optional[Vec2] = None,
+    ) -> "Model":
+        """``[[body]]``: a rigid body of ``mass`` (kg) and ``inertia`` (kg·m², about its centre
+        of mass); its frame at ``position`` (m) and ``angle`` (rad) moving with ``velocity``
+        (m/s) and ``angular_velocity`` (rad/s); ``centre_of_mass`` (m) in the body frame. An
+        initial coordinate left out is solved by the assembly of consistent initial
+        conditions; one given is kept (docs/model-file.md, "Initial conditions")."""
+        return self._add("body", None, **{k: v for k, v in locals().items() if k != "self"})
+
+    def point(
+        self,
+        name: str,
+        *,
+        body: Optional[str] = None,
+        at: Optional[Vec2] = None,
+        beam: Optional[str] = None,
+        node: Optional[int] = None,
+    ) -> "Model":
+        """``[[point]]``: a named point, (``at``, m) on ``body``, or ``node`` of ``beam``."""
+        return self._add("point", None, **{k: v for k, v in locals().items() if k != "self"})
+
+    def beam(
+        self,
+        name: str,
+        *,
+        start: Vec2,
+        end: Vec2,
+        elements: int,
+        material: Table,
+        section: Table,
+        supports: Optional[Sequence[Table]] = None,
+        rayleigh: Optional[Vec2] = None,
+        mass: Optional[str] = None,
+    ) -> "Model":
+        """``[[beam]]``: a ground-fixed planar Euler–Bernoulli beam from ``start`` to ``end``
+        (m) with ``elements`` elements; ``material`` ``{youngs_modulus (Pa), density (kg/m³)}``,
+        ``section`` (e.g. ``{type = "rectangle", width, height}`` in m), ``supports``
+        (``[{node, kind}]``), ``rayleigh`` damping [α (1/s), β (s)], ``mass`` (``consistent`` or
+        ``lumped``)."""
+        return self._add("beam", None, **{k: v for k, v in locals().items() if k != "self"})
+
+    def flexible_body(
+        self,
+        name: str,
+        *,
+        beam: Table,
+        reduction: Table,
+        pose: Optional[Sequence[float]] = None,
+        velocity: Optional[Sequence[float]] = None,
+    ) -> "Model":
+        """``[[flexible_body]]``: a floating-frame flexible body: its ``beam`` mesh (as
+        :meth:`beam` without name), the modal ``reduction``, the frame ``pose`` [x, y, θ] (m,
+        rad) and ``velocity`` [vx, vy, ω] (m/s, rad/s)."""
+        return self._add(
+            "flexible_body", None, **{k: v for k, v in locals().items() if k != "self"}
+        )
+
+    # ----- [[joint]] ---------------------------------------------------------------------
+
+    def revolute(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Ideal revolute joint: anchors ``a`` and ``b`` coincide."""
+        return self._add("joint", "revolute", name, a=a, b=b)
+
+    def fixed(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Fixed joint: the two frames keep their initial relative pose."""
+        return self._add("joint", "fixed", name, a=a, b=b)
+
+    def translational(self, name: str, *, a: Anchor, b: Anchor, axis: Vec2) -> "Model":
+        """Ideal translational joint: ``b`` slides along ``axis`` (in the frame of ``a``'s
+        body) without relative rotation."""
+        return self._add("joint", "translational", name, a=a, b=b, axis=axis)
+
+    # ----- [[driver]] --------------------------------------------------------------------
+
+    def drive_angle(self, name: str, *, body: str, motion: Table) -> "Model":
+        """Prescribed absolute angle θ(t) (rad) of ``body`` (``motion``: :func:`motion`)."""
+        return self._add("driver", "angle", name, body=body, motion=motion)
+
+    def drive_relative_angle(
+        self, name: str, *, body_i: str, body_j: str, motion: Table
+    ) -> "Model":
+        """Prescribed relative angle θ_j − θ_i (rad) of time."""
+        return self._add(
+            "driver", "relative_angle", name, body_i=body_i, body_j=body_j, motion=motion
+        )
+
+    def drive_displacement(
+        self, name: str, *, a: Anchor, b: Anchor, axis: Vec2, motion: Table
+    ) -> "Model":
+        """Prescribed displacement (m) of ``b`` from ``a`` along ``axis`` (frame of ``a``)."""
+        return self._add(
+            "driver", "displacement", name, a=a, b=b, axis=axis, motion=motion
+        )
+
+    # ----- [[force]] ---------------------------------------------------------------------
+
+    def spring_damper(
+        self,
+        name: str,
+        *,
+        a: Anchor,
+        b: Anchor,
+        stiffness: Optional[float] = None,
+        damping: Optional[float] = None,
+        free_length: Optional[float] = None,
+    ) -> "Model":
+        """Translational spring–damper between ``a`` and ``b``: ``stiffness`` (N/m),
+        ``damping`` (N·s/m), ``free_length`` (m; default the initial distance)."""
+        return self._add(
+            "force", "spring_damper", name, a=a, b=b, stiffness=stiffness, damping=damping,
+            free_length=free_length,
+        )
+
+    def rotational_spring_damper(
+        self,
+        name: str,
+        *,
+        body_i: str,
+        body_j: str,
+        stiffness: Optional[float] = None,
+        damping: Optional[float] = None,
+        free_angle: Optional[float] = None,
+    ) -> "Model":
+        """Rotational spring–damper: ``stiffness`` (N·m/rad), ``damping`` (N·m·s/rad),
+        ``free_angle`` (rad; default the initial relative angle)."""
+        return self._add(
+            "force", "rotational_spring_damper", name, body_i=body_i, body_j=body_j,
+            stiffness=stiffness, damping=damping, free_angle=free_angle,
+        )
+
+    def actuator(
+        self,
+        name: str,
+        *,
+        a: Anchor,
+        b: Anchor,
+        force: Table,
+        damping: Optional[float] = None,
+    ) -> "Model":
+        """Point-to-point actuator: axial ``force`` (N) of time (:func:`motion`), pushing ``b``
+        away from ``a`` when positive, with ``damping`` (N·s/m)."""
+        return self._add("force", "actuator", name, a=a, b=b, force=force, damping=damping)
+
+    def bushing(
+        self,
+        name: str,
+        *,
+        a: Anchor,
+        b: Anchor,
+        stiffness: Optional[Any] = None,
+        damping: Optional[Any] = None,
+    ) -> "Model":
+        """Linear bushing from ``a`` to ``b``: ``stiffness`` (N/m) and ``damping`` (N·s/m)."""
+        return self._add("force", "bushing", name, a=a, b=b, stiffness=stiffness, damping=damping)
+
+    def force(
+        self,
+        name: str,
+        *,
+        at: Anchor,
+        fx: Optional[Table] = None,
+        fy: Optional[Table] = None,
+    ) -> "Model":
+        """Applied force (N) at ``at``, components ``fx`` and ``fy`` of time (world frame)."""
+        return self._add("force", "force", name, at=at, fx=fx, fy=fy)
+
+    def torque(self, name: str, *, body: str, torque: Table) -> "Model":
+        """Applied torque (N·m) of time on ``body``."""
+        return self._add("force", "torque", name, body=body, torque=torque)
+
+    def torque_between(
+        self, name: str, *, body_i: str, body_j: str, torque: Table
+    ) -> "Model":
+        """Torque (N·m) of time on ``body_j``, its reaction on ``body_i``."""
+        return self._add(
+            "force", "torque_between", name, body_i=body_i, body_j=body_j, torque=torque
+        )
+
+    def nodal_load(
+        self,
+        name: str,
+        *,
+        beam: str,
+        node: int,
+        fx: Optional[Table] = None,
+        fy: Optional[Table] = None,
+        moment: Optional[Table] = None,
+    ) -> "Model":
+        """Load on ``node`` of ``beam``: ``fx``, ``fy`` (N) and ``moment`` (N·m) of time."""
+        return self._add(
+            "force", "nodal_load", name, beam=beam, node=node, fx=fx, fy=fy, moment=moment
+        )
+
+    # ----- [[clearance]] -----------------------------------------------------------------
+
+    def revolute_clearance(
+        self,
+        name: str,
+        *,
+        bearing: Anchor,
+        journal: Anchor,
+        bearing_radius: float,
+        journal_radius: float,
+        normal: Table,
+        friction: Optional[Table] = None,
+        force_application: Optional[str] = None,
+    ) -> "Model":
+        """Revolute clearance joint: a journal of radius ``journal_radius`` (m) centred at
+        ``journal`` inside a bearing of radius ``bearing_radius`` (m) centred at ``bearing``;
+        contact by the ``normal`` law (:func:`normal`), ``friction`` (:func:`friction`; default
+        none), ``force_application`` (``common_point`` or ``contact_points``)."""
+        return self._add(
+            "clearance", "revolute", name, bearing=bearing, journal=journal,
+            bearing_radius=bearing_radius, journal_radius=journal_radius, normal=normal,
+            friction=friction, force_application=force_application,
+        )
+
+    def translational_clearance(
+        self,
+        name: str,
+        *,
+        guide: Anchor,
+        slider: Anchor,
+        guide_width: float,
+        slider_length: float,
+        slider_height: float,
+        normal: Table,
+        guide_angle: Optional[float] = None,
+        slider_angle: Optional[float] = None,
+        friction: Optional[Table] = None,
+    ) -> "Model":
+        """Translational clearance joint: a rectangular slider (``slider_length`` ×
+        ``slider_height``, m, at ``slider``, tilted ``slider_angle`` rad) between two parallel
+        guide faces ``guide_width`` (m) apart (centre line through ``guide`` at ``guide_angle``
+        rad); corner contacts by ``normal``, ``friction``."""
+        return self._add(
+            "clearance", "translational", name, guide=guide, slider=slider,
+            guide_width=guide_width, guide_angle=guide_angle, slider_length=slider_length,
+            slider_height=slider_height, slider_angle=slider_angle, normal=normal,
+            friction=friction,
+        )
+
+    def slider_on_beam(
+        self,
+        name: str,
+        *,
+        beam: str,
+        slider: Anchor,
+        face: Any,
+        slider_length: float,
+        slider_height: float,
+        face_points: int,
+        normal: Table,
+        slider_angle: Optional[float] = None,
+        guide_samples: Optional[int] = None,
+        area_normal: Optional[Table] = None,
+        friction: Optional[Table] = None,
+    ) -> "Model":
+        """A rectangular slider (m) on a face of the flexible ``beam`` (``face``), with
+        multipoint contact at ``face_points`` points per face, ``guide_samples`` samples of the
+        deformed guide, the ``normal`` law (and ``area_normal`` for area contact), ``friction``."""
+        return self._add(
+            "clearance", "slider_on_beam", name, beam=beam, slider=slider, face=face,
+            slider_length=slider_length, slider_height=slider_height, slider_angle=slider_angle,
+            face_points=face_points, guide_samples=guide_samples, normal=normal,
+            area_normal=area_normal, friction=friction,
+        )
+
+
+#: For each ``(section, type)`` of a model file, the :class:`Model` method that adds it (the
+#: tests check that every kind the Rust reader knows has its method, with the same fields).
+METHODS: Dict[Tuple[str, Optional[str]], str] = {
+    ("model", None): "__init__",
+    ("solver", None): "solver",
+    ("output", None): "output",
+    ("body", None): "body",
+    ("point", None): "point",
+    ("beam", None): "beam",
+    ("flexible_body", None): "flexible_body",
+    ("joint", "revolute"): "revolute",
+    ("joint", "fixed"): "fixed",
+    ("joint", "translational"): "translational",
+    ("driver", "angle"): "drive_angle",
+    ("driver", "relative_angle"): "drive_relative_angle",
+    ("driver", "displacement"): "drive_displacement",
+    ("force", "spring_damper"): "spring_damper",
+    ("force", "rotational_spring_damper"): "rotational_spring_damper",
+    ("force", "actuator"): "actuator",
+    ("force", "bushing"): "bushing",
+    ("force", "force"): "force",
+    ("force", "torque"): "torque",
+    ("force", "torque_between"): "torque_between",
+    ("force", "nodal_load"): "nodal_load",
+    ("clearance", "revolute"): "revolute_clearance",
+    ("clearance", "translational"): "translational_clearance",
+    ("clearance", "slider_on_beam"): "slider_on_beam",
+}
