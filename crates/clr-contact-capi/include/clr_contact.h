@@ -7,7 +7,9 @@
 #include <stdint.h>
 
 // Result of every fallible C function. `CLR_STATUS_OK` (0) is success; on any other value the
-// output arguments are left untouched and `clr_last_error_message()` says what to change.
+// output arguments are left untouched (the one exception: `CLR_STATUS_BUFFER_TOO_SMALL` writes
+// the count needed through the count argument) and `clr_last_error_message()` says what to
+// change.
 typedef enum ClrStatus {
   // Success.
   CLR_STATUS_OK = 0,
@@ -15,7 +17,8 @@ typedef enum ClrStatus {
   CLR_STATUS_NULL_POINTER = 1,
   // A numeric input (state, velocity, force) was NaN or infinite.
   CLR_STATUS_NON_FINITE = 2,
-  // A kind code, a parameter count or a string argument was not valid.
+  // A kind code, a parameter count, an array length, a 0/1 flag or a string argument was not
+  // valid.
   CLR_STATUS_INVALID_ARGUMENT = 3,
   // A law parameter is out of its admissible range (e.g. c_e outside (0, 1], E ≤ 0).
   CLR_STATUS_INVALID_PARAMETER = 4,
@@ -32,6 +35,9 @@ typedef enum ClrStatus {
   CLR_STATUS_MODEL_ERROR = 9,
   // The solver failed during `clr_model_run`; the rows recorded up to the failure are kept.
   CLR_STATUS_SIMULATION_FAILED = 10,
+  // A caller-supplied output buffer holds fewer entries than the result: nothing was copied
+  // and the count argument received the number of entries needed.
+  CLR_STATUS_BUFFER_TOO_SMALL = 11,
 } ClrStatus;
 
 // Opaque handle of a stateless friction law F_T = μ(v_T) F_N.
@@ -43,6 +49,10 @@ typedef struct ClrLuGre ClrLuGre;
 
 // Opaque handle of a model loaded from a model file, with the results of its last run.
 typedef struct ClrModel ClrModel;
+
+// Opaque handle of a multipoint clearance joint: a rectangular slider on body j in a straight or
+// sine guide on body i, with its detector buffers and the points of the last evaluation.
+typedef struct ClrMultipointJoint ClrMultipointJoint;
 
 // Opaque handle of a normal-force law F_N = F_e(δ)(1 + χ δ̇/δ̇⁻).
 typedef struct ClrNormalLaw ClrNormalLaw;
@@ -178,6 +188,80 @@ typedef struct ClrTranslationalForces {
   struct ClrGeneralizedForce slider;
 } ClrTranslationalForces;
 
+// Kind of contact found by `clr_multipoint_joint_forces`, one of the `CLR_CONTACT_CLASS_*`
+// constants (clr-contact `ContactClass`).
+typedef uint32_t ClrContactClass;
+
+// Result of `clr_multipoint_joint_forces`. SI units, world frame.
+typedef struct ClrMultipointForces {
+  // Kind of contact (`CLR_CONTACT_CLASS_*`).
+  ClrContactClass contact_class;
+  // The slider face lying on the guide (0 bottom, 1 right, 2 top, 3 left) for
+  // `CLR_CONTACT_CLASS_AREA`, −1 otherwise.
+  int32_t area_face;
+  // Arc extent of the active points along the guide, m (0 when separated or for a single
+  // point).
+  double contact_length;
+  // Number of active contact points (read them with `clr_multipoint_joint_points`), –.
+  uintptr_t active_points;
+  // Generalized force on the guide body (i) about its reference point.
+  struct ClrGeneralizedForce guide;
+  // Generalized force on the slider body (j) about its reference point.
+  struct ClrGeneralizedForce slider;
+} ClrMultipointForces;
+
+// Where a multipoint contact point comes from, one of the `CLR_POINT_SOURCE_*` constants
+// (clr-contact `PointSource`).
+typedef uint32_t ClrPointSource;
+
+// One active contact point of the last `clr_multipoint_joint_forces`. SI units, world frame.
+//
+// Conventions (contact-laws.md §3.1–3.2): the normal n is the direction in which the slider
+// penetrates the guide (minus the guide's outward normal), t = k × n, v_N = (v_slider −
+// v_guide)·n = δ̇ (> 0 approaching), v_T = (v_slider − v_guide)·t; the force on the slider is
+// −F_N n + F_T t at `slider_x`, `slider_y`, the opposite acts on the guide at `guide_x`,
+// `guide_y`.
+typedef struct ClrMultipointContact {
+  // Stable id of the point, 0..point_count−1 (corners 0..3, face points 4..4+4N−1, guide
+  // samples after): the index of its entry in the `impact_velocities` array.
+  uintptr_t id;
+  // Origin of the point (`CLR_POINT_SOURCE_*`).
+  ClrPointSource source;
+  // Slider face 0..3 of a `CLR_POINT_SOURCE_FACE` point, −1 for the other sources.
+  int32_t face;
+  // Corner 0..3, position 0..N−1 along the face, or guide sample 0..M−1 (see `source`).
+  uintptr_t index;
+  // Arc coordinate s of the contact on the guide, m (for the straight guide the distance from
+  // its origin; for the sine guide the x coordinate in the guide frame).
+  double arc;
+  // Penetration δ > 0, m.
+  double penetration;
+  // Unit normal n (direction of penetration of the slider), x component.
+  double normal_x;
+  // Unit normal n, y component.
+  double normal_y;
+  // Contact point on the slider, x, m.
+  double slider_x;
+  // Contact point on the slider, y, m.
+  double slider_y;
+  // Contact point r(s) on the guide surface, x, m.
+  double guide_x;
+  // Contact point r(s) on the guide surface, y, m.
+  double guide_y;
+  // Relative normal velocity v_N = δ̇, m/s (> 0 approaching).
+  double normal_velocity;
+  // Relative tangential velocity v_T along t = k × n, m/s.
+  double tangential_velocity;
+  // Tributary (wetted) length of the point along the guide, m: its share of the penetration
+  // profile interpolated linearly between neighbouring candidates (0 when it only just
+  // touches; contact-laws.md §3.2). The length a per-unit-length law multiplies.
+  double tributary_length;
+  // Normal force F_N ≥ 0 at this point, N.
+  double normal_force;
+  // Friction force F_T on the slider along t at this point, N.
+  double tangential_force;
+} ClrMultipointContact;
+
 // Hertz F = K δ^1.5 with a given K. Parameters: K (N/m^1.5).
 #define CLR_ELASTIC_HERTZ 0
 
@@ -272,6 +356,29 @@ typedef struct ClrTranslationalForces {
 // Three or four corners penetrate (penetration comparable to the clearance, outside the validity
 // of the point-contact model; the contacts are still reported).
 #define CLR_CONFIGURATION_MORE_CORNERS 4
+
+// No point of the slider penetrates the guide.
+#define CLR_CONTACT_CLASS_SEPARATED 0
+
+// Line contact: a corner, an edge region or a patch shorter than a slider face.
+#define CLR_CONTACT_CLASS_LINE 1
+
+// Area contact: every candidate of one slider face (both corners and its N face points)
+// penetrates, the face lies on the guide.
+#define CLR_CONTACT_CLASS_AREA 2
+
+// A slider corner; `index` is the corner 0..3, counter-clockwise from (−L/2, −h/2) of the slider
+// frame.
+#define CLR_POINT_SOURCE_CORNER 0
+
+// A point on a slider face; `face` is the face 0..3 (0 bottom, 1 right, 2 top, 3 left in the
+// slider frame, face f running from corner f to corner f + 1) and `index` its position 0..N−1
+// along the face, at the fraction (index + 1)/(N + 1) of the face.
+#define CLR_POINT_SOURCE_FACE 1
+
+// A guide sample of the reverse check; `index` is the sample 0..M−1. Guide samples move with the
+// slider, so the impact velocity kept for their id is only approximate.
+#define CLR_POINT_SOURCE_GUIDE_SAMPLE 2
 
 #ifdef __cplusplus
 extern "C" {
@@ -560,8 +667,8 @@ enum ClrStatus clr_model_from_toml(const char *text, struct ClrModel **out);
 // `model` is NULL or a live handle not used by another thread during the call.
 enum ClrStatus clr_model_run(struct ClrModel *model, double t_end);
 
-// The column `name` of the last run (e.g. "t" in s, "<body>.x" in m, "<body>.theta" in rad,
-// "<clearance>.normal_force" in N; units as in `docs/model-file.md`): `*out_ptr` receives a
+// The column `name` of the last run (e.g. "t" in s, `"<body>.x"` in m, `"<body>.theta"` in rad,
+// `"<clearance>.normal_force"` in N; units as in `docs/model-file.md`): `*out_ptr` receives a
 // pointer to `*out_len` doubles, one per output row, owned by the handle and valid until the
 // next `clr_model_run` or `clr_model_free`. `CLR_STATUS_UNKNOWN_NAME` (the message lists the
 // columns) for an unknown name, `CLR_STATUS_MODEL_ERROR` before the first run.
@@ -574,7 +681,7 @@ enum ClrStatus clr_model_column(const struct ClrModel *model,
                                 const double **out_ptr,
                                 uintptr_t *out_len);
 
-// The scalar metric `name` of the last run (e.g. "<clearance>.peak_normal_force" in N), in SI.
+// The scalar metric `name` of the last run (e.g. `"<clearance>.peak_normal_force"` in N), in SI.
 // `CLR_STATUS_UNKNOWN_NAME` (the message lists the metrics) for an unknown name,
 // `CLR_STATUS_MODEL_ERROR` before the first run.
 //
@@ -615,6 +722,134 @@ enum ClrStatus clr_model_name(const struct ClrModel *model,
 // # Safety
 // `model` is NULL or a handle from `clr_model_from_toml` not freed yet.
 void clr_model_free(struct ClrModel *model);
+
+// Create a multipoint clearance joint in a straight guide (clr-contact `StraightGuide`,
+// `MultipointDetector`; contact-laws.md §3.2, after the corner contacts of P. Flores, J.
+// Ambrósio, J.C.P. Claro, H.M. Lankarani, J. Comput. Nonlinear Dyn. 3 (2008) 011007): a
+// rectangular slider of length L and height h (m, > 0) on body j, centred at
+// (`slider_centre_x`, `slider_centre_y`) (m, local to body j) and rotated by `slider_angle`
+// (rad), against the guide surface of length `guide_length` (m, > 0) on body i that starts at
+// (`guide_origin_x`, `guide_origin_y`) (m, local to body i) and runs along the local direction
+// `guide_angle` (rad); the slider is on the left of that direction when `gap_on_left` = 1, on
+// the right when 0 (other values: `CLR_STATUS_INVALID_ARGUMENT`). Candidates are the 4 corners
+// and `face_points` (N) equally spaced points on each face; `guide_samples` (M) guide points
+// under the slider are checked against the rectangle (0 disables this reverse check, which only
+// matters for a bent guide). N, M ≤ 100 000. A guide with two faces (a channel) is two joints.
+// On success `*out` receives a new handle to free with `clr_multipoint_joint_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_multipoint_joint_new_straight(double guide_length,
+                                                 int32_t gap_on_left,
+                                                 double slider_length,
+                                                 double slider_height,
+                                                 double guide_origin_x,
+                                                 double guide_origin_y,
+                                                 double guide_angle,
+                                                 double slider_centre_x,
+                                                 double slider_centre_y,
+                                                 double slider_angle,
+                                                 uintptr_t face_points,
+                                                 uintptr_t guide_samples,
+                                                 struct ClrMultipointJoint **out);
+
+// Create a multipoint clearance joint in a bent guide: clr-contact's `SineGuide`
+// r̄(s) = (s, A sin(πs/ℓ)), s ∈ [0, ℓ], the shape of a simply supported beam in its first mode
+// (the hogging guide of contact-laws.md §7.8), with the slider on its +y side; amplitude A =
+// `amplitude` (m, any sign: > 0 bulges towards the slider), span ℓ = `span` (m, > 0). The sine
+// is fixed in a frame of body i at (`guide_origin_x`, `guide_origin_y`) (m, local to body i)
+// rotated by `guide_angle` (rad): r(s) = R_i + A(θ_i)(o + A(α) r̄(s)), moving with body i
+// (a guide state at rest at the origin gives clr-contact's static `SineGuide`). Slider and
+// candidates as in `clr_multipoint_joint_new_straight`; use M > 0 guide samples so that
+// penetrations between the candidates are found. On success `*out` receives a new handle to
+// free with `clr_multipoint_joint_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_multipoint_joint_new_sine(double amplitude,
+                                             double span,
+                                             double slider_length,
+                                             double slider_height,
+                                             double guide_origin_x,
+                                             double guide_origin_y,
+                                             double guide_angle,
+                                             double slider_centre_x,
+                                             double slider_centre_y,
+                                             double slider_angle,
+                                             uintptr_t face_points,
+                                             uintptr_t guide_samples,
+                                             struct ClrMultipointJoint **out);
+
+// Number of point ids of the joint, 4 + 4N + M (–): the length of the `impact_velocities` array
+// of `clr_multipoint_joint_forces` and the largest number of active points, so a points buffer
+// of this capacity is always large enough.
+//
+// # Safety
+// `joint` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_multipoint_joint_point_count(const struct ClrMultipointJoint *joint,
+                                                uintptr_t *out);
+
+// Evaluate the multipoint contact at the states of the guide body (i) and the slider body (j)
+// and write the result to `*out`. Detection (contact-laws.md §3.2): every candidate is projected
+// on the guide (Gauss–Newton, warm started from the previous evaluation of this handle); one
+// with penetration δ > 0 over the guide is an active point, and guide samples inside the slider
+// add points where the guide bulges between candidates. At each active point F_N comes from
+// `normal` with δ̇ = v_N and δ̇⁻ = `impact_velocities[id]` (m/s), F_T from `friction` (NULL:
+// frictionless); the force on the slider is −F_N n + F_T t at its contact point, the opposite
+// acts on the guide at r(s), reduced to each body's reference point (Flores et al. 2008). An
+// area-type normal law would get each point's tributary length as its contact length; the laws
+// of `clr_normal_law_new` are point laws and use none. `impact_velocities` holds
+// `n_impact_velocities` = `clr_multipoint_joint_point_count` doubles indexed by point id (the
+// caller keeps them per point: the point's v_N at its first evaluation with δ > 0, until it
+// separates; entries of inactive points are not used but must be finite). The points are then
+// read with `clr_multipoint_joint_points`. Zero forces when separated. Allocates nothing; the
+// handle is updated (warm starts, points), so do not evaluate it from two threads at once.
+//
+// # Safety
+// `joint` is NULL or a live handle not used by another thread during the call; `normal` is NULL
+// or a live handle; `friction` is NULL or a live handle; `guide`, `slider` are NULL or point to
+// `ClrBodyState`; `impact_velocities` is NULL or points to `n_impact_velocities` doubles; `out`
+// is NULL or writable.
+enum ClrStatus clr_multipoint_joint_forces(struct ClrMultipointJoint *joint,
+                                           const struct ClrNormalLaw *normal,
+                                           const struct ClrFrictionLaw *friction,
+                                           const struct ClrBodyState *guide,
+                                           const struct ClrBodyState *slider,
+                                           const double *impact_velocities,
+                                           uintptr_t n_impact_velocities,
+                                           struct ClrMultipointForces *out);
+
+// Copy the active points of the last `clr_multipoint_joint_forces` (sorted by arc coordinate)
+// into `points`, which has room for `capacity` entries, and write their number to `*count`.
+// When `capacity` is smaller than the number of points nothing is copied, `*count` receives the
+// number needed and the status is `CLR_STATUS_BUFFER_TOO_SMALL`; a capacity of
+// `clr_multipoint_joint_point_count` is always enough. `points` may be NULL when `capacity` is 0
+// (a query of the count). Before the first evaluation and after `clr_multipoint_joint_reset`
+// there are no points. Allocates nothing.
+//
+// # Safety
+// `joint` is NULL or a live handle; `points` is NULL or points to `capacity` writable
+// `ClrMultipointContact`; `count` is NULL or writable.
+enum ClrStatus clr_multipoint_joint_points(const struct ClrMultipointJoint *joint,
+                                           struct ClrMultipointContact *points,
+                                           uintptr_t capacity,
+                                           uintptr_t *count);
+
+// Forget the warm starts of the projections and the points of the last evaluation: the next
+// `clr_multipoint_joint_forces` starts from a coarse scan of the guide (65 samples), as the first
+// one does. Call it after a jump of the slider (a restart, a reinitialization) so that the
+// result does not depend on the evaluations before the jump.
+//
+// # Safety
+// `joint` is NULL or a live handle not used by another thread during the call.
+enum ClrStatus clr_multipoint_joint_reset(struct ClrMultipointJoint *joint);
+
+// Free a multipoint joint. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `joint` is NULL or a handle from `clr_multipoint_joint_new_straight` or
+// `clr_multipoint_joint_new_sine` not freed yet.
+void clr_multipoint_joint_free(struct ClrMultipointJoint *joint);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -7,7 +7,9 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use clr_contact::ContactError;
 
 /// Result of every fallible C function. `CLR_STATUS_OK` (0) is success; on any other value the
-/// output arguments are left untouched and `clr_last_error_message()` says what to change.
+/// output arguments are left untouched (the one exception: `CLR_STATUS_BUFFER_TOO_SMALL` writes
+/// the count needed through the count argument) and `clr_last_error_message()` says what to
+/// change.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum ClrStatus {
@@ -17,7 +19,8 @@ pub enum ClrStatus {
     NullPointer = 1,
     /// A numeric input (state, velocity, force) was NaN or infinite.
     NonFinite = 2,
-    /// A kind code, a parameter count or a string argument was not valid.
+    /// A kind code, a parameter count, an array length, a 0/1 flag or a string argument was not
+    /// valid.
     InvalidArgument = 3,
     /// A law parameter is out of its admissible range (e.g. c_e outside (0, 1], E ≤ 0).
     InvalidParameter = 4,
@@ -34,6 +37,9 @@ pub enum ClrStatus {
     ModelError = 9,
     /// The solver failed during `clr_model_run`; the rows recorded up to the failure are kept.
     SimulationFailed = 10,
+    /// A caller-supplied output buffer holds fewer entries than the result: nothing was copied
+    /// and the count argument received the number of entries needed.
+    BufferTooSmall = 11,
 }
 
 /// Everything that can fail at the C boundary.
@@ -88,6 +94,41 @@ pub enum CapiError {
     /// A C string that is not UTF-8.
     #[error("argument `{0}` is not valid UTF-8; pass an ASCII name such as \"LN\"")]
     Utf8(&'static str),
+    /// An input array of the wrong length.
+    #[error("argument `{name}` has {got} entries; pass {expected} ({what})")]
+    ArrayLength {
+        /// Argument name.
+        name: &'static str,
+        /// What the entries are and where the expected count comes from.
+        what: &'static str,
+        /// Number of entries expected.
+        expected: usize,
+        /// Number given.
+        got: usize,
+    },
+    /// A 0/1 flag with another value.
+    #[error("argument `{name}` = {value} must be 0 or 1 ({meaning})")]
+    Flag {
+        /// Argument name.
+        name: &'static str,
+        /// What 1 means.
+        meaning: &'static str,
+        /// The value given.
+        value: i64,
+    },
+    /// A caller-supplied output buffer too small for the result.
+    #[error(
+        "argument `{name}` has room for {capacity} entries but {needed} are needed; nothing was \
+         copied: pass a buffer of at least {needed} entries (the count argument holds it)"
+    )]
+    BufferTooSmall {
+        /// Argument name.
+        name: &'static str,
+        /// Entries needed.
+        needed: usize,
+        /// Capacity given.
+        capacity: usize,
+    },
     /// A model file that cannot be loaded, built or run, or a model not run yet.
     #[error("{0}")]
     Model(String),
@@ -114,7 +155,10 @@ impl CapiError {
             CapiError::NonFinite { .. } => ClrStatus::NonFinite,
             CapiError::UnknownCode { .. }
             | CapiError::ParameterCount { .. }
-            | CapiError::Utf8(_) => ClrStatus::InvalidArgument,
+            | CapiError::Utf8(_)
+            | CapiError::ArrayLength { .. }
+            | CapiError::Flag { .. } => ClrStatus::InvalidArgument,
+            CapiError::BufferTooSmall { .. } => ClrStatus::BufferTooSmall,
             CapiError::Panic(_) => ClrStatus::Panic,
             CapiError::Model(_) => ClrStatus::ModelError,
             CapiError::Simulation(_) => ClrStatus::SimulationFailed,

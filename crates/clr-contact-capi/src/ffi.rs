@@ -4,7 +4,9 @@
 //! pointer only on success. Handles are created by `clr_*_new`/`clr_normal_law_preset` and
 //! released by the matching `clr_*_free` (NULL is accepted and ignored). Handles are immutable
 //! after construction except through `clr_normal_law_set_min_impact_velocity`, so one handle can be
-//! evaluated from several threads at once as long as nobody frees or modifies it meanwhile.
+//! evaluated from several threads at once as long as nobody frees or modifies it meanwhile. The
+//! multipoint joint ([`crate::multipoint`]) is the exception: its evaluation updates the warm
+//! starts and the point buffers inside the handle, so it needs one handle per thread.
 
 use std::ffi::{c_char, CStr};
 
@@ -244,16 +246,69 @@ pub struct ClrTranslationalForces {
 ///
 /// # Safety
 /// `p` is NULL or points to a live value.
-unsafe fn borrow<'a, T>(name: &'static str, p: *const T) -> Result<&'a T, CapiError> {
+pub(crate) unsafe fn borrow<'a, T>(name: &'static str, p: *const T) -> Result<&'a T, CapiError> {
     p.as_ref().ok_or(CapiError::Null(name))
 }
 
-/// Check an output pointer before any work, so that nothing is written on failure.
-fn out_ptr<T>(name: &'static str, p: *mut T) -> Result<*mut T, CapiError> {
+/// Borrow a handle mutably or report a NULL pointer.
+///
+/// # Safety
+/// `p` is NULL or points to a live value that nothing else uses during the borrow.
+pub(crate) unsafe fn borrow_mut<'a, T>(
+    name: &'static str,
+    p: *mut T,
+) -> Result<&'a mut T, CapiError> {
+    p.as_mut().ok_or(CapiError::Null(name))
+}
+
+/// Require an input pointer that is not NULL.
+pub(crate) fn non_null<T>(name: &'static str, p: *const T) -> Result<*const T, CapiError> {
     if p.is_null() {
         Err(CapiError::Null(name))
     } else {
         Ok(p)
+    }
+}
+
+/// Check an output pointer before any work, so that nothing is written on failure.
+pub(crate) fn out_ptr<T>(name: &'static str, p: *mut T) -> Result<*mut T, CapiError> {
+    non_null(name, p).map(<*const T>::cast_mut)
+}
+
+/// The body of a C function with one output `out`: at the boundary ([`guard`]), `out` is checked
+/// for NULL first, then `f` computes the value, which is written to `*out` only on success.
+///
+/// # Safety
+/// `out` is NULL or writable.
+pub(crate) unsafe fn write_out<T>(
+    out: *mut T,
+    f: impl FnOnce() -> Result<T, CapiError>,
+) -> ClrStatus {
+    guard(|| {
+        let out = out_ptr("out", out)?;
+        out.write(f()?);
+        Ok(())
+    })
+}
+
+/// [`write_out`] of a new heap handle holding what `f` builds (released by [`free_handle`]).
+///
+/// # Safety
+/// `out` is NULL or writable.
+pub(crate) unsafe fn new_handle<H>(
+    out: *mut *mut H,
+    f: impl FnOnce() -> Result<H, CapiError>,
+) -> ClrStatus {
+    write_out(out, || f().map(|handle| Box::into_raw(Box::new(handle))))
+}
+
+/// Release a handle of [`new_handle`]; NULL is ignored.
+///
+/// # Safety
+/// `p` is NULL or a handle of [`new_handle`] not freed yet.
+pub(crate) unsafe fn free_handle<H>(p: *mut H) {
+    if !p.is_null() {
+        drop(Box::from_raw(p));
     }
 }
 
@@ -262,14 +317,12 @@ fn out_ptr<T>(name: &'static str, p: *mut T) -> Result<*mut T, CapiError> {
 unsafe fn params<'a>(p: *const f64, n: usize) -> Result<&'a [f64], CapiError> {
     if n == 0 {
         Ok(&[])
-    } else if p.is_null() {
-        Err(CapiError::Null("params"))
     } else {
-        Ok(std::slice::from_raw_parts(p, n))
+        Ok(std::slice::from_raw_parts(non_null("params", p)?, n))
     }
 }
 
-fn body_state(name: &'static str, s: &ClrBodyState) -> Result<BodyState, CapiError> {
+pub(crate) fn body_state(name: &'static str, s: &ClrBodyState) -> Result<BodyState, CapiError> {
     for v in [s.x, s.y, s.theta, s.vx, s.vy, s.omega] {
         finite(name, v)?;
     }
@@ -281,7 +334,56 @@ fn body_state(name: &'static str, s: &ClrBodyState) -> Result<BodyState, CapiErr
     ))
 }
 
-fn generalized(g: clr_contact::GeneralizedForce) -> ClrGeneralizedForce {
+/// Names of the body-state arguments of a joint evaluation, for body i then body j: the
+/// argument (named when NULL) and its state (named when not finite).
+pub(crate) type BodyNames = [(&'static str, &'static str); 2];
+/// The bodies of a revolute joint.
+const BEARING_JOURNAL: BodyNames = [("bearing", "bearing state"), ("journal", "journal state")];
+/// The bodies of a translational or multipoint joint.
+pub(crate) const GUIDE_SLIDER: BodyNames = [("guide", "guide state"), ("slider", "slider state")];
+/// Name of the impact-velocity array argument of the joint evaluations, for messages.
+pub(crate) const IMPACT_VELOCITIES: &str = "impact_velocities";
+
+/// The laws and body states of a joint evaluation (`clr_*_joint_forces`), checked.
+pub(crate) struct JointInputs<'a> {
+    /// The normal-force law.
+    pub normal: &'a NormalLaw,
+    /// The friction law; None (a NULL handle) for a frictionless joint.
+    pub friction: Option<&'a FrictionLaw>,
+    /// State of body i (bearing or guide).
+    pub i: BodyState,
+    /// State of body j (journal or slider).
+    pub j: BodyState,
+}
+
+impl JointInputs<'_> {
+    /// Read the laws, then the states `bodies` of bodies i and j (named by `names`), in this
+    /// order: the first NULL pointer or non-finite state is the error.
+    ///
+    /// # Safety
+    /// `normal` is NULL or a live handle; `friction` is NULL or a live handle; the `bodies` are
+    /// NULL or point to `ClrBodyState`.
+    pub(crate) unsafe fn read(
+        normal: *const ClrNormalLaw,
+        friction: *const ClrFrictionLaw,
+        bodies: [*const ClrBodyState; 2],
+        names: BodyNames,
+    ) -> Result<Self, CapiError> {
+        let normal = &borrow("normal", normal)?.0;
+        let friction = friction.as_ref().map(|f| &f.0);
+        let [(ni, si), (nj, sj)] = names;
+        let i = body_state(si, borrow(ni, bodies[0])?)?;
+        let j = body_state(sj, borrow(nj, bodies[1])?)?;
+        Ok(Self {
+            normal,
+            friction,
+            i,
+            j,
+        })
+    }
+}
+
+pub(crate) fn generalized(g: clr_contact::GeneralizedForce) -> ClrGeneralizedForce {
     ClrGeneralizedForce {
         fx: g.force.x,
         fy: g.force.y,
@@ -335,12 +437,8 @@ pub unsafe extern "C" fn clr_normal_law_preset(
     c_e: f64,
     out: *mut *mut ClrNormalLaw,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
-        if name.is_null() {
-            return Err(CapiError::Null("name"));
-        }
-        let name = CStr::from_ptr(name)
+    new_handle(out, || {
+        let name = CStr::from_ptr(non_null("name", name)?)
             .to_str()
             .map_err(|_| CapiError::Utf8("name"))?;
         let g = borrow("geometry", geometry)?;
@@ -357,9 +455,7 @@ pub unsafe extern "C" fn clr_normal_law_preset(
             r_journal: g.journal_radius,
             length: g.length,
         };
-        let law = NormalLaw::preset(name, &jb, c_e)?;
-        out.write(Box::into_raw(Box::new(ClrNormalLaw(law))));
-        Ok(())
+        Ok(ClrNormalLaw(NormalLaw::preset(name, &jb, c_e)?))
     })
 }
 
@@ -380,13 +476,11 @@ pub unsafe extern "C" fn clr_normal_law_new(
     c_e: f64,
     out: *mut *mut ClrNormalLaw,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    new_handle(out, || {
         let p = self::params(params, n_params)?;
         let elastic = ElasticKind::from_code(elastic)?.build(p)?;
         let law = NormalLaw::new(elastic, damping_from_code(damping)?, c_e)?;
-        out.write(Box::into_raw(Box::new(ClrNormalLaw(law))));
-        Ok(())
+        Ok(ClrNormalLaw(law))
     })
 }
 
@@ -401,7 +495,7 @@ pub unsafe extern "C" fn clr_normal_law_set_min_impact_velocity(
     min_impact_velocity: f64,
 ) -> ClrStatus {
     guard(|| {
-        let law = law.as_mut().ok_or(CapiError::Null("law"))?;
+        let law = borrow_mut("law", law)?;
         law.0 = law.0.with_min_impact_velocity(min_impact_velocity)?;
         Ok(())
     })
@@ -421,14 +515,12 @@ pub unsafe extern "C" fn clr_normal_law_force(
     delta_dot_minus: f64,
     out: *mut f64,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let law = borrow("law", law)?;
         let d = finite("delta (m)", delta)?;
         let dd = finite("delta_dot (m/s)", delta_dot)?;
         let ddm = finite("delta_dot_minus (m/s)", delta_dot_minus)?;
-        out.write(law.0.force(d, dd, ddm));
-        Ok(())
+        Ok(law.0.force(d, dd, ddm))
     })
 }
 
@@ -442,11 +534,9 @@ pub unsafe extern "C" fn clr_normal_law_elastic_force(
     delta: f64,
     out: *mut f64,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let law = borrow("law", law)?;
-        out.write(law.0.elastic_force(finite("delta (m)", delta)?));
-        Ok(())
+        Ok(law.0.elastic_force(finite("delta (m)", delta)?))
     })
 }
 
@@ -456,11 +546,7 @@ pub unsafe extern "C" fn clr_normal_law_elastic_force(
 /// `law` is NULL or a live handle; `out` is NULL or writable.
 #[no_mangle]
 pub unsafe extern "C" fn clr_normal_law_chi(law: *const ClrNormalLaw, out: *mut f64) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
-        out.write(borrow("law", law)?.0.chi());
-        Ok(())
-    })
+    write_out(out, || Ok(borrow("law", law)?.0.chi()))
 }
 
 /// Restitution (–) the law produces in a free impact, exact for any elastic part: the root e of
@@ -473,11 +559,7 @@ pub unsafe extern "C" fn clr_normal_law_effective_restitution(
     law: *const ClrNormalLaw,
     out: *mut f64,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
-        out.write(borrow("law", law)?.0.effective_restitution());
-        Ok(())
-    })
+    write_out(out, || Ok(borrow("law", law)?.0.effective_restitution()))
 }
 
 /// Free a normal law. NULL is ignored. Freeing a handle twice is undefined behaviour.
@@ -486,9 +568,7 @@ pub unsafe extern "C" fn clr_normal_law_effective_restitution(
 /// `law` is NULL or a handle from `clr_normal_law_new`/`clr_normal_law_preset` not freed yet.
 #[no_mangle]
 pub unsafe extern "C" fn clr_normal_law_free(law: *mut ClrNormalLaw) {
-    if !law.is_null() {
-        drop(Box::from_raw(law));
-    }
+    free_handle(law)
 }
 
 /// Damping factor χ (–) of the factor `damping` (`CLR_DAMPING_*`) for the input coefficient of
@@ -502,11 +582,7 @@ pub unsafe extern "C" fn clr_damping_chi(
     c_e: f64,
     out: *mut f64,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
-        out.write(damping_from_code(damping)?.chi(c_e)?);
-        Ok(())
-    })
+    write_out(out, || Ok(damping_from_code(damping)?.chi(c_e)?))
 }
 
 /// Restitution e (–) produced by a multiplicative law with damping factor χ ≥ 0 in a free impact:
@@ -516,11 +592,7 @@ pub unsafe extern "C" fn clr_damping_chi(
 /// `out` is NULL or writable.
 #[no_mangle]
 pub unsafe extern "C" fn clr_effective_restitution(chi: f64, out: *mut f64) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
-        out.write(effective_restitution(chi)?);
-        Ok(())
-    })
+    write_out(out, || Ok(effective_restitution(chi)?))
 }
 
 /// Create a friction law (`CLR_FRICTION_*` with its `n_params` parameters, in the order
@@ -537,11 +609,9 @@ pub unsafe extern "C" fn clr_friction_law_new(
     n_params: usize,
     out: *mut *mut ClrFrictionLaw,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    new_handle(out, || {
         let law = FrictionKind::from_code(kind)?.build(self::params(params, n_params)?)?;
-        out.write(Box::into_raw(Box::new(ClrFrictionLaw(law))));
-        Ok(())
+        Ok(ClrFrictionLaw(law))
     })
 }
 
@@ -557,13 +627,11 @@ pub unsafe extern "C" fn clr_friction_law_force(
     f_n: f64,
     out: *mut f64,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let law = borrow("law", law)?;
         let v = finite("v_t (m/s)", v_t)?;
         let f = finite("f_n (N)", f_n)?;
-        out.write(law.0.force(v, f));
-        Ok(())
+        Ok(law.0.force(v, f))
     })
 }
 
@@ -577,11 +645,9 @@ pub unsafe extern "C" fn clr_friction_law_coefficient(
     v_t: f64,
     out: *mut f64,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let law = borrow("law", law)?;
-        out.write(law.0.signed_coefficient(finite("v_t (m/s)", v_t)?));
-        Ok(())
+        Ok(law.0.signed_coefficient(finite("v_t (m/s)", v_t)?))
     })
 }
 
@@ -591,9 +657,7 @@ pub unsafe extern "C" fn clr_friction_law_coefficient(
 /// `law` is NULL or a handle from `clr_friction_law_new` not freed yet.
 #[no_mangle]
 pub unsafe extern "C" fn clr_friction_law_free(law: *mut ClrFrictionLaw) {
-    if !law.is_null() {
-        drop(Box::from_raw(law));
-    }
+    free_handle(law)
 }
 
 /// Create a planar revolute clearance joint: bearing radius R_i and journal radius R_j (m,
@@ -613,16 +677,14 @@ pub unsafe extern "C" fn clr_revolute_joint_new(
     journal_centre_y: f64,
     out: *mut *mut ClrRevoluteJoint,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    new_handle(out, || {
         let joint = RevoluteClearance::new(
             bearing_radius,
             journal_radius,
             [bearing_centre_x, bearing_centre_y].into(),
             [journal_centre_x, journal_centre_y].into(),
         )?;
-        out.write(Box::into_raw(Box::new(ClrRevoluteJoint(joint))));
-        Ok(())
+        Ok(ClrRevoluteJoint(joint))
     })
 }
 
@@ -646,23 +708,13 @@ pub unsafe extern "C" fn clr_revolute_joint_forces(
     impact_velocity: f64,
     out: *mut ClrRevoluteForces,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let joint = borrow("joint", joint)?;
-        let normal = borrow("normal", normal)?;
-        let friction = friction.as_ref();
-        let bi = body_state("bearing state", borrow("bearing", bearing)?)?;
-        let bj = body_state("journal state", borrow("journal", journal)?)?;
+        let a = JointInputs::read(normal, friction, [bearing, journal], BEARING_JOURNAL)?;
         let v0 = finite("impact_velocity (m/s)", impact_velocity)?;
-        out.write(revolute_forces(
-            &joint.0,
-            &normal.0,
-            friction.map(|f| &f.0),
-            &bi,
-            &bj,
-            v0,
-        ));
-        Ok(())
+        Ok(revolute_forces(
+            &joint.0, a.normal, a.friction, &a.i, &a.j, v0,
+        ))
     })
 }
 
@@ -702,9 +754,7 @@ pub fn revolute_forces(
 /// `joint` is NULL or a handle from `clr_revolute_joint_new` not freed yet.
 #[no_mangle]
 pub unsafe extern "C" fn clr_revolute_joint_free(joint: *mut ClrRevoluteJoint) {
-    if !joint.is_null() {
-        drop(Box::from_raw(joint));
-    }
+    free_handle(joint)
 }
 
 /// Create a LuGre friction model (C. Canudas de Wit, H. Olsson, K.J. Åström, P. Lischinsky, IEEE
@@ -727,11 +777,9 @@ pub unsafe extern "C" fn clr_lugre_new(
     v_s: f64,
     out: *mut *mut ClrLuGre,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    new_handle(out, || {
         let law = LuGre::new(sigma0, sigma1, sigma2, mu_s, mu_c, v_s)?;
-        out.write(Box::into_raw(Box::new(ClrLuGre(law))));
-        Ok(())
+        Ok(ClrLuGre(law))
     })
 }
 
@@ -751,14 +799,12 @@ pub unsafe extern "C" fn clr_lugre_evaluate(
     f_n: f64,
     out: *mut ClrLuGreOutput,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let law = borrow("law", law)?;
         let z = finite("z (m)", z)?;
         let v = finite("v_t (m/s)", v_t)?;
         let f = finite("f_n (N)", f_n)?;
-        out.write(lugre_evaluate(&law.0, z, v, f));
-        Ok(())
+        Ok(lugre_evaluate(&law.0, z, v, f))
     })
 }
 
@@ -778,9 +824,7 @@ pub fn lugre_evaluate(law: &LuGre, z: f64, v_t: f64, f_n: f64) -> ClrLuGreOutput
 /// `law` is NULL or a handle from `clr_lugre_new` not freed yet.
 #[no_mangle]
 pub unsafe extern "C" fn clr_lugre_free(law: *mut ClrLuGre) {
-    if !law.is_null() {
-        drop(Box::from_raw(law));
-    }
+    free_handle(law)
 }
 
 /// Create a planar translational clearance joint (P. Flores, J. Ambrósio, J.C.P. Claro, H.M.
@@ -807,8 +851,7 @@ pub unsafe extern "C" fn clr_translational_joint_new(
     slider_angle: f64,
     out: *mut *mut ClrTranslationalJoint,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    new_handle(out, || {
         let slider = SliderShape::new(
             slider_length,
             slider_height,
@@ -821,8 +864,7 @@ pub unsafe extern "C" fn clr_translational_joint_new(
             [guide_origin_x, guide_origin_y].into(),
             guide_angle,
         )?;
-        out.write(Box::into_raw(Box::new(ClrTranslationalJoint(joint))));
-        Ok(())
+        Ok(ClrTranslationalJoint(joint))
     })
 }
 
@@ -849,16 +891,10 @@ pub unsafe extern "C" fn clr_translational_joint_forces(
     impact_velocities: *const f64,
     out: *mut ClrTranslationalForces,
 ) -> ClrStatus {
-    guard(|| {
-        let out = out_ptr("out", out)?;
+    write_out(out, || {
         let joint = borrow("joint", joint)?;
-        let normal = borrow("normal", normal)?;
-        let friction = friction.as_ref();
-        let bi = body_state("guide state", borrow("guide", guide)?)?;
-        let bj = body_state("slider state", borrow("slider", slider)?)?;
-        if impact_velocities.is_null() {
-            return Err(CapiError::Null("impact_velocities"));
-        }
+        let a = JointInputs::read(normal, friction, [guide, slider], GUIDE_SLIDER)?;
+        let p = non_null(IMPACT_VELOCITIES, impact_velocities)?;
         const NAMES: [&str; 4] = [
             "impact_velocities[0] (m/s)",
             "impact_velocities[1] (m/s)",
@@ -867,17 +903,11 @@ pub unsafe extern "C" fn clr_translational_joint_forces(
         ];
         let mut v0 = [0.0; 4];
         for (k, v) in v0.iter_mut().enumerate() {
-            *v = finite(NAMES[k], impact_velocities.add(k).read())?;
+            *v = finite(NAMES[k], p.add(k).read())?;
         }
-        out.write(translational_forces(
-            &joint.0,
-            &normal.0,
-            friction.map(|f| &f.0),
-            &bi,
-            &bj,
-            &v0,
-        ));
-        Ok(())
+        Ok(translational_forces(
+            &joint.0, a.normal, a.friction, &a.i, &a.j, &v0,
+        ))
     })
 }
 
@@ -942,9 +972,7 @@ pub fn translational_forces(
 /// `joint` is NULL or a handle from `clr_translational_joint_new` not freed yet.
 #[no_mangle]
 pub unsafe extern "C" fn clr_translational_joint_free(joint: *mut ClrTranslationalJoint) {
-    if !joint.is_null() {
-        drop(Box::from_raw(joint));
-    }
+    free_handle(joint)
 }
 
 #[cfg(test)]

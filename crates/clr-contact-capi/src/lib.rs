@@ -1,5 +1,6 @@
 //! C ABI of `clr-contact`: normal-force laws, friction laws (stateless and LuGre), the planar
-//! revolute and translational clearance joints, and whole models loaded from model-file text
+//! revolute and translational clearance joints, the multipoint slider-in-guide contact
+//! ([`multipoint`]), and whole models loaded from model-file text
 //! and run as `clr run` runs them ([`model`]), for user force subroutines of other codes (C, C++, Fortran through `bind(C)`, MATLAB
 //! `loadlibrary`, Python `ctypes`).
 //!
@@ -10,7 +11,11 @@
 //!
 //! Design:
 //! - laws are opaque heap handles created from parameters (SI units) and released with
-//!   `clr_*_free`; evaluation functions allocate nothing;
+//!   `clr_*_free`; evaluation functions allocate nothing; handles are read-only after
+//!   construction except the multipoint joint, which keeps the warm starts and points of its
+//!   last evaluation;
+//! - variable-length results are copied into caller buffers whose capacity the caller gives;
+//!   a buffer too small gives [`ClrStatus::BufferTooSmall`] and the count needed;
 //! - every fallible function returns a [`ClrStatus`]; the message of the last failure on the
 //!   calling thread is [`clr_last_error_message`];
 //! - bad input never crashes: NULL pointers, non-finite numbers, unknown codes and invalid
@@ -24,8 +29,15 @@
 pub mod error;
 pub mod ffi;
 pub mod model;
+pub mod multipoint;
 pub mod spec;
+
+// The multipoint case and its clr-contact reference values, shared with tests/c_program.rs.
+#[cfg(test)]
+#[path = "../tests/support/multipoint_case.rs"]
+mod multipoint_case;
 
 pub use error::{CapiError, ClrStatus};
 pub use ffi::*;
 pub use model::*;
+pub use multipoint::*;

@@ -9,6 +9,7 @@ use clr::spec::run::{execute, Job, Outcome};
 use clr::spec::{load_str, Assignment, Loaded};
 
 use crate::error::{finite, guard, CapiError, ClrStatus};
+use crate::ffi::{free_handle, new_handle};
 
 /// Opaque handle of a model loaded from a model file, with the results of its last run.
 pub struct ClrModel {
@@ -199,14 +200,7 @@ pub unsafe extern "C" fn clr_model_from_toml(
     text: *const c_char,
     out: *mut *mut ClrModel,
 ) -> ClrStatus {
-    guard(|| {
-        if out.is_null() {
-            return Err(CapiError::Null("out"));
-        }
-        let model = ClrModel::from_toml(c_str("text", text)?)?;
-        out.write(Box::into_raw(Box::new(model)));
-        Ok(())
-    })
+    new_handle(out, || ClrModel::from_toml(c_str("text", text)?))
 }
 
 /// Simulate the model from t = 0 to `t_end` (s, > 0) with the solver settings of its file; the
@@ -224,8 +218,8 @@ pub unsafe extern "C" fn clr_model_run(model: *mut ClrModel, t_end: f64) -> ClrS
     })
 }
 
-/// The column `name` of the last run (e.g. "t" in s, "<body>.x" in m, "<body>.theta" in rad,
-/// "<clearance>.normal_force" in N; units as in `docs/model-file.md`): `*out_ptr` receives a
+/// The column `name` of the last run (e.g. "t" in s, `"<body>.x"` in m, `"<body>.theta"` in rad,
+/// `"<clearance>.normal_force"` in N; units as in `docs/model-file.md`): `*out_ptr` receives a
 /// pointer to `*out_len` doubles, one per output row, owned by the handle and valid until the
 /// next `clr_model_run` or `clr_model_free`. `CLR_STATUS_UNKNOWN_NAME` (the message lists the
 /// columns) for an unknown name, `CLR_STATUS_MODEL_ERROR` before the first run.
@@ -255,7 +249,7 @@ pub unsafe extern "C" fn clr_model_column(
     })
 }
 
-/// The scalar metric `name` of the last run (e.g. "<clearance>.peak_normal_force" in N), in SI.
+/// The scalar metric `name` of the last run (e.g. `"<clearance>.peak_normal_force"` in N), in SI.
 /// `CLR_STATUS_UNKNOWN_NAME` (the message lists the metrics) for an unknown name,
 /// `CLR_STATUS_MODEL_ERROR` before the first run.
 ///
@@ -367,9 +361,7 @@ fn name_kind(kind: i32) -> Result<bool, CapiError> {
 /// `model` is NULL or a handle from `clr_model_from_toml` not freed yet.
 #[no_mangle]
 pub unsafe extern "C" fn clr_model_free(model: *mut ClrModel) {
-    if !model.is_null() {
-        drop(Box::from_raw(model));
-    }
+    free_handle(model)
 }
 
 #[cfg(test)]

@@ -57,6 +57,15 @@ static ClrNormalLaw *internal_law(ClrDampingKind damping) {
     return law;
 }
 
+/* A normal law with a one-parameter elastic part (Hertz K, linear k); `what` names the check. */
+static ClrNormalLaw *one_parameter_law(const char *what, ClrElasticKind elastic, double k,
+                                       ClrDampingKind damping, double c_e) {
+    double p[1] = {k};
+    ClrNormalLaw *law = NULL;
+    status_is(what, clr_normal_law_new(elastic, p, 1, damping, c_e, &law), CLR_STATUS_OK);
+    return law;
+}
+
 static double force(const ClrNormalLaw *law, double d, double dd, double ddm) {
     double f = NAN;
     ClrStatus s = clr_normal_law_force(law, d, dd, ddm, &f);
@@ -314,10 +323,8 @@ static void translational(void) {
     status_is("create translational joint",
               clr_translational_joint_new(w, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, &joint),
               CLR_STATUS_OK);
-    double kp[1] = {k};
-    ClrNormalLaw *lin = NULL;
-    status_is("create linear law", clr_normal_law_new(CLR_ELASTIC_LINEAR, kp, 1, CLR_DAMPING_NONE, 1.0, &lin),
-              CLR_STATUS_OK);
+    ClrNormalLaw *lin =
+        one_parameter_law("create linear law", CLR_ELASTIC_LINEAR, k, CLR_DAMPING_NONE, 1.0);
     ClrBodyState guide = {0};
     ClrBodyState slider = {0.0, -0.5 * (w - h) - delta, 0.0, 0.0, 0.0, 0.0};
     const double v0[4] = {0.1, 0.1, 0.1, 0.1};
@@ -355,6 +362,265 @@ static void translational(void) {
     clr_translational_joint_free(joint);
     clr_translational_joint_free(NULL);
     clr_normal_law_free(lin);
+}
+
+/* Evaluate a multipoint joint with N = 3, M = 0 (16 point ids, delta_dot_minus = 0.1 m/s each)
+ * without friction, the guide body at rest at the origin; `what` names the status check. */
+static ClrMultipointForces multipoint_on_fixed_guide(const char *what, ClrMultipointJoint *joint,
+                                                     const ClrNormalLaw *law, ClrBodyState slider) {
+    const ClrBodyState guide = {0};
+    double v0[16];
+    for (int i = 0; i < 16; i++) v0[i] = 0.1;
+    ClrMultipointForces out;
+    memset(&out, 0, sizeof out);
+    status_is(what, clr_multipoint_joint_forces(joint, law, NULL, &guide, &slider, v0, 16, &out),
+              CLR_STATUS_OK);
+    return out;
+}
+
+/* Multipoint contact, closed form (contact-laws.md §3.2): a 40 mm x 20 mm slider lying flat on a
+ * straight guide fixed at the origin (surface y = 0, slider above it), at rest and pressed
+ * delta = 10 um into it; N = 3 points per face, no reverse check. Linear law k = 1e8 N/m, no
+ * damping: the 5 candidates of the bottom face (2 corners, 3 face points, spacing L/4 = 10 mm)
+ * each carry F_N = k delta = 1000 N (area contact of face 0), the slider is pushed up by
+ * 5000 N with no moment, the guide pushed down by 5000 N whose moment about the origin is
+ * -sum(x_i) 1000 N = -500 N m. Tributary lengths: 5 mm at the corners, 10 mm inside (sum L).
+ * Rel 1e-6 as for the translational joint (delta is the difference of coordinates ~1e-2 m). */
+static void multipoint(void) {
+    const double l = 0.04, h = 0.02, delta = 10e-6, k = 1e8, x0 = 0.1;
+    ClrMultipointJoint *joint = NULL;
+    status_is("create multipoint joint (straight guide)",
+              clr_multipoint_joint_new_straight(1.0, 1, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3, 0,
+                                                &joint),
+              CLR_STATUS_OK);
+    size_t n_ids = 0;
+    status_is("point count status", clr_multipoint_joint_point_count(joint, &n_ids), CLR_STATUS_OK);
+    check("point count = 4 + 4N + M = 16", n_ids == 16);
+    ClrNormalLaw *lin = one_parameter_law("create linear law (multipoint)", CLR_ELASTIC_LINEAR, k,
+                                          CLR_DAMPING_NONE, 1.0);
+    ClrBodyState slider = {x0, 0.5 * h - delta, 0.0, 0.0, 0.0, 0.0};
+    ClrMultipointForces out =
+        multipoint_on_fixed_guide("multipoint forces status", joint, lin, slider);
+    check("flat face on the guide: area contact of face 0",
+          out.contact_class == CLR_CONTACT_CLASS_AREA && out.area_face == 0);
+    check("5 active points", out.active_points == 5);
+    close_rel("contact length = L = 40 mm", out.contact_length, l, 1e-9);
+    close_rel("slider pushed up by 5 k delta = 5000 N", out.slider.fy, 5.0 * k * delta, 1e-6);
+    close_rel("guide pushed down by 5000 N", out.guide.fy, -5.0 * k * delta, 1e-6);
+    close_abs("no tangential force without friction", out.slider.fx, 0.0, 0.0);
+    close_abs("no net moment on the slider", out.slider.moment, 0.0, 1e-9);
+    close_rel("guide moment about its origin = -500 N m", out.guide.moment, -5.0 * x0 * k * delta,
+              1e-6);
+
+    ClrMultipointContact pts[16];
+    size_t count = 0;
+    status_is("read points", clr_multipoint_joint_points(joint, pts, 16, &count), CLR_STATUS_OK);
+    check("5 points read", count == 5);
+    const size_t ids[5] = {0, 4, 5, 6, 1}; /* corner 0, face 0 points 0..2, corner 1, by arc */
+    for (size_t i = 0; i < count && i < 5; i++) {
+        char what[96];
+        double x = x0 - 0.5 * l + 0.25 * l * (double)i;
+        snprintf(what, sizeof what, "point %zu: id %zu, normal (0, -1)", i, ids[i]);
+        check(what, pts[i].id == ids[i] && pts[i].normal_x == 0.0 && pts[i].normal_y == -1.0 &&
+                        pts[i].source == (i == 0 || i == 4 ? CLR_POINT_SOURCE_CORNER
+                                                           : CLR_POINT_SOURCE_FACE));
+        snprintf(what, sizeof what, "point %zu: arc = x = %g m", i, x);
+        close_rel(what, pts[i].arc, x, 1e-12);
+        snprintf(what, sizeof what, "point %zu: penetration = 10 um", i);
+        close_rel(what, pts[i].penetration, delta, 1e-6);
+        snprintf(what, sizeof what, "point %zu: F_N = k delta = 1000 N", i);
+        close_rel(what, pts[i].normal_force, k * delta, 1e-6);
+        snprintf(what, sizeof what, "point %zu: tributary length", i);
+        close_rel(what, pts[i].tributary_length, (i == 0 || i == 4 ? 0.125 : 0.25) * l, 1e-9);
+    }
+
+    /* Buffers, counts and bad input. */
+    ClrBodyState guide = {0};
+    double v0[16];
+    for (int i = 0; i < 16; i++) v0[i] = 0.1;
+    ClrMultipointContact two[2];
+    two[0].id = 999;
+    count = 0;
+    status_is("2-entry buffer -> BUFFER_TOO_SMALL",
+              clr_multipoint_joint_points(joint, two, 2, &count), CLR_STATUS_BUFFER_TOO_SMALL);
+    check("count needed = 5, nothing copied", count == 5 && two[0].id == 999);
+    check("message gives the count", strstr(clr_last_error_message(), "5 are needed") != NULL);
+    count = 0;
+    status_is("count query (NULL, 0)", clr_multipoint_joint_points(joint, NULL, 0, &count),
+              CLR_STATUS_BUFFER_TOO_SMALL);
+    check("count query gives 5", count == 5);
+    out.active_points = 12345;
+    status_is("15 impact velocities for 16 -> INVALID_ARGUMENT",
+              clr_multipoint_joint_forces(joint, lin, NULL, &guide, &slider, v0, 15, &out),
+              CLR_STATUS_INVALID_ARGUMENT);
+    status_is("NULL impact velocities -> NULL_POINTER",
+              clr_multipoint_joint_forces(joint, lin, NULL, &guide, &slider, NULL, 16, &out),
+              CLR_STATUS_NULL_POINTER);
+    ClrBodyState nan_state = slider;
+    nan_state.omega = NAN;
+    status_is("NaN slider state -> NON_FINITE",
+              clr_multipoint_joint_forces(joint, lin, NULL, &guide, &nan_state, v0, 16, &out),
+              CLR_STATUS_NON_FINITE);
+    v0[15] = INFINITY;
+    status_is("infinite impact velocity -> NON_FINITE",
+              clr_multipoint_joint_forces(joint, lin, NULL, &guide, &slider, v0, 16, &out),
+              CLR_STATUS_NON_FINITE);
+    check("output untouched on failure", out.active_points == 12345);
+    status_is("points still those of the last good evaluation",
+              clr_multipoint_joint_points(joint, pts, 16, &count), CLR_STATUS_OK);
+    check("still 5 points", count == 5);
+    status_is("reset", clr_multipoint_joint_reset(joint), CLR_STATUS_OK);
+    clr_multipoint_joint_points(joint, NULL, 0, &count);
+    check("no points after reset", count == 0);
+    ClrMultipointJoint *bad = NULL;
+    status_is("gap_on_left = 2 -> INVALID_ARGUMENT",
+              clr_multipoint_joint_new_straight(1.0, 2, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3, 0,
+                                                &bad),
+              CLR_STATUS_INVALID_ARGUMENT);
+    status_is("slider length 0 -> INVALID_PARAMETER",
+              clr_multipoint_joint_new_straight(1.0, 1, 0.0, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3, 0,
+                                                &bad),
+              CLR_STATUS_INVALID_PARAMETER);
+    status_is("sine span 0 -> INVALID_PARAMETER",
+              clr_multipoint_joint_new_sine(40e-6, 0.0, l, h, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3, 0,
+                                            &bad),
+              CLR_STATUS_INVALID_PARAMETER);
+    check("multipoint: no handle on failure", bad == NULL);
+    clr_multipoint_joint_free(joint);
+    clr_multipoint_joint_free(NULL);
+    clr_normal_law_free(lin);
+}
+
+/* Multipoint contact on the hogging guide of contact-laws.md §7.8: y = A sin(pi x), A = 40 um,
+ * span 1 m, fixed (guide state at the origin, at rest); slider 0.1 m x 0.02 m with its bottom
+ * face at 39.5 um over x = 0.45 .. 0.55, N = 3: penetrations 7.534e-9, 3.767e-7, 5.000e-7,
+ * 3.767e-7, 7.534e-9 m (4 digits -> rel 1e-3), and the closed form A sin(pi x) - 39.5 um to
+ * rel 1e-6 (the normal-direction correction is O(slope^2) ~ 1e-9). */
+static void multipoint_sine(void) {
+    const double amp = 40e-6, bottom = 39.5e-6;
+    ClrMultipointJoint *joint = NULL;
+    status_is("create multipoint joint (sine guide)",
+              clr_multipoint_joint_new_sine(amp, 1.0, 0.1, 0.02, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 3, 0,
+                                            &joint),
+              CLR_STATUS_OK);
+    ClrNormalLaw *hz = one_parameter_law("create Hertz law (sine)", CLR_ELASTIC_HERTZ, 1e10,
+                                         CLR_DAMPING_NONE, 1.0);
+    ClrBodyState slider = {0.5, bottom + 0.01, 0.0, 0.0, 0.0, 0.0};
+    ClrMultipointForces out = multipoint_on_fixed_guide("sine forces status", joint, hz, slider);
+    check("7.8 area contact of face 0, 5 points",
+          out.contact_class == CLR_CONTACT_CLASS_AREA && out.area_face == 0 &&
+              out.active_points == 5);
+    ClrMultipointContact pts[16];
+    size_t count = 0;
+    clr_multipoint_joint_points(joint, pts, 16, &count);
+    const double expected[5] = {7.534e-9, 3.767e-7, 5.000e-7, 3.767e-7, 7.534e-9};
+    const double pi = 3.14159265358979323846;
+    for (size_t i = 0; i < count && i < 5; i++) {
+        char what[96];
+        double x = 0.45 + 0.025 * (double)i;
+        snprintf(what, sizeof what, "7.8 penetration at x = %g = %.4g m", x, expected[i]);
+        close_rel(what, pts[i].penetration, expected[i], 1e-3);
+        snprintf(what, sizeof what, "7.8 penetration at x = %g = A sin(pi x) - 39.5 um", x);
+        close_rel(what, pts[i].penetration, amp * sin(pi * x) - bottom, 1e-6);
+    }
+    close_abs("7.8 symmetric: no tangential force", out.slider.fx, 0.0, 1e-9 * out.slider.fy);
+    clr_multipoint_joint_free(joint);
+    clr_normal_law_free(hz);
+}
+
+/* Multipoint contact against clr-contact itself: tests/c_program.rs computes the case
+ * CLR_MP_* (a tilted slider sliding and spinning on a straight guide on a moving, rotated body;
+ * line contact of 4 points, Hertz + Lankarani-Nikravesh, Coulomb friction) with clr-contact's
+ * detector directly and passes the results here, printed to round trip. The C API runs the same
+ * code, so the values agree to rounding: rel 1e-12 (abs 1e-18 m for values near zero). The
+ * second evaluation (warm started from the first) must give the same values. */
+#ifndef CLR_MP_EXPECTED
+#error "tests/c_program.rs passes the multipoint case CLR_MP_* with -D"
+#endif
+static int rust_values = 0, rust_identical = 0;
+
+static void close_rust(const char *what, double got, double expected) {
+    int ok = fabs(got - expected) <= 1e-12 * fabs(expected) + 1e-18;
+    rust_values++;
+    rust_identical += got == expected;
+    if (!ok) printf("     %s: got %.17g, clr-contact %.17g\n", what, got, expected);
+    check(what, ok);
+}
+
+static void multipoint_rust(void) {
+    static const double jp[] = CLR_MP_JOINT;
+    static const double laws[] = CLR_MP_LAWS;
+    static const double g[] = CLR_MP_GUIDE;
+    static const double sl[] = CLR_MP_SLIDER;
+    static const double v0[] = CLR_MP_IMPACT;
+    static const double ex[] = CLR_MP_EXPECTED;
+    static const double ep[] = CLR_MP_POINTS;
+    const size_t n_v0 = sizeof v0 / sizeof v0[0], n_pts = sizeof ep / sizeof ep[0] / 17;
+    ClrMultipointJoint *joint = NULL;
+    status_is("create the clr-contact case",
+              clr_multipoint_joint_new_straight(jp[0], (int32_t)jp[1], jp[2], jp[3], jp[4], jp[5],
+                                                jp[6], jp[7], jp[8], jp[9], (size_t)jp[10],
+                                                (size_t)jp[11], &joint),
+              CLR_STATUS_OK);
+    size_t n_ids = 0;
+    clr_multipoint_joint_point_count(joint, &n_ids);
+    check("point count = number of impact velocities", n_ids == n_v0);
+    double fp[2] = {laws[2], laws[3]};
+    ClrNormalLaw *law = one_parameter_law("create the Hertz law of the clr-contact case",
+                                          CLR_ELASTIC_HERTZ, laws[0],
+                                          CLR_DAMPING_LANKARANI_NIKRAVESH, laws[1]);
+    ClrFrictionLaw *fr = NULL;
+    clr_friction_law_new(CLR_FRICTION_COULOMB, fp, 2, &fr);
+    ClrBodyState guide = {g[0], g[1], g[2], g[3], g[4], g[5]};
+    ClrBodyState slider = {sl[0], sl[1], sl[2], sl[3], sl[4], sl[5]};
+    for (int pass = 0; pass < 2; pass++) {
+        char what[128];
+        ClrMultipointForces out;
+        memset(&out, 0, sizeof out);
+        snprintf(what, sizeof what, "clr-contact case, evaluation %d: status", pass + 1);
+        status_is(what, clr_multipoint_joint_forces(joint, law, fr, &guide, &slider, v0, n_v0, &out),
+                  CLR_STATUS_OK);
+        snprintf(what, sizeof what, "evaluation %d: class, face, %zu points", pass + 1, n_pts);
+        check(what, out.contact_class == (ClrContactClass)ex[0] && out.area_face == (int32_t)ex[1] &&
+                        out.active_points == (size_t)ex[2] && out.active_points == n_pts);
+        const double got[7] = {out.contact_length, out.guide.fx,  out.guide.fy, out.guide.moment,
+                               out.slider.fx,      out.slider.fy, out.slider.moment};
+        const char *names[7] = {"contact length", "guide f_x", "guide f_y", "guide moment",
+                                "slider f_x",     "slider f_y", "slider moment"};
+        for (int i = 0; i < 7; i++) {
+            snprintf(what, sizeof what, "evaluation %d: %s = clr-contact", pass + 1, names[i]);
+            close_rust(what, got[i], ex[3 + i]);
+        }
+        ClrMultipointContact pts[64];
+        size_t count = 0;
+        clr_multipoint_joint_points(joint, pts, 64, &count);
+        for (size_t i = 0; i < count && i < n_pts; i++) {
+            const double *e = ep + 17 * i;
+            const ClrMultipointContact *p = &pts[i];
+            snprintf(what, sizeof what, "evaluation %d, point %zu: id, source, face, index",
+                     pass + 1, i);
+            check(what, p->id == (size_t)e[0] && p->source == (ClrPointSource)e[1] &&
+                            p->face == (int32_t)e[2] && p->index == (size_t)e[3]);
+            const double vals[13] = {p->arc,      p->penetration,     p->normal_x,
+                                     p->normal_y, p->slider_x,        p->slider_y,
+                                     p->guide_x,  p->guide_y,         p->normal_velocity,
+                                     p->tangential_velocity,          p->tributary_length,
+                                     p->normal_force,                 p->tangential_force};
+            const char *fields[13] = {"arc", "penetration", "normal_x", "normal_y", "slider_x",
+                                      "slider_y", "guide_x", "guide_y", "v_N", "v_T",
+                                      "tributary length", "F_N", "F_T"};
+            for (int f = 0; f < 13; f++) {
+                snprintf(what, sizeof what, "evaluation %d, point %zu: %s = clr-contact", pass + 1,
+                         i, fields[f]);
+                close_rust(what, vals[f], e[4 + f]);
+            }
+        }
+    }
+    printf("     clr-contact case: %d of %d values identical to clr-contact's\n", rust_identical,
+           rust_values);
+    clr_multipoint_joint_free(joint);
+    clr_normal_law_free(law);
+    clr_friction_law_free(fr);
 }
 
 /* Whole model from a model file's text: a driven crank whose pin sits with 0.1 mm radial
@@ -531,6 +797,9 @@ int main(void) {
     revolute();
     lugre();
     translational();
+    multipoint();
+    multipoint_sine();
+    multipoint_rust();
     model();
     errors();
     printf("%d passed, %d failed\n", passed, failed);
