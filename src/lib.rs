@@ -17,3 +17,4 @@ pub use clr_mbd as mbd;
 pub use clr_models as models;
 pub use clr_ode as ode;
 pub mod spec;
+pub mod report;

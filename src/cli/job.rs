@@ -60,7 +60,7 @@ pub(crate) fn run_command(args: &RunArgs, out: &Path) -> Result<(), CliError> {
     for n in &rec.notes {
         eprintln!("clr: note: {n}");
     }
-    output::write_run(out, &rec, args.t_end, args.rtol, !args.no_figures)?;
+    output::write_run(out, &rec, args, (!args.no_report).then_some(&job))?;
     if !args.quiet {
         eprintln!(
             "clr: {} → {} ({} rows, {:.2} s)",
@@ -197,4 +197,52 @@ pub(crate) fn desc_text(
 /// The model file of a built-in model with its full parameters (`clr export --builtin`).
 pub(crate) fn export_text(name: &str, parameters: &serde_json::Value) -> Result<String, CliError> {
     Ok(run::builtin_file_text(name, parameters)?)
+}
+
+/// `clr view`: the mechanism at t0 (consistent initial conditions assembled, not simulated) as
+/// `report.html`, with what the assembly changed.
+pub(crate) fn view_command(
+    target: &str,
+    set: &[String],
+    out: &Path,
+    quiet: bool,
+) -> Result<(), CliError> {
+    let sets = assignments(set)?;
+    let job = resolve(target, &sets, None, None)?;
+    let desc = job.desc(None, None).map_err(CliError::Input)?;
+    let results = clr::report::initial_state(&desc, desc.output.t_start)
+        .map_err(|e| CliError::Input(format!("{target}: {e}")))?;
+    let mut notes: Vec<String> = match &job {
+        Job::Generic(s) => s.notes.clone(),
+        Job::Builtin { .. } => Vec::new(),
+    };
+    if let Some(ic) = &results.initial_conditions {
+        notes.extend(ic.notes());
+    }
+    let name = desc
+        .model
+        .name
+        .clone()
+        .unwrap_or_else(|| target.to_string());
+    let source = if is_file(target) { target } else { "builtin" };
+    let input = clr::report::Input {
+        model: &name,
+        source,
+        description: desc.model.description.as_deref().unwrap_or(""),
+        desc: Ok(&desc),
+        results: &results,
+        metrics: &[],
+        notes: &notes,
+        error: None,
+    };
+    let report = clr::report::Report::new("view", &input, clr::report::Limits::default());
+    std::fs::write(out, report.html())
+        .map_err(|e| CliError::Input(format!("cannot write {}: {e}", out.display())))?;
+    if !quiet {
+        for n in &notes {
+            eprintln!("clr: note: {n}");
+        }
+        eprintln!("clr: {name} at t0 → {}", out.display());
+    }
+    Ok(())
 }

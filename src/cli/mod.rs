@@ -59,6 +59,9 @@ pub(crate) struct RunArgs {
     /// Do not draw figures.
     #[arg(long)]
     pub no_figures: bool,
+    /// Do not write report.html (the animated report).
+    #[arg(long)]
+    pub no_report: bool,
 }
 
 /// `--jacobian`.
@@ -97,6 +100,20 @@ enum Command {
         /// Output folder.
         #[arg(long, default_value = "clr-out")]
         out: PathBuf,
+    },
+    /// Draw a model at t0 (initial conditions assembled, not simulated) into an HTML page.
+    View {
+        /// A built-in model name or a model file.
+        target: String,
+        /// Override a parameter: `name=value` (repeatable), as for `clr run`.
+        #[arg(long, value_name = "NAME=VALUE")]
+        set: Vec<String>,
+        /// The page to write.
+        #[arg(long, default_value = "clr-view.html")]
+        out: PathBuf,
+        /// No notes on standard error.
+        #[arg(long)]
+        quiet: bool,
     },
     /// Run the cartesian product of parameter values (in parallel).
     Sweep {
@@ -214,6 +231,12 @@ pub(crate) fn main() -> ExitCode {
             out,
         } => sweep::sweep_command(&args, &vary, jobs, shard.as_deref(), &out),
         Command::Merge { dirs, out } => sweep::merge_command(&dirs, &out),
+        Command::View {
+            target,
+            set,
+            out,
+            quiet,
+        } => job::view_command(&target, &set, &out, quiet),
         Command::Study { name, out } => study_command(&name, out),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
         Command::Export {

@@ -3,10 +3,10 @@
 use std::io::Write;
 use std::path::Path;
 
-use clr::spec::run::Outcome;
+use clr::spec::run::{Job, Outcome};
 use clr_plot::Figure;
 
-use super::CliError;
+use super::{CliError, RunArgs};
 
 /// The outcome of one run (`clr::spec::run::Outcome`, whose fields it derefs to) and its wall
 /// time.
@@ -225,11 +225,19 @@ fn impacts_summary(impacts: &[clr_mbd::Impact]) -> serde_json::Value {
 pub(crate) fn write_run(
     dir: &Path,
     rec: &Record,
-    t_end: Option<f64>,
-    rtol: Option<f64>,
-    figures: bool,
+    args: &RunArgs,
+    report: Option<&Job>,
 ) -> Result<(), CliError> {
+    let (t_end, rtol, figures) = (args.t_end, args.rtol, !args.no_figures);
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
+    if let Some(job) = report {
+        let desc = job.desc(t_end, rtol);
+        write_report(
+            &dir.join("report.html"),
+            rec,
+            desc.as_ref().map_err(Clone::clone),
+        )?;
+    }
     write_csv(&dir.join("results.csv"), rec)?;
     write_impacts(&dir.join("impacts.csv"), &rec.results.impacts)?;
     let p = dir.join("summary.json");
@@ -242,6 +250,27 @@ pub(crate) fn write_run(
         }
     }
     Ok(())
+}
+
+/// Write the run's `report.html` (the animated mechanism, metrics, impacts and figures; one
+/// self-contained file).
+fn write_report(
+    path: &Path,
+    rec: &Record,
+    desc: Result<&clr_mbd::ModelDesc, String>,
+) -> Result<(), CliError> {
+    let input = clr::report::Input {
+        model: &rec.model,
+        source: &rec.source,
+        description: "",
+        desc,
+        results: &rec.results,
+        metrics: &rec.metrics,
+        notes: &rec.notes,
+        error: rec.error.as_deref(),
+    };
+    let report = clr::report::Report::new("run", &input, clr::report::Limits::default());
+    std::fs::write(path, report.html()).map_err(|e| io(path, e))
 }
 
 fn pairs(x: &[f64], y: &[f64]) -> Vec<(f64, f64)> {

@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use clr::report::{Report, SweepRow};
 use clr::spec::overrides_value;
 use clr::spec::sweep::{self, Axis};
 use clr_plot::Figure;
@@ -53,14 +54,6 @@ fn parse_shard(s: &str) -> Result<(usize, usize), CliError> {
         return Err(bad());
     }
     Ok((i, n))
-}
-
-struct Row {
-    point: usize,
-    values: Vec<String>,
-    status: String,
-    wall_s: f64,
-    metrics: Vec<(String, String, f64)>,
 }
 
 pub(crate) fn sweep_command(
@@ -117,7 +110,7 @@ pub(crate) fn sweep_command(
         .map_err(|e| CliError::Input(format!("--jobs: {e}")))?;
     let progress = Progress::new(args.quiet);
     let bar = progress.points(points.len() as u64);
-    let rows: Vec<Result<Row, CliError>> = pool.install(|| {
+    let rows: Vec<Result<SweepRow, CliError>> = pool.install(|| {
         points
             .par_iter()
             .map(|(k, values, job)| {
@@ -127,11 +120,11 @@ pub(crate) fn sweep_command(
                         other => other,
                     })?;
                 let dir = out.join(format!("point-{k:05}"));
-                write_run(&dir, &rec, args.t_end, args.rtol, !args.no_figures)?;
+                write_run(&dir, &rec, args, (!args.no_report).then_some(job))?;
                 if let Some(b) = &bar {
                     b.inc(1);
                 }
-                Ok(Row {
+                Ok(SweepRow {
                     point: *k,
                     values: values.clone(),
                     status: match &rec.error {
@@ -149,7 +142,7 @@ pub(crate) fn sweep_command(
             .collect()
     });
     progress.finish();
-    let rows: Vec<Row> = rows.into_iter().collect::<Result<_, _>>()?;
+    let rows: Vec<SweepRow> = rows.into_iter().collect::<Result<_, _>>()?;
     let table = sweep_table(&varies, &rows);
     write_text(&out.join("sweep.csv"), &table)?;
     let meta = serde_json::json!({
@@ -165,6 +158,9 @@ pub(crate) fn sweep_command(
         &(serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n"),
     )?;
     compare_figures(out, &table);
+    let names: Vec<String> = varies.iter().map(|v| v.name.clone()).collect();
+    let report = Report::sweep(&args.target, &names, &rows, !args.no_report);
+    write_text(&out.join("report.html"), &report.html())?;
     let failed: Vec<usize> = rows
         .iter()
         .filter(|r| r.status != "ok")
@@ -193,15 +189,8 @@ fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
 }
 
 /// sweep.csv as text: `point,folder,<varied>...,status,wall_s,<metric [unit]>...`.
-fn sweep_table(varies: &[Vary], rows: &[Row]) -> String {
-    let mut metrics: Vec<(String, String)> = Vec::new();
-    for r in rows {
-        for (n, u, _) in &r.metrics {
-            if !metrics.iter().any(|(m, _)| m == n) {
-                metrics.push((n.clone(), u.clone()));
-            }
-        }
-    }
+fn sweep_table(varies: &[Vary], rows: &[SweepRow]) -> String {
+    let metrics = clr::report::metric_names(rows);
     let mut s = String::from("point,folder");
     for v in varies {
         s.push(',');
@@ -212,7 +201,7 @@ fn sweep_table(varies: &[Vary], rows: &[Row]) -> String {
         s.push_str(&format!(",{n} [{u}]"));
     }
     s.push('\n');
-    let mut rows: Vec<&Row> = rows.iter().collect();
+    let mut rows: Vec<&SweepRow> = rows.iter().collect();
     rows.sort_by_key(|r| r.point);
     for r in rows {
         s.push_str(&format!("{},point-{:05}", r.point, r.point));

@@ -306,6 +306,33 @@ impl Job {
         })
     }
 
+    /// The model description this job runs (for drawing it): a model file's own, or a
+    /// built-in model's complete multibody model (`clr_models::catalog::export`, what `clr
+    /// export` writes) with the end time (s) and tolerance of the run.
+    ///
+    /// # Errors
+    /// Why there is none, as a sentence (a built-in whose parameters the export refuses).
+    pub fn desc(
+        &self,
+        t_end: Option<f64>,
+        rtol: Option<f64>,
+    ) -> Result<clr_mbd::ModelDesc, String> {
+        match self {
+            Job::Generic(s) => Ok(s.desc().clone()),
+            Job::Builtin {
+                name, parameters, ..
+            } => {
+                let settings = RunSettings {
+                    t_end,
+                    rtol,
+                    ..Default::default()
+                };
+                clr_models::catalog::export(name, parameters, &settings)
+                    .map_err(|e| format!("`{name}` cannot be drawn: {e}"))
+            }
+        }
+    }
+
     /// The simulated span [t0, t_end] (s) of this job run with the `t_end` of [`resolve`]: a
     /// model file's output span, or for a built-in model [0, t_end] with the override or the
     /// model's duration (its `duration` parameter, or the guide's stroke over speed); `None`

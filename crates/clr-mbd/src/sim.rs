@@ -247,6 +247,23 @@ impl Model {
         notes
     }
 
+    /// The assembled initial state at `t0` as a one-row [`Results`] (the columns of a run,
+    /// `initial_conditions` set), without integrating: what `clr view` draws.
+    ///
+    /// # Errors
+    /// As [`Model::assemble_initial_state`].
+    pub fn initial_results(&mut self, t0: f64) -> Result<Results, MbdError> {
+        let (y, ic) = self.assemble_initial_state(t0)?;
+        let mut data = Vec::new();
+        self.record(t0, &y, &mut data);
+        Ok(Results {
+            columns: self.columns(),
+            data,
+            initial_conditions: Some(ic),
+            ..Default::default()
+        })
+    }
+
     /// Evaluate everything at (t, y) and append one output row.
     pub(crate) fn record(&mut self, t: f64, y: &[f64], out: &mut Vec<f64>) {
         let n = self.n;
