@@ -900,3 +900,82 @@ fn run_writes_located_impacts() {
     assert_eq!(metric("B.peak_normal_force"), largest);
     assert_eq!(metric("B.impacts") as usize, rows.len());
 }
+
+/// `clr animate` exports a run's animation as a GIF with fps × duration frames, refuses a run
+/// folder without report.html, and says what to do when --mp4 finds no ffmpeg.
+#[test]
+fn animate_exports_the_run_as_a_gif() {
+    let out = scratch("animate");
+    let d = out.to_str().unwrap();
+    let o = clr(&[
+        "run",
+        "slider_crank",
+        "--t-end",
+        "0.005",
+        "--out",
+        d,
+        "--quiet",
+        "--no-figures",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let gif = out.join("a.gif");
+    let o = clr(&[
+        "animate",
+        d,
+        "--gif",
+        gif.to_str().unwrap(),
+        "--fps",
+        "10",
+        "--duration",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("a.gif"), "{}", stderr(&o));
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::Indexed);
+    let mut dec = opts.read_info(std::fs::File::open(&gif).unwrap()).unwrap();
+    assert_eq!(dec.width(), 800);
+    assert_eq!(dec.height() % 2, 0);
+    let mut frames = 0;
+    while dec.read_next_frame().unwrap().is_some() {
+        frames += 1;
+    }
+    assert_eq!(frames, 10);
+
+    // the report page itself is accepted too; no ffmpeg on PATH: a clear error, exit 2
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_clr"))
+        .args(["animate", out.join("report.html").to_str().unwrap()])
+        .args(["--mp4", out.join("a.mp4").to_str().unwrap()])
+        .env("PATH", "")
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("install ffmpeg") && stderr(&o).contains("--gif"),
+        "{}",
+        stderr(&o)
+    );
+
+    // a run without report.html
+    let bare = scratch("animate-no-report");
+    let o = clr(&[
+        "run",
+        "slider_crank",
+        "--t-end",
+        "0.001",
+        "--out",
+        bare.to_str().unwrap(),
+        "--quiet",
+        "--no-figures",
+        "--no-report",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = clr(&[
+        "animate",
+        bare.to_str().unwrap(),
+        "--gif",
+        gif.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("no report.html"), "{}", stderr(&o));
+}

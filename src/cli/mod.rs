@@ -1,5 +1,6 @@
 //! Command-line parsing and dispatch.
 
+mod animate;
 mod job;
 mod output;
 mod plot;
@@ -149,6 +150,8 @@ enum Command {
         #[arg(long)]
         out: Option<PathBuf>,
     },
+    /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
+    Animate(animate::AnimateArgs),
     /// Plot columns of a results.csv.
     Plot {
         /// A results.csv written by `clr run`.
@@ -238,6 +241,7 @@ pub(crate) fn main() -> ExitCode {
             quiet,
         } => job::view_command(&target, &set, &out, quiet),
         Command::Study { name, out } => study_command(&name, out),
+        Command::Animate(a) => animate::animate_command(&a),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
         Command::Export {
             model,

@@ -8,9 +8,12 @@
 //! - `cargo xtask fuzz [--cases N] [--seed S] [--threads T]`: fuzz the model-file path and the C
 //!   ABI, write `target/fuzz/report.md` and reproducers in `target/fuzz/findings/`;
 //! - `cargo xtask octave`: build the MATLAB/Octave MEX gateway `matlab/clr_mex.c` with Octave
-//!   (installed with apt-get if missing), run its tests and the journal-impact example.
+//!   (installed with apt-get if missing), run its tests and the journal-impact example;
+//! - `cargo xtask report-check`: render run reports in headless Chromium (installed with
+//!   apt-get if missing), check them and write their screenshots to `docs/figures/`.
 
 mod bench;
+mod browser;
 mod figures;
 mod fuzz;
 mod minimal_slider_crank;
@@ -36,14 +39,41 @@ pub fn target_dir() -> PathBuf {
         .unwrap_or_else(|| workspace_root().join("target"))
 }
 
-const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS] | octave>
+/// Run a command that takes no arguments: `--help` prints `help`, any other argument is refused
+/// (exit code 2), and an error of `body` fails the command with its message.
+pub fn command_without_arguments(
+    name: &str,
+    help: &str,
+    args: &[String],
+    body: impl FnOnce() -> Result<(), String>,
+) -> ExitCode {
+    if args.iter().any(|a| a == "-h" || a == "--help") {
+        println!("{help}");
+        return ExitCode::SUCCESS;
+    }
+    if let Some(a) = args.first() {
+        eprintln!("{name}: unexpected argument `{a}`\n{help}");
+        return ExitCode::from(2);
+    }
+    match body() {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("{name}: FAILED: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS] | octave | report-check>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
   bench    benchmarks against peers (groups: ode, mbd, beam); writes target/bench/<group>.json
   figures  regenerate docs/figures/
   fuzz     fuzz the model files and the C ABI (--cases N, --seed S, --threads T; --help for all);
            writes target/fuzz/report.md and target/fuzz/findings/
   octave   build matlab/clr_mex.c with Octave's mkoctfile (apt-get install if missing), run
-           matlab/test_clr.m and matlab/journal_impact.m, compare the restitution with Rust";
+           matlab/test_clr.m and matlab/journal_impact.m, compare the restitution with Rust
+  report-check  render report.html of three models in headless Chromium (apt-get install if
+           missing), check for script errors and motion, write docs/figures/report_*.png";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -54,6 +84,7 @@ fn main() -> ExitCode {
         Some("figures") => figures::run(rest),
         Some("fuzz") => fuzz::run(rest),
         Some("octave") => octave::run(rest),
+        Some("report-check") => browser::run(rest),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

@@ -24,21 +24,7 @@ const HELP: &str = "usage: cargo xtask octave
   restitution with the Rust (clr-ode) value (tolerance 1e-4). Exits non-zero on any failure.";
 
 pub fn run(args: &[String]) -> ExitCode {
-    if args.iter().any(|a| a == "-h" || a == "--help") {
-        println!("{HELP}");
-        return ExitCode::SUCCESS;
-    }
-    if let Some(a) = args.first() {
-        eprintln!("octave: unexpected argument `{a}`\n{HELP}");
-        return ExitCode::from(2);
-    }
-    match run_all() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("octave: FAILED: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    crate::command_without_arguments("octave", HELP, args, run_all)
 }
 
 /// Run a command, echoing it; its output goes to the terminal.

@@ -1,0 +1,263 @@
+//! `cargo xtask report-check`: render the run reports (`report.html`) of three models in
+//! headless Chromium and check them as a user would see them: the page draws without script
+//! errors, the mechanism moves (the drawn journal, or a part, is elsewhere at two times), a 10 s
+//! run's report stays under 20 MB, and the screenshots go to `docs/figures/` (shown in
+//! docs/cli.md). Installs Debian's `chromium` with apt-get when missing; never part of `cargo
+//! test` (a browser is a large system dependency).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, ExitCode};
+
+use serde_json::Value;
+
+use crate::{target_dir, workspace_root};
+
+const HELP: &str = "usage: cargo xtask report-check
+  Builds clr (release), runs slider_crank, the flap with flexible links and the dual guide,
+  opens each report.html in headless Chromium (apt-get install chromium when missing) at two
+  times, checks for script errors and that the mechanism moved, writes the screenshots to
+  docs/figures/report_<model>_<k>.png, and checks that a 10 s run's report is under 20 MB.";
+
+/// The largest report of a 10 s run the issue allows, bytes.
+const MAX_REPORT_BYTES: u64 = 20 * 1024 * 1024;
+
+/// One model to render: its name, `clr run` arguments and the two times of the screenshots.
+struct Case {
+    name: &'static str,
+    args: &'static [&'static str],
+    times: [f64; 2],
+}
+
+const CASES: &[Case] = &[
+    Case {
+        name: "slider_crank",
+        args: &["slider_crank", "--t-end", "0.03"],
+        times: [0.004, 0.02],
+    },
+    Case {
+        name: "flap_flexible",
+        args: &[
+            "flap",
+            "--set",
+            "flexible=[true,true,true]",
+            "--set",
+            "clearances=[0.0001,0.0001,0.0001,0.0001]",
+            "--t-end",
+            "0.1",
+        ],
+        times: [0.02, 0.09],
+    },
+    Case {
+        name: "dual_guide",
+        args: &["dual_guide", "--t-end", "0.1"],
+        times: [0.01, 0.09],
+    },
+];
+
+pub fn run(args: &[String]) -> ExitCode {
+    crate::command_without_arguments("report-check", HELP, args, run_all)
+}
+
+fn run_all() -> Result<(), String> {
+    let chromium = ensure_chromium()?;
+    let clr = build_clr()?;
+    let out = target_dir().join("report-check");
+    let figures = workspace_root().join("docs").join("figures");
+    for case in CASES {
+        let dir = out.join(case.name);
+        run_clr(&clr, case.args, &dir)?;
+        let page = dir.join("report.html");
+        let states: Vec<Value> = case
+            .times
+            .iter()
+            .enumerate()
+            .map(|(k, &t)| {
+                let shot = figures.join(format!("report_{}_{}.png", case.name, k + 1));
+                screenshot(&chromium, &page, t, &shot)?;
+                page_state(&chromium, &page, t)
+            })
+            .collect::<Result<_, String>>()?;
+        check_moved(case.name, &states)?;
+        println!(
+            "report-check: {}: no script errors, the mechanism moved",
+            case.name
+        );
+    }
+    let long = out.join("slider_crank_10s");
+    run_clr(&clr, &["slider_crank", "--t-end", "10"], &long)?;
+    let bytes = std::fs::metadata(long.join("report.html"))
+        .map_err(|e| format!("10 s report: {e}"))?
+        .len();
+    println!(
+        "report-check: report of a 10 s slider_crank run: {:.1} MB (limit {} MB)",
+        bytes as f64 / 1e6,
+        MAX_REPORT_BYTES / 1024 / 1024
+    );
+    if bytes > MAX_REPORT_BYTES {
+        return Err(format!(
+            "the 10 s report is {bytes} bytes, over the 20 MB limit"
+        ));
+    }
+    Ok(())
+}
+
+/// `chromium` on the PATH, installed with apt-get when missing.
+fn ensure_chromium() -> Result<PathBuf, String> {
+    let found = |name: &str| {
+        Command::new("which")
+            .arg(name)
+            .output()
+            .ok()
+            .filter(|o| o.status.success())
+            .map(|o| PathBuf::from(String::from_utf8_lossy(&o.stdout).trim()))
+    };
+    if let Some(p) = found("chromium") {
+        return Ok(p);
+    }
+    eprintln!("report-check: chromium not found; installing Debian's `chromium` with apt-get");
+    for args in [
+        &["update", "-q"][..],
+        &["install", "-y", "-q", "chromium"][..],
+    ] {
+        let ok = Command::new("apt-get")
+            .args(args)
+            .env("DEBIAN_FRONTEND", "noninteractive")
+            .status()
+            .map_err(|e| format!("apt-get: {e}; install chromium yourself"))?
+            .success();
+        if !ok {
+            return Err(
+                "apt-get could not install chromium (needs root); install it yourself".into(),
+            );
+        }
+    }
+    found("chromium").ok_or_else(|| "chromium still not on the PATH after apt-get".into())
+}
+
+fn build_clr() -> Result<PathBuf, String> {
+    let ok = Command::new(env!("CARGO"))
+        .args(["build", "--release", "--bin", "clr"])
+        .current_dir(workspace_root())
+        .status()
+        .map_err(|e| format!("cargo build: {e}"))?
+        .success();
+    if !ok {
+        return Err("cargo build --release --bin clr failed".into());
+    }
+    Ok(target_dir().join("release").join("clr"))
+}
+
+fn run_clr(clr: &Path, args: &[&str], out: &Path) -> Result<(), String> {
+    let status = Command::new(clr)
+        .arg("run")
+        .args(args)
+        .arg("--out")
+        .arg(out)
+        .args(["--quiet", "--no-figures"])
+        .status()
+        .map_err(|e| format!("clr: {e}"))?;
+    if !status.success() {
+        return Err(format!("clr run {} failed ({status})", args.join(" ")));
+    }
+    Ok(())
+}
+
+/// The page at time `t` (s) as a URL (the page reads `#t=` and stays paused there).
+fn url(page: &Path, t: f64) -> Result<String, String> {
+    let abs = page
+        .canonicalize()
+        .map_err(|e| format!("{}: {e}", page.display()))?;
+    Ok(format!("file://{}#t={t}", abs.display()))
+}
+
+fn headless(chromium: &Path) -> Command {
+    let mut c = Command::new(chromium);
+    c.args([
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--hide-scrollbars",
+        "--window-size=1400,860",
+        // time for the page to parse its data and draw before the capture
+        "--virtual-time-budget=4000",
+    ]);
+    c
+}
+
+fn screenshot(chromium: &Path, page: &Path, t: f64, png: &Path) -> Result<(), String> {
+    let out = headless(chromium)
+        .arg(format!("--screenshot={}", png.display()))
+        .arg(url(page, t)?)
+        .output()
+        .map_err(|e| format!("chromium: {e}"))?;
+    if !out.status.success() || !png.exists() {
+        return Err(format!(
+            "chromium --screenshot failed: {}",
+            String::from_utf8_lossy(&out.stderr)
+        ));
+    }
+    Ok(())
+}
+
+/// What the page reports of itself after drawing time `t`: the JSON of its
+/// `<script id="clr-state">` element (`time`, `journals`, `parts`, `errors`), from the DOM.
+fn page_state(chromium: &Path, page: &Path, t: f64) -> Result<Value, String> {
+    let out = headless(chromium)
+        .arg("--dump-dom")
+        .arg(url(page, t)?)
+        .output()
+        .map_err(|e| format!("chromium: {e}"))?;
+    let dom = String::from_utf8_lossy(&out.stdout);
+    let start = dom
+        .find("id=\"clr-state\"")
+        .and_then(|i| dom[i..].find('>').map(|j| i + j + 1))
+        .ok_or_else(|| {
+            format!(
+                "{}: the page never drew (no clr-state element)",
+                page.display()
+            )
+        })?;
+    let end = dom[start..]
+        .find("</script>")
+        .ok_or("unterminated clr-state element")?;
+    let state: Value = serde_json::from_str(&dom[start..start + end])
+        .map_err(|e| format!("clr-state is not JSON: {e}"))?;
+    let errors = state["errors"].as_array().cloned().unwrap_or_default();
+    if !errors.is_empty() {
+        return Err(format!("{}: script errors: {errors:?}", page.display()));
+    }
+    let drawn = state["time"].as_f64().unwrap_or(f64::NAN);
+    if (drawn - t).abs() > 0.01 * t.max(1e-3) + 1e-3 {
+        return Err(format!(
+            "{}: asked for t = {t} s, the page drew {drawn} s",
+            page.display()
+        ));
+    }
+    Ok(state)
+}
+
+/// The journals (or, without revolute clearances, the parts) drawn at the two times are not
+/// in the same place.
+fn check_moved(name: &str, states: &[Value]) -> Result<(), String> {
+    let key = if states[0]["journals"]
+        .as_object()
+        .is_some_and(|o| !o.is_empty())
+    {
+        "journals"
+    } else {
+        "parts"
+    };
+    let (a, b) = (&states[0][key], &states[1][key]);
+    let moved = a.as_object().into_iter().flatten().any(|(k, p)| {
+        let q = &b[k];
+        let d = |i: usize| p[i].as_f64().unwrap_or(0.0) - q[i].as_f64().unwrap_or(0.0);
+        d(0).hypot(d(1)) > 1e-6
+    });
+    if moved {
+        Ok(())
+    } else {
+        Err(format!(
+            "{name}: the drawn {key} did not move between the two times: {a} / {b}"
+        ))
+    }
+}
