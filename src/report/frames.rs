@@ -233,8 +233,8 @@ pub fn plots(scene: &Scene, results: &Results, max: usize) -> Vec<Plot> {
     let mut out = Vec::new();
     let mut orbit = Plot {
         title: "journal orbits in the clearance".into(),
-        x_label: "e_x / c".into(),
-        y_label: "e_y / c".into(),
+        x_label: "e_x / c (bearing frame)".into(),
+        y_label: "e_y / c (bearing frame)".into(),
         cursor: "orbit",
         t: Vec::new(),
         lines: Vec::new(),

@@ -209,7 +209,7 @@ fn page_state(chromium: &Path, page: &Path, t: f64) -> Result<Value, String> {
         .map_err(|e| format!("chromium: {e}"))?;
     let dom = String::from_utf8_lossy(&out.stdout);
     let start = dom
-        .find("id=\"clr-state\"")
+        .find("<script id=\"clr-state\" type=\"application/json\">")
         .and_then(|i| dom[i..].find('>').map(|j| i + j + 1))
         .ok_or_else(|| {
             format!(
