@@ -845,17 +845,7 @@ fn integrator_knobs_reach_the_run() {
 fn run_writes_located_impacts() {
     let out = scratch("impacts");
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/slider_crank.toml");
-    let o = clr(&[
-        "run",
-        file.to_str().unwrap(),
-        "--t-end",
-        "0.03",
-        "--out",
-        out.to_str().unwrap(),
-        "--no-figures",
-        "-q",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    common::run_quietly(file.to_str().unwrap(), "0.03", &out);
     let text = std::fs::read_to_string(out.join("impacts.csv")).unwrap();
     let mut lines = text.lines();
     assert_eq!(

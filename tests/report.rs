@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{clr, scratch_in, stderr};
+use common::{clr, run_quietly, scratch_in, stderr};
 use serde_json::Value;
 
 const SLIDER_CRANK: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/slider_crank.toml");
@@ -41,17 +41,7 @@ fn csv(path: &std::path::Path) -> (Vec<String>, Vec<Vec<f64>>) {
 #[test]
 fn a_run_report_draws_the_model_file_and_plays_its_recorded_rows() {
     let out = scratch_in("report", "run");
-    let o = clr(&[
-        "run",
-        SLIDER_CRANK,
-        "--t-end",
-        "0.01",
-        "--out",
-        out.to_str().unwrap(),
-        "--quiet",
-        "--no-figures",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    run_quietly(SLIDER_CRANK, "0.01", &out);
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
     // nothing is fetched: no external script, style, image or request
     for net in [

@@ -26,3 +26,19 @@ pub fn scratch_in(group: &str, name: &str) -> PathBuf {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// `clr run TARGET --t-end T --out OUT --quiet --no-figures`, asserting that it succeeds.
+pub fn run_quietly(target: &str, t_end: &str, out: &Path) -> Output {
+    let o = clr(&[
+        "run",
+        target,
+        "--t-end",
+        t_end,
+        "--out",
+        out.to_str().unwrap(),
+        "--quiet",
+        "--no-figures",
+    ]);
+    assert!(o.status.success(), "clr run {target}: {}", stderr(&o));
+    o
+}
