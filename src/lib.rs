@@ -10,11 +10,14 @@
 //! | [`beam`] | `clr-beam` | planar Euler–Bernoulli finite elements, modes, reduction |
 //! | [`mbd`] | `clr-mbd` | constrained multibody dynamics |
 //! | [`models`] | `clr-models` | the paper systems |
+//!
+//! and two modules of its own: [`spec`] (model files, runs and sweeps as `clr run` and `clr
+//! sweep` do them) and [`report`] (the animated HTML report of a run).
 
 pub use clr_beam as beam;
 pub use clr_contact as contact;
 pub use clr_mbd as mbd;
 pub use clr_models as models;
 pub use clr_ode as ode;
-pub mod spec;
 pub mod report;
+pub mod spec;
