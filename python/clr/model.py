@@ -487,15 +487,18 @@ class Model:
         normal: Table,
         friction: Optional[Table] = None,
         force_application: Optional[str] = None,
+        bearing_wear: Optional[Sequence[float]] = None,
     ) -> "Model":
         """Revolute clearance joint: a journal of radius ``journal_radius`` (m) centred at
         ``journal`` inside a bearing of radius ``bearing_radius`` (m) centred at ``bearing``;
         contact by the ``normal`` law (:func:`normal`), ``friction`` (:func:`friction`; default
-        none), ``force_application`` (``common_point`` or ``contact_points``)."""
+        none), ``force_application`` (``common_point`` or ``contact_points``), ``bearing_wear``:
+        the worn bearing's radial wear depth (m) at N ≥ 8 equally spaced angles in the bearing
+        body frame (docs/wear.md)."""
         return self._add(
             "clearance", "revolute", name, bearing=bearing, journal=journal,
             bearing_radius=bearing_radius, journal_radius=journal_radius, normal=normal,
-            friction=friction, force_application=force_application,
+            friction=friction, force_application=force_application, bearing_wear=bearing_wear,
         )
 
     def translational_clearance(

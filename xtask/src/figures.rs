@@ -20,6 +20,7 @@ const MAKERS: &[(&str, Maker)] = &[
         "models.guide dual",
         crate::verify::models_dual_guide::figures,
     ),
+    ("lubrication", crate::verify::lubrication::figures),
 ];
 
 /// Copy the study figures `<from>/<name>.{svg,png}` into the docs folder `to` as

@@ -16,6 +16,7 @@ pub mod error;
 pub mod damping;
 pub mod elastic;
 pub mod friction;
+pub mod lubrication;
 pub mod normal;
 pub mod restitution;
 
@@ -25,6 +26,7 @@ pub mod memory;
 pub mod multipoint;
 pub mod revolute;
 pub mod translational;
+pub mod wear;
 
 pub use error::ContactError;
 
@@ -35,8 +37,10 @@ pub use multipoint::{
 };
 pub use revolute::{ForceApplication, RevoluteClearance, RevoluteContact};
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
+pub use wear::{ArchardWear, BearingProfile, LineContact, PressureDistribution};
 
 pub use damping::DampingFactor;
 pub use elastic::{ElasticLaw, Material};
 pub use friction::{FrictionLaw, LuGre};
+pub use lubrication::{BearingModel, HydrodynamicBearing, PiFilm, Transition};
 pub use normal::{GuideFace, JournalBearing, NormalLaw};

@@ -771,7 +771,10 @@ fn clearance_is_analytic(c: &Clearance) -> bool {
     c.lugre.is_none()
         && match &c.kind {
             ClearanceKind::FlexGuide(g) => g.detector.point_count() == g.detector.candidate_count(),
-            _ => true,
+            // the analytic contact Jacobian is that of a circular bearing; a worn profile's
+            // curvature terms are not in it yet, so a worn joint takes central differences
+            ClearanceKind::Revolute(g, _) => g.profile().is_none_or(|p| p.max_depth() == 0.0),
+            ClearanceKind::Translational { .. } => true,
         }
 }
 

@@ -507,6 +507,7 @@ impl ModelBuilder {
                 friction: spec.friction,
                 // the model-wide setting ([`ModelBuilder::clearance_force_application`])
                 force_application: None,
+                bearing_wear: None,
             }
             .into(),
         );

@@ -3,6 +3,7 @@
 pub mod beam;
 pub mod contact;
 mod contact_geometry;
+pub mod lubrication;
 mod mbd;
 mod mbd_jacobian;
 mod mbd_tolerance;
@@ -10,6 +11,7 @@ pub mod models;
 pub mod models_dual_guide;
 pub mod models_flap_flex;
 pub mod ode;
+mod wear;
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -53,6 +55,10 @@ const GROUPS: &[Group] = &[
         run: contact_geometry::cases,
     },
     Group {
+        name: "lubrication",
+        run: lubrication::cases,
+    },
+    Group {
         name: "beam",
         run: beam::cases,
     },
@@ -79,6 +85,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "models",
         run: models_dual_guide::cases,
+    },
+    Group {
+        name: "wear",
+        run: wear::cases,
     },
 ];
 

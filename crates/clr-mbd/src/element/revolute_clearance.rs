@@ -2,6 +2,7 @@
 //! radius R_i on body i; a force element built on clr-contact (no constraint equation). The
 //! radii are given once: the normal law takes them from here.
 
+use clr_contact::wear::BearingProfile;
 use clr_contact::RevoluteClearance as Geometry;
 use serde::{Deserialize, Serialize};
 
@@ -39,6 +40,12 @@ pub struct RevoluteClearance {
     /// dissipate the same normal-damping and friction power to first order in δ.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub force_application: Option<crate::desc::parts::ForceApplicationDesc>,
+    /// A worn bearing: its radial wear depth h_w (m, ≥ 0) at N ≥ 8 equally spaced angles
+    /// φ_k = 2πk/N in the bearing body's frame (counter-clockwise from its x axis), the local
+    /// bearing radius being R_i + h_w(φ) (clr-contact `BearingProfile`, docs/wear.md). Absent:
+    /// a circular bearing; all zeros reproduce it bit for bit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub bearing_wear: Option<Vec<f64>>,
 }
 
 impl Element for RevoluteClearance {
@@ -60,10 +67,17 @@ impl Element for RevoluteClearance {
                 ),
             });
         }
-        let geometry = Geometry::new(rb, rj, si, sj).map_err(|source| MbdError::Contact {
+        let mut geometry = Geometry::new(rb, rj, si, sj).map_err(|source| MbdError::Contact {
             item: name.clone(),
             source,
         })?;
+        if let Some(depths) = &self.bearing_wear {
+            let profile = BearingProfile::new(depths.clone()).map_err(|e| MbdError::Invalid {
+                path: format!("{name}.bearing_wear"),
+                message: e.to_string(),
+            })?;
+            geometry = geometry.with_profile(profile);
+        }
         let normal = self
             .normal
             .build(&format!("{name}.normal"), Some((rb, rj)))?;
