@@ -488,17 +488,21 @@ class Model:
         friction: Optional[Table] = None,
         force_application: Optional[str] = None,
         bearing_wear: Optional[Sequence[float]] = None,
+        lubrication: Optional[Table] = None,
     ) -> "Model":
         """Revolute clearance joint: a journal of radius ``journal_radius`` (m) centred at
         ``journal`` inside a bearing of radius ``bearing_radius`` (m) centred at ``bearing``;
         contact by the ``normal`` law (:func:`normal`), ``friction`` (:func:`friction`; default
         none), ``force_application`` (``common_point`` or ``contact_points``), ``bearing_wear``:
         the worn bearing's radial wear depth (m) at N ≥ 8 equally spaced angles in the bearing
-        body frame (docs/wear.md)."""
+        body frame (docs/wear.md), ``lubrication``: an oil film ``{"model": "short_bearing" |
+        "long_bearing", "viscosity": Pa·s, "length": m, "film_threshold": m, "dry_threshold":
+        m}`` (docs/lubrication.md)."""
         return self._add(
             "clearance", "revolute", name, bearing=bearing, journal=journal,
             bearing_radius=bearing_radius, journal_radius=journal_radius, normal=normal,
             friction=friction, force_application=force_application, bearing_wear=bearing_wear,
+            lubrication=lubrication,
         )
 
     def translational_clearance(

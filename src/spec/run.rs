@@ -662,13 +662,13 @@ pub fn unit_of(column: &str) -> &'static str {
         return "J";
     }
     match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" | "lugre_z" => "m",
+        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" | "lugre_z" | "film_thickness" => "m",
         "theta" => "rad",
         "vx" | "vy" | "rate" => "m/s",
         "omega" => "rad/s",
         "ax" | "ay" => "m/s^2",
         "alpha" => "rad/s^2",
-        "Fx" | "Fy" | "normal_force" | "friction_force" => "N",
+        "Fx" | "Fy" | "normal_force" | "friction_force" | "film_force" => "N",
         "M" => "N*m",
         _ => "-",
     }

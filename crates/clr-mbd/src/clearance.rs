@@ -125,6 +125,16 @@ impl GuideSurface for FloatFace<'_> {
     }
 }
 
+/// The dry forces of a lubricated joint weighted by the transition's w(h_min) ∈ [0, 1].
+fn scale_joint_forces(jf: &mut clr_contact::revolute::JointForces, w: f64) {
+    jf.normal_force *= w;
+    jf.tangential_force *= w;
+    for g in [&mut jf.bearing, &mut jf.journal] {
+        g.force *= w;
+        g.moment *= w;
+    }
+}
+
 /// Geometry of a contact element.
 pub(crate) enum ClearanceKind {
     /// Journal (body j) in bearing (body i), with where its force pair acts.
@@ -156,6 +166,15 @@ pub(crate) struct Clearance {
     /// LuGre friction with bristle states (then `friction` is frictionless and the element is
     /// evaluated by `crate::lugre::force::apply`, not [`Clearance::apply`]).
     pub(crate) lugre: Option<crate::lugre::state::LuGreContact>,
+    /// The oil film of a lubricated revolute joint (else `None`).
+    pub(crate) film: Option<Film>,
+}
+
+/// The oil film of a lubricated revolute clearance joint: the hydrodynamic force acts at every
+/// eccentricity, the dry laws add w(h_min)·F_dry (clr-contact `lubrication`, docs/lubrication.md).
+pub(crate) struct Film {
+    pub(crate) bearing: clr_contact::lubrication::HydrodynamicBearing,
+    pub(crate) transition: clr_contact::lubrication::Transition,
 }
 
 /// Quantities of one contact element at the last evaluated state.
@@ -176,6 +195,10 @@ pub struct ContactReport {
     /// Revolute: journal centre relative to the bearing centre in the bearing body's frame;
     /// translational: slider reference point in the guide frame, m.
     pub eccentricity: [f64; 2],
+    /// Resultant of the oil film's pressure on the journal, N (lubricated joints; else 0).
+    pub film_force: f64,
+    /// Minimum film thickness h_min = c(1 − ε), m (lubricated joints; else 0).
+    pub film_thickness: f64,
     /// Power dissipated by contact damping and friction, (F_N − F_e(δ))·δ̇ − F_T·v_T summed over
     /// the active points, W. For a revolute joint it is the power the applied force pair takes
     /// out of the bodies minus the elastic storage F_e·δ̇, so v_T is the slip at the points the
@@ -245,20 +268,27 @@ impl Clearance {
                 rep.penetration = ct.penetration;
                 rep.penetration_rate = ct.normal_velocity;
                 rep.eccentricity = [local.x, local.y];
+                let weight = match &self.film {
+                    Some(film) => self.apply_film(film, g, bi, bj, &mut rep, &mut add),
+                    None => 1.0,
+                };
                 if ct.in_contact() {
                     let vm = memory.impact_velocity(self.mem, ct.penetration, ct.normal_velocity);
-                    let jf =
+                    let mut jf =
                         ct.forces_from_laws_with(&self.normal, &self.friction, vm, *application);
+                    if weight != 1.0 {
+                        scale_joint_forces(&mut jf, weight);
+                    }
                     add(self.i, jf.bearing.as_array());
                     add(self.j, jf.journal.as_array());
                     rep.active_points = 1;
                     rep.normal_force = jf.normal_force;
                     rep.friction_force = jf.tangential_force;
-                    rep.dissipated_power = revolute_dissipated_power(
+                    rep.dissipated_power += revolute_dissipated_power(
                         &jf,
                         bi,
                         bj,
-                        self.normal.elastic_force(ct.penetration) * ct.normal_velocity,
+                        weight * self.normal.elastic_force(ct.penetration) * ct.normal_velocity,
                     );
                 }
             }
@@ -296,6 +326,36 @@ impl Clearance {
             ClearanceKind::FlexGuide(_) => {}
         }
         rep
+    }
+
+    /// Add the film force of a lubricated revolute joint, report it (film force and minimum
+    /// film thickness; its power is all dissipated: a viscous film stores no energy), and
+    /// return the weight w of the dry laws.
+    fn apply_film(
+        &self,
+        film: &Film,
+        g: &RevoluteClearance,
+        bi: &BodyState,
+        bj: &BodyState,
+        rep: &mut ContactReport,
+        add: &mut impl FnMut(usize, [f64; 3]),
+    ) -> f64 {
+        let f = film.bearing.joint_forces(
+            &film.transition,
+            g.bearing_centre(),
+            g.journal_centre(),
+            bi,
+            bj,
+        );
+        add(self.i, f.bearing.as_array());
+        add(self.j, f.journal.as_array());
+        rep.film_force = f.film.magnitude();
+        rep.film_thickness = f.kinematics.min_film_thickness;
+        let power = |gf: &clr_contact::GeneralizedForce, b: &BodyState| {
+            gf.force.dot(&b.velocity) + gf.moment * b.angular_velocity
+        };
+        rep.dissipated_power = -(power(&f.bearing, bi) + power(&f.journal, bj));
+        f.dry_weight
     }
 
     /// Scatter a translational clearance joint's corner forces `f` and fill the report: active

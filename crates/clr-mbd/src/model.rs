@@ -508,6 +508,7 @@ impl ModelBuilder {
                 // the model-wide setting ([`ModelBuilder::clearance_force_application`])
                 force_application: None,
                 bearing_wear: None,
+                lubrication: None,
             }
             .into(),
         );

@@ -213,6 +213,10 @@ impl Model {
             if cl.lugre.is_some() {
                 c.push(format!("{}.lugre_z", cl.name));
             }
+            if cl.film.is_some() {
+                c.push(format!("{}.film_force", cl.name));
+                c.push(format!("{}.film_thickness", cl.name));
+            }
         }
         for s in [
             "energy.kinetic",
@@ -297,6 +301,9 @@ impl Model {
             ]);
             if let Some(z) = self.bristle_output(k) {
                 out.push(z);
+            }
+            if self.clearances[k].film.is_some() {
+                out.extend_from_slice(&[c.film_force, c.film_thickness]);
             }
         }
         let e = self.energies(q, qd);

@@ -4,6 +4,7 @@ pub mod beam;
 pub mod contact;
 mod contact_geometry;
 pub mod lubrication;
+mod lubrication_mbd;
 mod mbd;
 mod mbd_jacobian;
 mod mbd_tolerance;
@@ -57,6 +58,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "lubrication",
         run: lubrication::cases,
+    },
+    Group {
+        name: "lubrication",
+        run: lubrication_mbd::cases,
     },
     Group {
         name: "beam",

@@ -159,6 +159,7 @@ impl Element for SliderOnBeam {
             friction,
             mem: 0,
             lugre: None,
+            film: None,
         });
         Ok(())
     }

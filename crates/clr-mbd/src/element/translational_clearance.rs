@@ -95,6 +95,7 @@ impl Element for TranslationalClearance {
             friction,
             mem: 0,
             lugre,
+            film: None,
         });
         Ok(())
     }
