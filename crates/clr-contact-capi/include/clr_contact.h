@@ -6,6 +6,12 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// Short bearing (Ocvirk), L/D ≲ 0.5.
+#define CLR_BEARING_SHORT 0
+
+// Infinitely long bearing (Sommerfeld, Pinkus–Sternlicht), L/D ≳ 2.
+#define CLR_BEARING_LONG 1
+
 // Result of every fallible C function. `CLR_STATUS_OK` (0) is success; on any other value the
 // output arguments are left untouched (the one exception: `CLR_STATUS_BUFFER_TOO_SMALL` writes
 // the count needed through the count argument) and `clr_last_error_message()` says what to
@@ -42,6 +48,9 @@ typedef enum ClrStatus {
 
 // Opaque handle of a stateless friction law F_T = μ(v_T) F_N.
 typedef struct ClrFrictionLaw ClrFrictionLaw;
+
+// Opaque handle of a hydrodynamic journal bearing (immutable: may be shared between threads).
+typedef struct ClrHydrodynamicBearing ClrHydrodynamicBearing;
 
 // Opaque handle of a LuGre friction model (Canudas de Wit et al. 1995), whose bristle deflection
 // z (m) is a state the caller integrates.
@@ -187,6 +196,15 @@ typedef struct ClrTranslationalForces {
   // Generalized force on the slider body (j) about its reference point.
   struct ClrGeneralizedForce slider;
 } ClrTranslationalForces;
+
+// The film force on the journal in the frame of the line of centres, N.
+typedef struct ClrFilmForce {
+  // Radial component along **n** = **e**/|**e**| (negative: pushes the journal back toward
+  // the bearing centre), N.
+  double radial;
+  // Tangential component along **t** = k̂ × **n**, N.
+  double tangential;
+} ClrFilmForce;
 
 // Kind of contact found by `clr_multipoint_joint_forces`, one of the `CLR_CONTACT_CLASS_*`
 // constants (clr-contact `ContactClass`).
@@ -647,6 +665,41 @@ enum ClrStatus clr_translational_joint_forces(const struct ClrTranslationalJoint
 // # Safety
 // `joint` is NULL or a handle from `clr_translational_joint_new` not freed yet.
 void clr_translational_joint_free(struct ClrTranslationalJoint *joint);
+
+// Create a bearing from the bearing radius R and journal radius r (m, 0 < r < R), the axial
+// length L (m), the dynamic viscosity μ (Pa·s) and the model (`CLR_BEARING_SHORT` or
+// `CLR_BEARING_LONG`). On success `*out` receives a handle to free with
+// `clr_hydrodynamic_bearing_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_hydrodynamic_bearing_new(double bearing_radius,
+                                            double journal_radius,
+                                            double length,
+                                            double viscosity,
+                                            uint32_t model,
+                                            struct ClrHydrodynamicBearing **out);
+
+// The film force on the journal (N, frame of the line of centres) at the eccentricity ratio
+// ε ∈ [0, 1) (–), its rate ε̇ (1/s), the angular velocity of the line of centres γ̇ (rad/s)
+// and the sum of the journal and bearing angular velocities ω_i + ω_j (rad/s); the wedge term
+// depends on ω_i + ω_j − 2γ̇ (Flores, Ambrósio, Claro & Pimenta, Nonlinear Dyn 56 (2009)
+// 277–295; docs/lubrication.md). The force on the bearing is its opposite, on the same line.
+//
+// # Safety
+// `bearing` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_hydrodynamic_bearing_force(const struct ClrHydrodynamicBearing *bearing,
+                                              double eccentricity_ratio,
+                                              double eccentricity_rate,
+                                              double line_of_centres_rate,
+                                              double angular_velocity_sum,
+                                              struct ClrFilmForce *out);
+
+// Free a bearing. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `bearing` is NULL or a handle from `clr_hydrodynamic_bearing_new` not freed yet.
+void clr_hydrodynamic_bearing_free(struct ClrHydrodynamicBearing *bearing);
 
 // Create a model from the text of a model file (TOML, `docs/model-file.md`: a generic model or
 // `[model] builtin = "<name>"`), validated as `clr run` validates it. `[output] t_end` may be

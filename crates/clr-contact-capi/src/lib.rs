@@ -28,6 +28,7 @@
 
 pub mod error;
 pub mod ffi;
+pub mod lubrication;
 pub mod model;
 pub mod multipoint;
 pub mod spec;
@@ -39,5 +40,6 @@ mod multipoint_case;
 
 pub use error::{CapiError, ClrStatus};
 pub use ffi::*;
+pub use lubrication::*;
 pub use model::*;
 pub use multipoint::*;
