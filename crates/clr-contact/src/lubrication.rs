@@ -105,7 +105,7 @@ use nalgebra::Vector2;
 
 use crate::body::{perp, BodyState, GeneralizedForce};
 use crate::error::{positive, ContactError};
-use crate::revolute::RevoluteClearance;
+use crate::revolute::{CentreLine, RevoluteClearance};
 
 /// Which closed-form solution of the Reynolds equation gives the film force.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -454,25 +454,18 @@ impl HydrodynamicBearing {
         journal: &BodyState,
     ) -> FilmKinematics {
         let c = self.clearance();
-        let pi = bearing.point(bearing_centre);
-        let pj = journal.point(journal_centre);
-        let e_vec = pj - pi;
-        let e = e_vec.norm();
-        let centred = !(e > f64::MIN_POSITIVE && e.is_finite());
-        // As in RevoluteClearance::contact: the world x axis when the centres coincide; the
-        // force stays correct there because it is written with εΩ, not Ω (see wedge_term).
-        let normal = if centred {
-            Vector2::new(1.0, 0.0)
-        } else {
-            e_vec / e
-        };
+        // The line of centres of RevoluteClearance::contact: the world x axis when the centres
+        // coincide; the force stays correct there because it is written with εΩ, not Ω (see
+        // wedge_term).
+        let line = CentreLine::new(bearing_centre, journal_centre, bearing, journal);
+        let (pj, e, normal) = (line.journal_centre, line.eccentricity, line.normal);
         let tangent = perp(normal);
-        let e_dot = journal.point_velocity(pj) - bearing.point_velocity(pi);
+        let e_dot = journal.point_velocity(pj) - bearing.point_velocity(line.bearing_centre);
         let v_t = e_dot.dot(&tangent);
         let omega_sum = bearing.angular_velocity + journal.angular_velocity;
-        let gamma_dot = if centred { 0.0 } else { v_t / e };
+        let gamma_dot = if line.centred { 0.0 } else { v_t / e };
         FilmKinematics {
-            eccentricity_vector: e_vec,
+            eccentricity_vector: line.eccentricity_vector,
             eccentricity_ratio: e / c,
             eccentricity_rate: e_dot.dot(&normal) / c,
             line_of_centres_rate: gamma_dot,

@@ -87,6 +87,58 @@ struct Surface {
     projected_radius: f64,
 }
 
+/// The line of centres of a revolute joint at one state, shared by the dry
+/// ([`RevoluteClearance::contact`]) and the lubricated
+/// ([`HydrodynamicBearing::kinematics`](crate::lubrication::HydrodynamicBearing::kinematics))
+/// joint.
+pub(crate) struct CentreLine {
+    /// World position of the bearing centre r_i^P, m.
+    pub(crate) bearing_centre: Vector2<f64>,
+    /// World position of the journal centre r_j^P, m.
+    pub(crate) journal_centre: Vector2<f64>,
+    /// Eccentricity vector **e** = r_j^P − r_i^P, m.
+    pub(crate) eccentricity_vector: Vector2<f64>,
+    /// Eccentricity e = |**e**|, m.
+    pub(crate) eccentricity: f64,
+    /// True when the centres coincide (e → 0, or e not finite): **n** is undefined there.
+    pub(crate) centred: bool,
+    /// Unit normal **n** = **e**/e, the world x axis when `centred`.
+    pub(crate) normal: Vector2<f64>,
+}
+
+impl CentreLine {
+    /// From the local coordinates (m) of the bearing centre on body i and of the journal centre
+    /// on body j, and the two body states.
+    pub(crate) fn new(
+        bearing_centre: Vector2<f64>,
+        journal_centre: Vector2<f64>,
+        bearing: &BodyState,
+        journal: &BodyState,
+    ) -> Self {
+        let pi = bearing.point(bearing_centre);
+        let pj = journal.point(journal_centre);
+        let e_vec = pj - pi;
+        let e = e_vec.norm();
+        let centred = !(e > f64::MIN_POSITIVE && e.is_finite());
+        // e/e is undefined at e = 0; the normal is irrelevant there (the dry joint has δ = −c < 0
+        // and no force; the film force is written with εΩ, not Ω) but is kept a unit vector so
+        // that downstream code never sees NaN.
+        let normal = if centred {
+            Vector2::new(1.0, 0.0)
+        } else {
+            e_vec / e
+        };
+        Self {
+            bearing_centre: pi,
+            journal_centre: pj,
+            eccentricity_vector: e_vec,
+            eccentricity: e,
+            centred,
+            normal,
+        }
+    }
+}
+
 /// Everything the kinematics of a revolute clearance joint gives at one state (SI units).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RevoluteContact {
@@ -251,17 +303,8 @@ impl RevoluteClearance {
     /// With a worn profile the contact is the nearest point of the worn surface (module docs);
     /// the circular joint is the case h_w = 0, computed by the same operations. No allocation.
     pub fn contact(&self, bearing: &BodyState, journal: &BodyState) -> RevoluteContact {
-        let pi = bearing.point(self.bearing_centre);
-        let pj = journal.point(self.journal_centre);
-        let e_vec = pj - pi;
-        let e = e_vec.norm();
-        // e/e is undefined at e = 0; the normal is irrelevant there (δ = −c < 0, no force) but is
-        // kept a unit vector so that downstream code never sees NaN.
-        let radial = if e > f64::MIN_POSITIVE && e.is_finite() {
-            e_vec / e
-        } else {
-            Vector2::new(1.0, 0.0)
-        };
+        let line = CentreLine::new(self.bearing_centre, self.journal_centre, bearing, journal);
+        let (radial, e) = (line.normal, line.eccentricity);
         let surface = match &self.profile {
             None => Surface {
                 direction: radial,
@@ -274,11 +317,11 @@ impl RevoluteClearance {
         };
         let normal = surface.normal;
         let tangent = perp(normal);
-        let qi = pi + surface.radius * surface.direction;
-        let qj = pj + self.journal_radius * normal;
+        let qi = line.bearing_centre + surface.radius * surface.direction;
+        let qj = line.journal_centre + self.journal_radius * normal;
         let v = journal.point_velocity(qj) - bearing.point_velocity(qi);
         RevoluteContact {
-            eccentricity_vector: e_vec,
+            eccentricity_vector: line.eccentricity_vector,
             eccentricity: e,
             penetration: surface.reach - (surface.projected_radius - self.journal_radius),
             normal,
@@ -394,6 +437,30 @@ impl RevoluteContact {
         }
     }
 
+    /// Every public quantity of the contact as one array, in the order **e** (x, y), e, δ,
+    /// **n** (x, y), **t** (x, y), r_i^Q (x, y), r_j^Q (x, y), v_N, v_T and φ_c
+    /// ([`contact_angle`](Self::contact_angle)): for comparing two contacts value by value
+    /// (e.g. a worn bearing against the circular one).
+    pub fn as_array(&self) -> [f64; 15] {
+        [
+            self.eccentricity_vector.x,
+            self.eccentricity_vector.y,
+            self.eccentricity,
+            self.penetration,
+            self.normal.x,
+            self.normal.y,
+            self.tangent.x,
+            self.tangent.y,
+            self.bearing_point.x,
+            self.bearing_point.y,
+            self.journal_point.x,
+            self.journal_point.y,
+            self.normal_velocity,
+            self.tangential_velocity,
+            self.contact_angle(),
+        ]
+    }
+
     /// Generalized forces on both bodies from a normal force F_N (N, pushes the journal back
     /// toward the bearing centre) and a tangential force F_T (N, on the journal along **t**;
     /// a friction law returns it with the sign opposite to v_T).
@@ -485,24 +552,11 @@ mod tests {
     use super::*;
     use crate::damping::DampingFactor;
     use crate::elastic::{ElasticLaw, Material};
+    use crate::wear::test_support::{argmin_on_circle, Rng};
 
     const RI: f64 = 10e-3;
     const RJ: f64 = 9.9e-3;
     const C: f64 = RI - RJ;
-
-    /// xorshift64* (Vigna 2016): reproducible uniform numbers in [0, 1).
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.next()
-        }
-    }
 
     fn v(x: f64, y: f64) -> Vector2<f64> {
         Vector2::new(x, y)
@@ -544,23 +598,7 @@ mod tests {
         )
         .unwrap();
         let friction = FrictionLaw::ambrosio(0.1, 1e-4, 1e-3).unwrap();
-        let mut out = vec![
-            c.eccentricity_vector.x,
-            c.eccentricity_vector.y,
-            c.eccentricity,
-            c.penetration,
-            c.normal.x,
-            c.normal.y,
-            c.tangent.x,
-            c.tangent.y,
-            c.bearing_point.x,
-            c.bearing_point.y,
-            c.journal_point.x,
-            c.journal_point.y,
-            c.normal_velocity,
-            c.tangential_velocity,
-            c.contact_angle(),
-        ];
+        let mut out = c.as_array().to_vec();
         for app in [
             ForceApplication::ContactPoints,
             ForceApplication::CommonPoint,
@@ -710,22 +748,7 @@ mod tests {
             // brute force: distance from the journal centre to the analytic curve
             let pj = bj.point(worn.journal_centre());
             let d = |x: f64| (pi + bi.rotate(shape(x).0 * v(x.cos(), x.sin())) - pj).norm();
-            let m = 200_000;
-            let best = (0..m)
-                .map(|i| TAU * i as f64 / m as f64)
-                .min_by(|a, b| d(*a).total_cmp(&d(*b)))
-                .unwrap();
-            let (mut a, mut b) = (best - TAU / m as f64, best + TAU / m as f64);
-            let g = 0.5 * (5f64.sqrt() - 1.0);
-            for _ in 0..80 {
-                let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-                if d(x1) < d(x2) {
-                    b = x2;
-                } else {
-                    a = x1;
-                }
-            }
-            let delta_ref = RJ - d(0.5 * (a + b));
+            let delta_ref = RJ - d(argmin_on_circle(d, 200_000));
             assert!(
                 (c.penetration - delta_ref).abs() < 1e-12,
                 "{} vs {}",

@@ -926,8 +926,56 @@ fn with_sample(e: ContactError, sample: Option<usize>) -> ContactError {
     }
 }
 
+/// Helpers shared by the unit tests of this module and of [`revolute`](crate::revolute).
+#[cfg(test)]
+pub(crate) mod test_support {
+    use std::f64::consts::TAU;
+
+    /// xorshift64* (Vigna 2016): reproducible uniform numbers in [0, 1).
+    pub(crate) struct Rng(pub(crate) u64);
+
+    impl Rng {
+        pub(crate) fn next(&mut self) -> f64 {
+            self.0 ^= self.0 >> 12;
+            self.0 ^= self.0 << 25;
+            self.0 ^= self.0 >> 27;
+            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+        }
+
+        pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
+            a + (b - a) * self.next()
+        }
+    }
+
+    /// Brute-force minimum of `f` on the circle, independent of the profile search: the first
+    /// of `m` equally spaced samples of [0, 2π) with the smallest value, refined by 80
+    /// golden-section steps between its two neighbours. Returns the angle (rad, not reduced).
+    pub(crate) fn argmin_on_circle(f: impl Fn(f64) -> f64, m: usize) -> f64 {
+        let mut best = (0.0, f64::INFINITY);
+        for i in 0..m {
+            let x = TAU * i as f64 / m as f64;
+            let fx = f(x);
+            if fx < best.1 {
+                best = (x, fx);
+            }
+        }
+        let (mut a, mut b) = (best.0 - TAU / m as f64, best.0 + TAU / m as f64);
+        let g = 0.5 * (5f64.sqrt() - 1.0);
+        for _ in 0..80 {
+            let (x1, x2) = (b - g * (b - a), a + g * (b - a));
+            if f(x1) < f(x2) {
+                b = x2;
+            } else {
+                a = x1;
+            }
+        }
+        0.5 * (a + b)
+    }
+}
+
 #[cfg(test)]
 mod tests {
+    use super::test_support::{argmin_on_circle, Rng};
     use super::*;
 
     /// Steel on steel (E = 207 GPa, ν = 0.3), R_i = 10 mm, R_j = 9.9 mm, L = 10 mm.
@@ -940,17 +988,6 @@ mod tests {
         ArchardWear::new(1e-5, 2e9, contact())
             .unwrap()
             .with_distribution(distribution)
-    }
-
-    /// xorshift64* (Vigna 2016): reproducible uniform numbers in [0, 1).
-    struct Rng(u64);
-    impl Rng {
-        fn next(&mut self) -> f64 {
-            self.0 ^= self.0 >> 12;
-            self.0 ^= self.0 << 25;
-            self.0 ^= self.0 >> 27;
-            (self.0.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
-        }
     }
 
     #[test]
@@ -1217,26 +1254,7 @@ mod tests {
                     let rho = r + shape(x);
                     sq(rho * x.cos() - e * phi_e.cos()) + sq(rho * x.sin() - e * phi_e.sin())
                 };
-                let m = 200_000;
-                let (mut best, mut bd) = (0.0, f64::INFINITY);
-                for i in 0..m {
-                    let x = TAU * i as f64 / m as f64;
-                    let d = d2(x);
-                    if d < bd {
-                        (best, bd) = (x, d);
-                    }
-                }
-                let (mut a, mut b) = (best - TAU / m as f64, best + TAU / m as f64);
-                let g = 0.5 * (5f64.sqrt() - 1.0);
-                for _ in 0..80 {
-                    let (x1, x2) = (b - g * (b - a), a + g * (b - a));
-                    if d2(x1) < d2(x2) {
-                        b = x2;
-                    } else {
-                        a = x1;
-                    }
-                }
-                let x_ref = 0.5 * (a + b);
+                let x_ref = argmin_on_circle(d2, 200_000);
                 let near = p.nearest(r, e, phi_e);
                 let x = phi_e + near.offset;
                 let dist_ref = d2(x_ref).sqrt();

@@ -291,23 +291,7 @@ fn joint_with(
 /// Every f64 of a contact and of its generalized forces (both force applications) for the
 /// force pair F_N = 1000 N, F_T = −100 N.
 fn values(c: &RevoluteContact) -> Vec<f64> {
-    let mut v = vec![
-        c.eccentricity_vector.x,
-        c.eccentricity_vector.y,
-        c.eccentricity,
-        c.penetration,
-        c.normal.x,
-        c.normal.y,
-        c.tangent.x,
-        c.tangent.y,
-        c.bearing_point.x,
-        c.bearing_point.y,
-        c.journal_point.x,
-        c.journal_point.y,
-        c.normal_velocity,
-        c.tangential_velocity,
-        c.contact_angle(),
-    ];
+    let mut v = c.as_array().to_vec();
     for app in [
         ForceApplication::ContactPoints,
         ForceApplication::CommonPoint,
