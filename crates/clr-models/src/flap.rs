@@ -893,18 +893,30 @@ pub fn poincare_spread(
     Some(total / phases as f64 / clearance)
 }
 
+/// The flap angle error and angular-acceleration error (rad, rad/s²) of a run at its output
+/// times `t` (s) against the ideal run at `ti` (interpolated linearly).
+pub(crate) fn errors_against_ideal(
+    t: &[f64],
+    (a, al): (&[f64], &[f64]),
+    ti: &[f64],
+    (ai, ali): (&[f64], &[f64]),
+) -> (Vec<f64>, Vec<f64>) {
+    let err = (0..t.len())
+        .map(|r| a[r] - common::interp(ti, ai, t[r]))
+        .collect();
+    let aerr = (0..t.len())
+        .map(|r| al[r] - common::interp(ti, ali, t[r]))
+        .collect();
+    (err, aerr)
+}
+
 /// Metrics against the ideal run; appends `flap.error` and `flap.alpha_error`.
 fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
     let t = col(res, "t");
     let ti = col(ideal, "t");
     let (a, ai) = (col(res, "flap.angle"), col(ideal, "flap.angle"));
     let (al, ali) = (col(res, "flap.alpha"), col(ideal, "flap.alpha"));
-    let err: Vec<f64> = (0..t.len())
-        .map(|r| a[r] - common::interp(&ti, &ai, t[r]))
-        .collect();
-    let aerr: Vec<f64> = (0..t.len())
-        .map(|r| al[r] - common::interp(&ti, &ali, t[r]))
-        .collect();
+    let (err, aerr) = errors_against_ideal(&t, (&a, &al), &ti, (&ai, &ali));
     let t0 = p.transient;
     let mut m = vec![
         Metric::new(

@@ -16,6 +16,7 @@ pub mod error;
 pub mod flap;
 pub mod flap_flex;
 pub mod guide;
+pub mod lubrication_wear;
 pub mod manipulator;
 pub mod output;
 pub mod slider_crank;

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use crate::flap::{self, FlapParams};
-use crate::{dual_guide, flap_flex, guide, manipulator};
+use crate::{dual_guide, flap_flex, guide, lubrication_wear, manipulator};
 
 /// One built-in study.
 #[derive(Debug, Clone, Copy)]
@@ -101,6 +101,22 @@ pub fn studies() -> Vec<Study> {
             description:
                 "dual-stage dual guide at interguide spacings 50/100/200 mm (3 runs, ~10 s)",
             run: |dir| dual_guide::spacing_study(dir, &DUAL_GUIDE_SPACINGS).map(|r| r.len()),
+        },
+        Study {
+            name: "flap_lubricated",
+            model: "flap",
+            description: "rigid flap linkage, 0.1 mm in all four joints: dry against lubricated \
+                          (short bearing, 0.04 Pa·s), steady and reversing hinge load: 4 cases + 2 \
+                          ideal references (6 runs of 2.25 s, ~15 s)",
+            run: |dir| lubrication_wear::flap_lubricated(dir).map(|c| c.len()),
+        },
+        Study {
+            name: "wan_slider_crank_wear",
+            model: "wan_slider_crank",
+            description: "Wan slider-crank joint worn by Archard's law (K = 1e-5, H = 2 GPa, \
+                          N = 360): one steady-state cycle per update extrapolated by <= 1 um \
+                          per update up to 1e6 cycles (15 runs of 0.2 s, ~5 s)",
+            run: |dir| lubrication_wear::wan_slider_crank_wear(dir).map(|u| u.len()),
         },
     ]
 }

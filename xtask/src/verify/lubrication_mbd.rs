@@ -119,7 +119,10 @@ fn steady_load() -> Vec<Case> {
         Ok(o) if o.error.is_none() => {
             let ex = o.results.column("J.ex").unwrap_or_default();
             let ey = o.results.column("J.ey").unwrap_or_default();
-            let (x, y) = (*ex.last().unwrap_or(&f64::NAN), *ey.last().unwrap_or(&f64::NAN));
+            let (x, y) = (
+                *ex.last().unwrap_or(&f64::NAN),
+                *ey.last().unwrap_or(&f64::NAN),
+            );
             let e = x.hypot(y);
             let c = R_BEARING - R_JOURNAL;
             // attitude angle: between the load line (−y) and the line of centres

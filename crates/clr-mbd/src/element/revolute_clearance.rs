@@ -99,9 +99,13 @@ impl RevoluteClearance {
             LubricationModel::ShortBearing => clr_contact::lubrication::BearingModel::ShortBearing,
             LubricationModel::LongBearing => clr_contact::lubrication::BearingModel::LongBearing,
         };
-        let bearing =
-            clr_contact::lubrication::HydrodynamicBearing::for_joint(g, l.length, l.viscosity, model)
-                .map_err(at)?;
+        let bearing = clr_contact::lubrication::HydrodynamicBearing::for_joint(
+            g,
+            l.length,
+            l.viscosity,
+            model,
+        )
+        .map_err(at)?;
         let transition =
             clr_contact::lubrication::Transition::new(l.film_threshold, l.dry_threshold)
                 .map_err(at)?;
