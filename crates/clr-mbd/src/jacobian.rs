@@ -768,10 +768,7 @@ impl Model {
 /// A contact element with an analytic Jacobian: stateless friction, and for a slider on a
 /// beam no reverse-check samples (module docs).
 fn clearance_is_analytic(c: &Clearance) -> bool {
-    // the film force's Jacobian (clr-contact `HydrodynamicBearing::jacobian`) is not yet
-    // chained to the coordinates: lubricated joints take central differences
     c.lugre.is_none()
-        && c.film.is_none()
         && match &c.kind {
             ClearanceKind::FlexGuide(g) => g.detector.point_count() == g.detector.candidate_count(),
             // the analytic contact Jacobian is that of a circular bearing; a worn profile's

@@ -528,3 +528,58 @@ fn lugre_and_guide_samples_are_on_the_fallback() {
     assert!(m.contact_reports()[0].normal_force > 0.0);
     assert!(column_error(&a.dq, &f.dq, n).max(column_error(&a.dv, &f.dv, n)) < 1e-6);
 }
+
+/// A lubricated revolute clearance joint (short-bearing film + dry Hertz law): the analytic
+/// Newton-matrix block (film force through its exact local partials, chained by dual numbers;
+/// the dry laws weighted by w(h_min)) against central differences of the whole model, in the
+/// film regime, beyond the film threshold (force frozen in ε) and in contact.
+#[test]
+fn lubricated_revolute_jacobians_match_central_differences() {
+    let text = r#"
+[model]
+gravity = [0.0, -9.81]
+
+[[body]]
+name = "a"
+mass = 2.0
+inertia = 0.05
+
+[[body]]
+name = "b"
+mass = 1.0
+inertia = 0.02
+
+[[clearance]]
+name = "joint"
+type = "revolute"
+bearing = { body = "a", at = [0.2, 0.0] }
+journal = { body = "b", at = [-0.3, 0.0] }
+bearing_radius = 0.01
+journal_radius = 0.0095
+normal = { law = "hertz", stiffness = 2e10, restitution = 0.8, damping = "lankarani-nikravesh" }
+friction = { law = "coulomb", mu = 0.1, v_reg = 1e-3 }
+lubrication = { model = "short_bearing", viscosity = 0.05, length = 0.02, film_threshold = 2e-5, dry_threshold = -5e-6 }
+"#;
+    let table: toml::Table = text.parse().unwrap();
+    let desc = clr_mbd::ModelDesc::from_toml_table(table).unwrap();
+    let c = 0.5e-3;
+    // eccentricities: film regime (ε = 0.6), frozen film (h_min = 1e-5 < h_t), in contact
+    // inside the fade-in of the dry law (δ = 2 µm < |h_d|)
+    for e in [0.6 * c, c - 1e-5, c + 2e-6] {
+        let mut m = desc.compile().unwrap();
+        let (ra, tha) = ([0.1, -0.05], 0.3f64);
+        let beta = 0.7f64;
+        let pa = [ra[0] + 0.2 * tha.cos(), ra[1] + 0.2 * tha.sin()];
+        let pj = [pa[0] + e * beta.cos(), pa[1] + e * beta.sin()];
+        let thb = -0.4f64;
+        let rb = [pj[0] + 0.3 * thb.cos(), pj[1] + 0.3 * thb.sin()];
+        let q = [ra[0], ra[1], tha, rb[0], rb[1], thb];
+        let qd = [0.4, -0.2, 1.5, 0.3, 0.1, 40.0];
+        let (a, _, err) = compare(&mut m, 0.0, &q, &qd);
+        assert!(a.fallback.is_empty(), "{:?}", a.fallback);
+        assert!(
+            err < TOL,
+            "e = {e:e} m: analytic vs central differences {err:e}"
+        );
+    }
+}

@@ -105,6 +105,11 @@ pub(super) fn revolute(
 ) {
     let bi = DBody::<N>::seed(si, Some(0));
     let bj = DBody::<N>::seed(sj, Some(6));
+    // a lubricated joint: the film force, then the dry laws weighted by w(h_min)
+    let weight = cl
+        .film
+        .as_ref()
+        .map(|film| film_force(cl, film, g, [si, sj], [&bi, &bj], out));
     let pi = bi.point(g.bearing_centre());
     let pj = bj.point(g.journal_centre());
     let e = pj - pi;
@@ -122,7 +127,10 @@ pub(super) fn revolute(
     let (vn, vt) = (v.dot(n), v.dot(t));
     let vm = memory.impact_velocity(cl.mem, delta.v, vn.v);
     let (f_n, f_t, _) = law_forces(&cl.normal, &cl.friction, [delta, vn, vt], vm);
-    let fj = n.scale(-f_n) + t.scale(f_t);
+    let mut fj = n.scale(-f_n) + t.scale(f_t);
+    if let Some(w) = weight {
+        fj = fj.scale(w);
+    }
     let (ai, aj) = match application {
         ForceApplication::ContactPoints => (qi, qj),
         ForceApplication::CommonPoint => {
@@ -133,6 +141,72 @@ pub(super) fn revolute(
     let seeds = [(cl.i, 0), (cl.j, 6)];
     out.add_frame(cl.i, &[-fj.x, -fj.y, (ai - bi.r).cross(-fj)], &seeds);
     out.add_frame(cl.j, &[fj.x, fj.y, (aj - bj.r).cross(fj)], &seeds);
+}
+
+/// The oil film of a lubricated revolute joint (clr-contact `HydrodynamicBearing`, the same
+/// kinematics as `HydrodynamicBearing::kinematics`): ε = |e|/c, ε̇ = ė·n/c, γ̇ = (ė·t)/|e|,
+/// Ω = ω_i + ω_j − 2γ̇, carried as dual numbers; the film force F(ε, ε̇, Ω) enters through its
+/// exact local partials (`HydrodynamicBearing::film_force`: the ε column is zero where the
+/// force is frozen beyond ε_t), F = F_r n + F_t t on the journal at its centre and −F on the
+/// bearing on the same line. Returns the dry laws' weight w(h_min) as a dual number.
+fn film_force(
+    cl: &Clearance,
+    film: &crate::clearance::Film,
+    g: &RevoluteClearance,
+    [si, sj]: [&BodyState; 2],
+    [bi, bj]: [&DBody<N>; 2],
+    out: &mut Out,
+) -> D<N> {
+    let c = film.bearing.clearance();
+    let pi = bi.point(g.bearing_centre());
+    let pj = bj.point(g.journal_centre());
+    let e = pj - pi;
+    let len = e.norm();
+    let h_min = -len + c;
+    let tr = &film.transition;
+    let weight = variation(h_min) * tr.dry_weight_derivative(h_min.v) + tr.dry_weight(h_min.v);
+    // at coincident centres the line of centres (and γ̇) is undefined: the force is that of
+    // clr-contact's evaluation, its derivatives there are left out (a simplified Newton matrix)
+    if !(len.v > f64::MIN_POSITIVE && len.v.is_finite()) {
+        return weight;
+    }
+    let n = e.scale(D::cst(1.0) / len);
+    let t = n.perp();
+    let e_dot = bj.point_velocity(pj) - bi.point_velocity(pi);
+    let eps = len * (1.0 / c);
+    let rate = e_dot.dot(n) * (1.0 / c);
+    let omega = bi.w + bj.w - (e_dot.dot(t) / len) * 2.0;
+    // the force and its local partials at this state, as the right-hand side evaluates them
+    let kin = film
+        .bearing
+        .kinematics(g.bearing_centre(), g.journal_centre(), si, sj);
+    let (f, jac, _) = film.bearing.film_force(&kin, tr);
+    let comp = |v: f64, de: f64, dr: f64, dw: f64| {
+        variation(eps) * de + variation(rate) * dr + variation(omega) * dw + v
+    };
+    let fr = comp(
+        f.radial,
+        jac.d_eccentricity_ratio.radial,
+        jac.d_eccentricity_rate.radial,
+        jac.d_wedge_speed.radial,
+    );
+    let ft = comp(
+        f.tangential,
+        jac.d_eccentricity_ratio.tangential,
+        jac.d_eccentricity_rate.tangential,
+        jac.d_wedge_speed.tangential,
+    );
+    let fj = n.scale(fr) + t.scale(ft);
+    let seeds = [(cl.i, 0), (cl.j, 6)];
+    out.add_frame(cl.i, &[-fj.x, -fj.y, (pj - bi.r).cross(-fj)], &seeds);
+    out.add_frame(cl.j, &[fj.x, fj.y, (pj - bj.r).cross(fj)], &seeds);
+    weight
+}
+
+/// The derivative part of `x` (value 0): `variation(x) * k + v` is the first-order expansion
+/// v + k·dx of a function whose partial with respect to x is k.
+fn variation(x: D<N>) -> D<N> {
+    x + -x.v
 }
 
 /// Translational clearance joint: slider (frame j) between the faces y = ±W/2 of the guide
