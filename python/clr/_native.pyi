@@ -54,6 +54,19 @@ class FrictionLawCore:
     @property
     def mu_max(self) -> float: ...
 
+class FilmLawCore:
+    def __init__(
+        self,
+        bearing_radius: float,
+        journal_radius: float,
+        length: float,
+        viscosity: float,
+        model: str,
+    ) -> None: ...
+    def force(
+        self, eps: _F64, eps_dot: _F64, gamma_dot: _F64, omega_sum: _F64
+    ) -> Tuple[_F64, _F64]: ...
+
 class RevoluteJointCore:
     def __init__(
         self,

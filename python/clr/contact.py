@@ -33,6 +33,7 @@ __all__ = [
     "NormalLaw",
     "FrictionLaw",
     "RevoluteJoint",
+    "FilmLaw",
     "damping_chi",
     "effective_restitution",
     "damping_names",
@@ -187,6 +188,38 @@ class FrictionLaw:
 
     def __repr__(self) -> str:
         return f"FrictionLaw({self.kind!r})"
+
+
+class FilmLaw:
+    """The oil film of a lubricated journal bearing (docs/lubrication.md): the hydrodynamic
+    force on the journal from the closed-form solutions of the Reynolds equation, ``model``
+    ``"short"`` (Ocvirk) or ``"long"`` (Sommerfeld), half-Sommerfeld cavitation, wedge and
+    squeeze terms. Radii and length in m, viscosity in Pa·s.
+    """
+
+    __slots__ = ("_core", "model")
+
+    def __init__(self, bearing_radius: float, journal_radius: float, length: float,
+                 viscosity: float, model: str = "short"):
+        self._core = _native.FilmLawCore(float(bearing_radius), float(journal_radius),
+                                         float(length), float(viscosity), model)
+        self.model = model
+
+    def force(self, eps, eps_dot, gamma_dot, omega_sum):
+        """(F_r, F_t) in N on the journal in the frame of the line of centres (F_r < 0 pushes
+        it back to the bearing centre) for the eccentricity ratio ε ∈ [0, 1), its rate ε̇
+        (1/s), the line of centres' angular velocity γ̇ (rad/s) and ω_i + ω_j (rad/s),
+        broadcast elementwise."""
+        arrays = np.broadcast_arrays(*[np.asarray(a, dtype=np.float64)
+                                       for a in (eps, eps_dot, gamma_dot, omega_sum)])
+        shape = arrays[0].shape
+        fr, ft = self._core.force(*[np.ascontiguousarray(a).ravel() for a in arrays])
+        if shape == ():
+            return float(fr[0]), float(ft[0])
+        return fr.reshape(shape), ft.reshape(shape)
+
+    def __repr__(self) -> str:
+        return f"FilmLaw({self.model!r})"
 
 
 class RevoluteJoint:

@@ -257,6 +257,88 @@ impl FrictionLawCore {
     }
 }
 
+/// Two float64 arrays (radial, tangential).
+type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
+
+/// The oil film of a lubricated journal bearing (clr-contact `HydrodynamicBearing`).
+#[pyclass(frozen, module = "clr._native")]
+struct FilmLawCore {
+    bearing: clr_contact::lubrication::HydrodynamicBearing,
+}
+
+#[pymethods]
+impl FilmLawCore {
+    /// Bearing radius R, journal radius r, axial length L (m), viscosity μ (Pa·s) and the model
+    /// `short` or `long`.
+    #[new]
+    fn new(
+        bearing_radius: f64,
+        journal_radius: f64,
+        length: f64,
+        viscosity: f64,
+        model: &str,
+    ) -> PyResult<Self> {
+        use clr_contact::lubrication::BearingModel;
+        let model = match model {
+            "short" | "short_bearing" => BearingModel::ShortBearing,
+            "long" | "long_bearing" => BearingModel::LongBearing,
+            other => {
+                return Err(contact_error(
+                    "model",
+                    &format!("unknown bearing model `{other}`; valid: short, long"),
+                ))
+            }
+        };
+        let bearing = clr_contact::lubrication::HydrodynamicBearing::new(
+            bearing_radius,
+            journal_radius,
+            length,
+            viscosity,
+            model,
+        )
+        .map_err(err)?;
+        Ok(Self { bearing })
+    }
+
+    /// Radial and tangential film force on the journal (N) elementwise for equal-length arrays
+    /// ε ∈ [0, 1) (–), ε̇ (1/s), γ̇ (rad/s) and ω_i + ω_j (rad/s).
+    fn force<'py>(
+        &self,
+        py: Python<'py>,
+        eps: PyReadonlyArray1<'py, f64>,
+        eps_dot: PyReadonlyArray1<'py, f64>,
+        gamma_dot: PyReadonlyArray1<'py, f64>,
+        omega_sum: PyReadonlyArray1<'py, f64>,
+    ) -> PyResult<ArrayPair<'py>> {
+        let e = finite_slice("eps", &eps)?;
+        let r = finite_slice("eps_dot", &eps_dot)?;
+        let g = finite_slice("gamma_dot", &gamma_dot)?;
+        let w = finite_slice("omega_sum", &omega_sum)?;
+        let n = same_length(&[
+            ("eps", e.len()),
+            ("eps_dot", r.len()),
+            ("gamma_dot", g.len()),
+            ("omega_sum", w.len()),
+        ])?;
+        if let Some(i) = e.iter().position(|x| !(0.0..1.0).contains(x)) {
+            return Err(contact_error(
+                &format!("eps[{i}]"),
+                &format!(
+                    "ε = {} must be in [0, 1): the journal touches the bearing at ε = 1",
+                    e[i]
+                ),
+            ));
+        }
+        let (mut fr, mut ft) = (Vec::with_capacity(n), Vec::with_capacity(n));
+        for k in 0..n {
+            let f = self.bearing.force(e[k], r[k], g[k], w[k]);
+            fr.push(f.radial);
+            ft.push(f.tangential);
+        }
+        Ok((fr.into_pyarray(py), ft.into_pyarray(py)))
+    }
+}
+
 /// A planar revolute clearance joint (journal in bearing).
 #[pyclass(frozen, module = "clr._native")]
 struct RevoluteJointCore {
@@ -460,6 +542,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NormalLawCore>()?;
     m.add_class::<FrictionLawCore>()?;
     m.add_class::<RevoluteJointCore>()?;
+    m.add_class::<FilmLawCore>()?;
     m.add_function(wrap_pyfunction!(damping_chi, m)?)?;
     m.add_function(wrap_pyfunction!(effective_restitution_py, m)?)?;
     m.add_function(wrap_pyfunction!(damping_names, m)?)?;
