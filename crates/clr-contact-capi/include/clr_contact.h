@@ -46,6 +46,16 @@ typedef enum ClrStatus {
   CLR_STATUS_BUFFER_TOO_SMALL = 11,
 } ClrStatus;
 
+// Opaque handle of Archard's wear law V = K F_N s / H (Archard 1953) with the Hertz line
+// contact that spreads the load over the bearing (Johnson 1985, §4.3). Immutable: may be shared
+// between threads.
+typedef struct ClrArchardWear ClrArchardWear;
+
+// Opaque handle of a worn bearing profile: radial wear depth h_w(φ) ≥ 0 (m) at N ≥ 8 equally
+// spaced angles φ_k = 2πk/N (rad) of the bearing body frame, interpolated by a periodic
+// shape-preserving C¹ cubic (docs/wear.md).
+typedef struct ClrBearingProfile ClrBearingProfile;
+
 // Opaque handle of a stateless friction law F_T = μ(v_T) F_N.
 typedef struct ClrFrictionLaw ClrFrictionLaw;
 
@@ -280,6 +290,10 @@ typedef struct ClrMultipointContact {
   double tangential_force;
 } ClrMultipointContact;
 
+// Code of the contact-pressure distribution of `clr_archard_wear_new` (one of the
+// `CLR_PRESSURE_*` constants).
+typedef uint32_t ClrPressureKind;
+
 // Hertz F = K δ^1.5 with a given K. Parameters: K (N/m^1.5).
 #define CLR_ELASTIC_HERTZ 0
 
@@ -397,6 +411,12 @@ typedef struct ClrMultipointContact {
 // A guide sample of the reverse check; `index` is the sample 0..M−1. Guide samples move with the
 // slider, so the impact velocity kept for their id is only approximate.
 #define CLR_POINT_SOURCE_GUIDE_SAMPLE 2
+
+// Hertz semi-ellipse p(x) = p₀ √(1 − x²/a²), p₀ = 2F_N/(π a L) (Johnson 1985, §4.3).
+#define CLR_PRESSURE_HERTZ 0
+
+// Uniform mean pressure F_N/(2 a L) over the Hertz half-width a.
+#define CLR_PRESSURE_UNIFORM 1
 
 #ifdef __cplusplus
 extern "C" {
@@ -903,6 +923,159 @@ enum ClrStatus clr_multipoint_joint_reset(struct ClrMultipointJoint *joint);
 // `joint` is NULL or a handle from `clr_multipoint_joint_new_straight` or
 // `clr_multipoint_joint_new_sine` not freed yet.
 void clr_multipoint_joint_free(struct ClrMultipointJoint *joint);
+
+// Create a bearing profile from the wear depths h_k (m, finite, ≥ 0) at the `n` angles
+// φ_k = 2πk/`n` (rad, k = 0 … n − 1) of the bearing body frame, measured about the bearing
+// centre from the body's x axis, counter-clockwise. `n` must be at least 8 (choose 2π/n well
+// below the contact half-angle a/R_i: typically n = 360 to 3600). The depths are copied. An
+// all-zero profile is the circular (unworn) bearing. On success `*out` receives a handle to
+// free with `clr_bearing_profile_free`.
+//
+// # Errors
+// `CLR_STATUS_NULL_POINTER` for a NULL `depths` with `n` > 0 or a NULL `out`;
+// `CLR_STATUS_INVALID_PARAMETER` for `n` < 8 or a negative or non-finite depth.
+//
+// # Safety
+// `depths` is NULL or points to `n` readable doubles; `out` is NULL or writable.
+enum ClrStatus clr_bearing_profile_new(const double *depths,
+                                       uintptr_t n,
+                                       struct ClrBearingProfile **out);
+
+// Wear depth h_w(φ) (m) of the interpolated profile at the bearing-frame angle φ (rad, any
+// finite value; periodic with period 2π). Equals h_k at φ_k. Allocates nothing.
+//
+// # Safety
+// `profile` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_bearing_profile_depth_at(const struct ClrBearingProfile *profile,
+                                            double phi,
+                                            double *out);
+
+// Largest wear depth max_k h_k (m), also the largest depth of the interpolant.
+//
+// # Safety
+// `profile` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_bearing_profile_max_depth(const struct ClrBearingProfile *profile, double *out);
+
+// Worn volume V = L R_i (2π/N) Σ h_k (m³) of a bearing of radius R_i (m) and axial length L
+// (m): the thin-layer volume of the interpolated profile (exact for the interpolant), first
+// order in h/R_i like Archard's law (docs/wear.md).
+//
+// # Safety
+// `profile` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_bearing_profile_worn_volume(const struct ClrBearingProfile *profile,
+                                               double bearing_radius,
+                                               double length,
+                                               double *out);
+
+// Copy the N knot depths h_k (m, at φ_k = 2πk/N) into `buf`, which has room for `capacity`
+// doubles, and write N to `*count`. When `capacity` < N nothing is copied, `*count` receives N
+// and the status is `CLR_STATUS_BUFFER_TOO_SMALL`; `buf` may be NULL when `capacity` is 0 (a
+// query of N). Allocates nothing.
+//
+// # Safety
+// `profile` is NULL or a live handle; `buf` is NULL or points to `capacity` writable doubles;
+// `count` is NULL or writable.
+enum ClrStatus clr_bearing_profile_depths(const struct ClrBearingProfile *profile,
+                                          double *buf,
+                                          uintptr_t capacity,
+                                          uintptr_t *count);
+
+// Free a bearing profile. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `profile` is NULL or a handle from `clr_bearing_profile_new` not freed yet.
+void clr_bearing_profile_free(struct ClrBearingProfile *profile);
+
+// Create Archard's wear law V = K F_N s / H (Archard 1953) for the bearing of a revolute
+// clearance joint: wear coefficient K (–, in (0, 1]; typically 1e-6…1e-4 for steel on steel),
+// hardness H of the bearing material (Pa, ≥ 1e6: give Pa, not GPa or HV), and the Hertz line
+// contact of the journal in the bearing that spreads the load (Johnson 1985, §4.3): bearing
+// radius R_i and journal radius R_j (m, R_i > R_j > 0), axial contact length L (m, > 0) and
+// composite modulus E* = 1/(σ_i + σ_j) (Pa, σ_k = (1 − ν_k²)/E_k). `pressure_kind` is
+// `CLR_PRESSURE_HERTZ` (semi-ellipse, half-width a = √(4 F_N R/(π L E*)),
+// R = R_i R_j/(R_i − R_j)) or `CLR_PRESSURE_UNIFORM` (mean pressure F_N/(2aL) over the same
+// width). On success `*out` receives a handle to free with `clr_archard_wear_free`.
+//
+// # Errors
+// `CLR_STATUS_INVALID_PARAMETER` for K ∉ (0, 1], H < 1e6 Pa, a non-positive or non-finite
+// length, radius or modulus, or R_j ≥ R_i; `CLR_STATUS_INVALID_ARGUMENT` for an unknown
+// `pressure_kind`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_archard_wear_new(double wear_coefficient,
+                                    double hardness,
+                                    double bearing_radius,
+                                    double journal_radius,
+                                    double length,
+                                    double composite_modulus,
+                                    ClrPressureKind pressure_kind,
+                                    struct ClrArchardWear **out);
+
+// Accumulate the wear of one contact into `profile` in place and write the worn volume
+// V = K F_N ds / H (m³) to `*worn_volume`: normal force F_N (N, ≥ 0) sliding over the distance
+// ds = |v_T| dt (m, ≥ 0) at the bearing-frame contact angle φ_c (rad; from
+// `clr_revolute_joint_contact_angle`). V is spread over the profile bins that meet the contact
+// arc |φ − φ_c| ≤ a/R_i in proportion to the exact integral of the pressure over each bin
+// (Δh_k = V w_k/(L R_i Δφ), Σ w_k = 1), so the profile's worn volume
+// (`clr_bearing_profile_worn_volume` with the law's R_i and L) grows by exactly V. Allocates
+// nothing.
+//
+// # Errors
+// `CLR_STATUS_NON_FINITE` for a non-finite φ_c, F_N or ds; `CLR_STATUS_INVALID_PARAMETER` for a
+// negative F_N or ds; `CLR_STATUS_OUT_OF_VALIDITY` when the Hertz half-angle a/R_i exceeds π/2.
+// The profile is unchanged on any error.
+//
+// # Safety
+// `law` is NULL or a live handle; `profile` is NULL or a live handle not used by another thread
+// during the call; `worn_volume` is NULL or writable.
+enum ClrStatus clr_archard_wear_accumulate(const struct ClrArchardWear *law,
+                                           struct ClrBearingProfile *profile,
+                                           double contact_angle,
+                                           double normal_force,
+                                           double sliding_distance,
+                                           double *worn_volume);
+
+// Free a wear law. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `law` is NULL or a handle from `clr_archard_wear_new` not freed yet.
+void clr_archard_wear_free(struct ClrArchardWear *law);
+
+// Create a planar revolute clearance joint with a worn bearing: as `clr_revolute_joint_new`
+// (radii R_i > R_j > 0 in m, local coordinates in m of the bearing centre on body i and of the
+// journal centre on body j), with the bearing surface ρ(φ) = R_i + h_w(φ) of `profile` (φ in
+// the bearing body frame about the bearing centre). The contact is the point of the worn
+// surface nearest to the journal centre (docs/wear.md); an all-zero profile gives the forces of
+// the circular joint bit for bit. The profile is copied: later changes to `profile` do not
+// affect the joint. Evaluate it with `clr_revolute_joint_forces` and free it with
+// `clr_revolute_joint_free`.
+//
+// # Safety
+// `profile` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_revolute_joint_new_worn(double bearing_radius,
+                                           double journal_radius,
+                                           double bearing_centre_x,
+                                           double bearing_centre_y,
+                                           double journal_centre_x,
+                                           double journal_centre_y,
+                                           const struct ClrBearingProfile *profile,
+                                           struct ClrRevoluteJoint **out);
+
+// Contact angle φ_c (rad, in [0, 2π)) of a revolute joint in the bearing body frame: the
+// direction of the bearing contact point from the bearing centre, measured from the bearing
+// body's x axis (the direction of the eccentricity for a circular bearing; the nearest point of
+// the worn surface for a joint of `clr_revolute_joint_new_worn`). This is the angle to give
+// `clr_archard_wear_accumulate`. Defined whether or not the joint is in contact. Allocates
+// nothing.
+//
+// # Safety
+// `joint` is NULL or a live handle; `bearing`, `journal` are NULL or point to `ClrBodyState`;
+// `out` is NULL or writable.
+enum ClrStatus clr_revolute_joint_contact_angle(const struct ClrRevoluteJoint *joint,
+                                                const struct ClrBodyState *bearing,
+                                                const struct ClrBodyState *journal,
+                                                double *out);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -32,6 +32,7 @@ pub mod lubrication;
 pub mod model;
 pub mod multipoint;
 pub mod spec;
+pub mod wear;
 
 // The multipoint case and its clr-contact reference values, shared with tests/c_program.rs.
 #[cfg(test)]
@@ -43,3 +44,4 @@ pub use ffi::*;
 pub use lubrication::*;
 pub use model::*;
 pub use multipoint::*;
+pub use wear::*;
