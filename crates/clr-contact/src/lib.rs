@@ -25,6 +25,7 @@ pub mod body;
 pub mod memory;
 pub mod multipoint;
 pub mod revolute;
+pub mod shapes;
 pub mod translational;
 pub mod wear;
 
@@ -36,6 +37,7 @@ pub use multipoint::{
     ContactClass, GuideSurface, MultipointDetector, SineGuide, SliderShape, StraightGuide,
 };
 pub use revolute::{ForceApplication, RevoluteClearance, RevoluteContact};
+pub use shapes::{contact_points, ContactShape, Shape, ShapeContactPoint, ShapeContactWorkspace};
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
 pub use wear::{ArchardWear, BearingProfile, LineContact, PressureDistribution};
 
