@@ -345,6 +345,7 @@ fn derived(desc: &ModelDesc) -> serde_json::Value {
             Clearance::Revolute(r) => (&r.normal, Some((r.bearing_radius, r.journal_radius))),
             Clearance::Translational(t) => (&t.normal, None),
             Clearance::SliderOnBeam(s) => (&s.normal, None),
+            Clearance::Contact(s) => (&s.normal, None),
         };
         let name = c.name();
         let Ok(law) = normal.build(&format!("{name}.normal"), radii) else {

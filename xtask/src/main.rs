@@ -66,7 +66,7 @@ pub fn command_without_arguments(
 
 const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS] | octave | report-check>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
-  bench    benchmarks against peers (groups: ode, mbd, beam); writes target/bench/<group>.json
+  bench    benchmarks against peers (groups: ode, mbd, beam, shapes); writes target/bench/<group>.json
   figures  regenerate docs/figures/
   fuzz     fuzz the model files and the C ABI (--cases N, --seed S, --threads T; --help for all);
            writes target/fuzz/report.md and target/fuzz/findings/

@@ -22,6 +22,7 @@ pub mod restitution;
 
 // Geometry, kinematics and contact state.
 pub mod body;
+pub mod gears;
 pub mod memory;
 pub mod multipoint;
 pub mod revolute;
@@ -32,12 +33,16 @@ pub mod wear;
 pub use error::ContactError;
 
 pub use body::{BodyState, GeneralizedForce};
+pub use gears::InvoluteGear;
 pub use memory::ContactMemory;
 pub use multipoint::{
     ContactClass, GuideSurface, MultipointDetector, SineGuide, SliderShape, StraightGuide,
 };
 pub use revolute::{ForceApplication, RevoluteClearance, RevoluteContact};
-pub use shapes::{contact_points, ContactShape, Shape, ShapeContactPoint, ShapeContactWorkspace};
+pub use shapes::{
+    boxes_gap, boxes_overlap, contact_points, shape_distance, ContactShape, Feature, Shape,
+    ShapeContactPoint, ShapeContactWorkspace,
+};
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
 pub use wear::{ArchardWear, BearingProfile, LineContact, PressureDistribution};
 

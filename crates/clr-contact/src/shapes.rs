@@ -392,6 +392,54 @@ impl ContactShape {
     pub fn desc(&self) -> &Shape {
         &self.desc
     }
+
+    /// Axis-aligned bounding box of the shape at `pose` (position and angle used), world frame,
+    /// m: `[x_min, y_min, x_max, y_max]`. O(1) for every kind: parry transforms the local box
+    /// of composite shapes (polylines, compounds) instead of visiting their parts, so the box
+    /// of a rotated composite shape is loose.
+    pub fn aabb(&self, pose: &BodyState) -> [f64; 4] {
+        let p = Pose::new(Vector::new(pose.position.x, pose.position.y), pose.angle);
+        let b = self.parry.compute_aabb(&p);
+        [b.mins.x, b.mins.y, b.maxs.x, b.maxs.y]
+    }
+
+    /// Radius of the smallest circle about the body reference point that holds the shape, m.
+    pub fn bounding_radius(&self) -> f64 {
+        let b = self.parry.compute_local_aabb();
+        b.mins.abs().max(b.maxs.abs()).length()
+    }
+}
+
+/// Distance between two boxes `[x_min, y_min, x_max, y_max]`, m (0 when they overlap): a lower
+/// bound of the distance between the shapes they hold.
+pub fn boxes_gap(a: &[f64; 4], b: &[f64; 4]) -> f64 {
+    let dx = (b[0] - a[2]).max(a[0] - b[2]).max(0.0);
+    let dy = (b[1] - a[3]).max(a[1] - b[3]).max(0.0);
+    dx.hypot(dy)
+}
+
+/// Distance between shape A at `pose_a` and shape B at `pose_b`, m (0 when they touch or
+/// overlap; parry's `distance` query, exact for convex shapes and for composite shapes part by
+/// part).
+///
+/// # Errors
+/// A non-finite pose, or a pair parry has no query for.
+pub fn shape_distance(
+    a: &ContactShape,
+    pose_a: &BodyState,
+    b: &ContactShape,
+    pose_b: &BodyState,
+) -> Result<f64, ContactError> {
+    let (pa, pb) = (pose_of(pose_a)?, pose_of(pose_b)?);
+    query::distance(&pa, &*a.parry, &pb, &*b.parry)
+        .map(|d| d.distance)
+        .map_err(|_| unsupported(a, b))
+}
+
+/// True when two boxes `[x_min, y_min, x_max, y_max]` (m) overlap once each is grown by
+/// `margin` m (the broad phase of a shape pair: nothing within `margin` when false).
+pub fn boxes_overlap(a: &[f64; 4], b: &[f64; 4], margin: f64) -> bool {
+    a[0] - margin <= b[2] && b[0] - margin <= a[2] && a[1] - margin <= b[3] && b[1] - margin <= a[3]
 }
 
 /// One contact point between shapes A and B, world frame, SI units.
@@ -410,6 +458,42 @@ pub struct ShapeContactPoint {
     pub part_a: u32,
     /// Index of the part of B (compound part or polyline segment); 0 for a convex shape.
     pub part_b: u32,
+    /// The feature of A that carries the point (a face or a vertex of its core).
+    pub feature_a: Feature,
+    /// The feature of B that carries the point.
+    pub feature_b: Feature,
+    /// Rounding radius of A's part at the point, m: the ball or capsule radius, 0 for polygons
+    /// and polylines. A's core feature lies at `point_a − radius_a · normal`.
+    pub radius_a: f64,
+    /// Rounding radius of B's part at the point, m; B's core feature lies at
+    /// `point_b + radius_b · normal`.
+    pub radius_b: f64,
+}
+
+/// The feature of a shape's core that carries a contact point. A force element uses it to move
+/// the normal with the right body: a vertex pressed into a face keeps the face's normal (the
+/// normal turns with the body of the face), two rounded vertices (balls) keep the line of their
+/// centres.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Feature {
+    /// A straight side (polygon edge, polyline segment, capsule core segment).
+    Face,
+    /// A corner, or the centre of a ball (a vertex of zero or positive `radius`).
+    Vertex,
+    /// parry did not identify it.
+    Unknown,
+}
+
+impl Feature {
+    fn from_parry(f: parry2d_f64::shape::PackedFeatureId) -> Self {
+        if f.is_face() {
+            Self::Face
+        } else if f.is_vertex() {
+            Self::Vertex
+        } else {
+            Self::Unknown
+        }
+    }
 }
 
 /// Reusable buffers of [`contact_points`] (parry's contact manifolds and workspace, and the
@@ -496,6 +580,14 @@ pub fn contact_points<'w>(
         let c = query::contact(&pa, &*a.parry, &pb, &*b.parry, prediction)
             .map_err(|_| unsupported(a, b))?;
         if let Some(c) = c {
+            // the ball is a rounded vertex at its centre; the other shape is whatever carries
+            // the closest point (parry's `contact` does not say): a face unless it is a ball too
+            let side = |s: &Shape| match s {
+                Shape::Ball { radius } => (Feature::Vertex, *radius),
+                Shape::Capsule { radius, .. } => (Feature::Unknown, *radius),
+                _ => (Feature::Unknown, 0.0),
+            };
+            let ((feature_a, radius_a), (feature_b, radius_b)) = (side(&a.desc), side(&b.desc));
             workspace.points.push(ShapeContactPoint {
                 depth: -c.dist,
                 normal: nv(c.normal1),
@@ -503,6 +595,10 @@ pub fn contact_points<'w>(
                 point_b: nv(c.point2),
                 part_a: 0,
                 part_b: 0,
+                feature_a,
+                feature_b,
+                radius_a,
+                radius_b,
             });
         }
         return Ok(&workspace.points);
@@ -536,6 +632,8 @@ pub fn contact_points<'w>(
         let fa = sub1.map_or(pa, |s| pa * s);
         let fb = sub2.map_or(pb, |s| pb * s);
         let normal = nv(fa.rotation * m.local_n1);
+        let radius_a = part_radius(&a.desc, m.subshape1);
+        let radius_b = part_radius(&b.desc, m.subshape2);
         for p in &m.points {
             // parry's polygon clipping keeps both face points even when one lies beyond the
             // prediction distance; report only those within it.
@@ -549,10 +647,25 @@ pub fn contact_points<'w>(
                 point_b: nv(fb * p.local_p2),
                 part_a: m.subshape1,
                 part_b: m.subshape2,
+                feature_a: Feature::from_parry(p.fid1),
+                feature_b: Feature::from_parry(p.fid2),
+                radius_a,
+                radius_b,
             });
         }
     }
     Ok(&workspace.points)
+}
+
+/// The rounding radius of part `k` of a shape (m): ball and capsule radii, else 0.
+fn part_radius(s: &Shape, k: u32) -> f64 {
+    match s {
+        Shape::Ball { radius } | Shape::Capsule { radius, .. } => *radius,
+        Shape::Compound { parts } => parts
+            .get(k as usize)
+            .map_or(0.0, |(_, p)| part_radius(p, 0)),
+        _ => 0.0,
+    }
 }
 
 fn unsupported(a: &ContactShape, b: &ContactShape) -> ContactError {

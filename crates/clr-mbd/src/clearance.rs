@@ -150,6 +150,8 @@ pub(crate) enum ClearanceKind {
     /// Slider (body j) on a flexible beam face; `i` is the ground (ground-fixed beam) or the
     /// floating body's frame.
     FlexGuide(Box<FlexGuide>),
+    /// Two shapes in contact: shape A on frame i, shape B on frame j.
+    Shapes(Box<crate::shape_pair::ShapePair>),
 }
 
 pub(crate) struct Clearance {
@@ -193,7 +195,9 @@ pub struct ContactReport {
     /// a translational one).
     pub active_points: usize,
     /// Revolute: journal centre relative to the bearing centre in the bearing body's frame;
-    /// translational: slider reference point in the guide frame, m.
+    /// translational: slider reference point in the guide frame; shape contact: the deepest
+    /// point on shape A within the prediction distance in the world frame (0 when there is
+    /// none), m.
     pub eccentricity: [f64; 2],
     /// Resultant of the oil film's pressure on the journal, N (lubricated joints; else 0).
     pub film_force: f64,
@@ -215,6 +219,7 @@ impl Clearance {
             ClearanceKind::Revolute(..) => 1,
             ClearanceKind::Translational { .. } => 4,
             ClearanceKind::FlexGuide(g) => g.detector.point_count(),
+            ClearanceKind::Shapes(p) => p.settings.max_points,
         }
     }
 
@@ -222,6 +227,8 @@ impl Clearance {
     pub(crate) fn event_points(&self) -> usize {
         match &self.kind {
             ClearanceKind::FlexGuide(_) => 0,
+            // one per pair: its deepest point (a continuous function of the state)
+            ClearanceKind::Shapes(_) => 1,
             _ => self.points(),
         }
     }
@@ -249,6 +256,8 @@ impl Clearance {
             }
             // per-candidate gaps are inside the detector; only active points are known
             ClearanceKind::FlexGuide(_) => (-1.0, 0.0),
+            // the pair's deepest point (its rate is in the report)
+            ClearanceKind::Shapes(p) => (p.max_depth(bi, bj), 0.0),
         }
     }
 
@@ -324,6 +333,13 @@ impl Clearance {
             }
             // handled by apply_flex (it needs the beam coordinates)
             ClearanceKind::FlexGuide(_) => {}
+            ClearanceKind::Shapes(p) => {
+                let (i, j) = (self.i, self.j);
+                let laws = (&self.normal, &self.friction);
+                p.apply([bi, bj], laws, self.mem, memory, &mut rep, |side, g| {
+                    add(if side == 0 { i } else { j }, g)
+                });
+            }
         }
         rep
     }
@@ -546,8 +562,44 @@ impl Clearance {
         }
     }
 
+    /// The report of a shape pair the broad phase found apart.
+    pub(crate) fn apart_report(&self) -> ContactReport {
+        match &self.kind {
+            ClearanceKind::Shapes(p) => p.apart_report(),
+            _ => ContactReport::default(),
+        }
+    }
+
+    /// Commit the memory of a shape pair the broad phase found apart.
+    pub(crate) fn commit_apart(&mut self, memory: &mut ContactMemory) {
+        let mem = self.mem;
+        if let ClearanceKind::Shapes(p) = &mut self.kind {
+            p.commit_apart(mem, memory);
+        }
+    }
+
+    /// Commit the memory of a shape pair at an accepted state (`false` for other kinds).
+    pub(crate) fn commit_shapes(
+        &mut self,
+        bi: &BodyState,
+        bj: &BodyState,
+        memory: &mut ContactMemory,
+    ) -> bool {
+        let mem = self.mem;
+        match &mut self.kind {
+            ClearanceKind::Shapes(p) => {
+                p.commit(bi, bj, mem, memory);
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// Elastic energy ∫F_e dδ summed over the contact points, J.
     pub(crate) fn elastic_energy(&self, bi: &BodyState, bj: &BodyState) -> f64 {
+        if let ClearanceKind::Shapes(p) = &self.kind {
+            return p.elastic_energy(bi, bj, |d| elastic_energy(&self.normal, d));
+        }
         if let ClearanceKind::FlexGuide(g) = &self.kind {
             let area = g.area_normal;
             return g

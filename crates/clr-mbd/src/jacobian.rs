@@ -335,6 +335,7 @@ impl Model {
                         guide.point(&g.detector, pt, &jac.ws.cands, memory, &mut out);
                     }
                 }
+                ClearanceKind::Shapes(p) => contact::shapes(cl, p, [&bi, &bj], memory, &mut out),
             }
         }
     }
@@ -774,7 +775,7 @@ fn clearance_is_analytic(c: &Clearance) -> bool {
             // the analytic contact Jacobian is that of a circular bearing; a worn profile's
             // curvature terms are not in it yet, so a worn joint takes central differences
             ClearanceKind::Revolute(g, _) => g.profile().is_none_or(|p| p.max_depth() == 0.0),
-            ClearanceKind::Translational { .. } => true,
+            ClearanceKind::Translational { .. } | ClearanceKind::Shapes(_) => true,
         }
 }
 

@@ -48,6 +48,7 @@ pub mod newton;
 mod rangespace;
 pub mod results;
 mod runtime;
+mod shape_pair;
 pub mod sim;
 pub mod system;
 pub mod timefn;

@@ -146,6 +146,9 @@ impl OdeSystem for Integrand<'_> {
     fn event_terminal(&self, i: usize) -> bool {
         self.model.event_terminal(i)
     }
+    fn max_step(&mut self, t: f64, y: &[f64]) -> f64 {
+        self.model.max_step(t, y)
+    }
 }
 
 /// The non-zeros of a row-major matrix with `cols` columns into `out`.

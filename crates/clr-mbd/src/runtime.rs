@@ -382,6 +382,17 @@ impl Frame {
     }
 }
 
+/// Position of frame k's reference point from the coordinates `q`, m (the ground at 0).
+#[inline]
+pub(crate) fn frame_position(frames: &[Frame], k: usize, q: &[f64]) -> Vector2<f64> {
+    if k == GROUND_ID {
+        return Vector2::zeros();
+    }
+    let f = &frames[k];
+    let v = |d: usize| f.cols[d].map_or(0.0, |c| q[c]);
+    f.base + Vector2::new(v(0), v(1))
+}
+
 /// Position, angle, velocity and angular velocity of frame k (the ground is fixed at 0). For a
 /// beam node the angle is the node rotation (small-rotation frame).
 #[inline]

@@ -115,6 +115,8 @@ pub struct Model {
     /// [q̈; λ] of the last evaluation.
     pub(crate) sol: Vec<f64>,
     pub(crate) contacts: Vec<ContactReport>,
+    /// Bounding-circle tests of the shape contact pairs (refreshed by each evaluation).
+    pub(crate) broad: crate::shape_pair::BroadPhase,
     pub(crate) solve_ok: bool,
     /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
     pub(crate) p_diss: f64,
@@ -344,7 +346,12 @@ impl Model {
             p_diss += d;
             p_loads += l;
         }
+        self.broad.update(&self.frames, q);
         for (k, cl) in self.clearances.iter_mut().enumerate() {
+            if self.broad.apart[k] {
+                self.contacts[k] = cl.apart_report();
+                continue;
+            }
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
             let frames = &self.frames;
@@ -653,12 +660,20 @@ impl Model {
     pub(crate) fn commit_contacts(&mut self, y: &[f64]) {
         let n = self.n;
         let (q, qd) = y.split_at(n);
-        for cl in self.clearances.iter_mut() {
+        self.broad.update(&self.frames, q);
+        for (k, cl) in self.clearances.iter_mut().enumerate() {
+            if self.broad.apart[k] {
+                cl.commit_apart(&mut self.memory);
+                continue;
+            }
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
             if let Some(b) = cl.flex_beam() {
                 let guide = guide_ref(&self.beams, &self.floating, b);
                 cl.commit_flex(guide, q, qd, &bj, &mut self.memory);
+                continue;
+            }
+            if cl.commit_shapes(&bi, &bj, &mut self.memory) {
                 continue;
             }
             for p in 0..cl.points() {
@@ -693,6 +708,16 @@ pub(crate) fn add_mass(
     for f in floating {
         f.add_mass(q, sink);
     }
+}
+
+/// (d²r/dt², d²θ/dt²) of frame `k` from the accelerations `qdd` (zero for the ground and
+/// constrained node directions).
+fn frame_rates(frames: &[Frame], k: usize, qdd: &[f64]) -> (Vector2<f64>, f64) {
+    if k == GROUND_ID {
+        return (Vector2::zeros(), 0.0);
+    }
+    let v = |d: usize| frames[k].cols[d].map_or(0.0, |c| qdd[c]);
+    (Vector2::new(v(0), v(1)), v(2))
 }
 
 #[inline]
@@ -744,7 +769,13 @@ impl OdeSystem for Model {
         let n = self.n;
         let (q, qd) = y.split_at(n);
         let mut ev = 0;
-        for cl in &self.clearances {
+        self.broad.update(&self.frames, q);
+        for (k, cl) in self.clearances.iter().enumerate() {
+            if self.broad.apart[k] {
+                g[ev] = cl.apart_report().penetration;
+                ev += 1;
+                continue;
+            }
             let bi = body_state(&self.frames, cl.i, q, qd);
             let bj = body_state(&self.frames, cl.j, q, qd);
             for p in 0..cl.event_points() {
@@ -756,6 +787,36 @@ impl OdeSystem for Model {
 
     fn event_direction(&self, _i: usize) -> Direction {
         Direction::Rising
+    }
+
+    /// The smallest conservative-advancement bound of the shape contact pairs (none without
+    /// them): no step can carry two shapes through each other unseen by the event functions.
+    /// Costs one evaluation of the accelerations per step when the model has shape pairs.
+    fn max_step(&mut self, t: f64, y: &[f64]) -> f64 {
+        use crate::clearance::ClearanceKind;
+        let shapes = |c: &Clearance| matches!(c.kind, ClearanceKind::Shapes(_));
+        if !self.clearances.iter().any(shapes) {
+            return f64::INFINITY;
+        }
+        let n = self.n;
+        self.load_bristles(y);
+        let (q, qd) = (&y[..n], &y[n..2 * n]);
+        self.solve_accelerations(t, q, qd);
+        let qdd = &self.sol[..n];
+        let mut h = f64::INFINITY;
+        for cl in self.clearances.iter() {
+            let ClearanceKind::Shapes(p) = &cl.kind else {
+                continue;
+            };
+            let bi = body_state(&self.frames, cl.i, q, qd);
+            let bj = body_state(&self.frames, cl.j, q, qd);
+            let acc = [
+                frame_rates(&self.frames, cl.i, qdd),
+                frame_rates(&self.frames, cl.j, qdd),
+            ];
+            h = h.min(p.max_step([&bi, &bj], acc));
+        }
+        h
     }
 
     fn event_terminal(&self, _i: usize) -> bool {

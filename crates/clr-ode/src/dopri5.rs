@@ -200,9 +200,12 @@ impl Method for Dopri5Method {
                 h_min: 0.0,
             });
         }
+        let h_max = opts
+            .h_max
+            .min(sys.max_step(t, &self.y).max(opts.h_min.max(10.0 * ulp(t))));
         loop {
             let floor = opts.h_min.max(10.0 * ulp(t));
-            let mut h = self.h.min(opts.h_max);
+            let mut h = self.h.min(h_max);
             if h < floor && !opts.fixed_step {
                 return Err(Failure::Underflow { t, h, h_min: floor });
             }

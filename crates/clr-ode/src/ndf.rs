@@ -579,10 +579,11 @@ impl Method for NdfMethod {
             }
         }
         let floor = opts.h_min.max(10.0 * crate::dopri5::ulp(t));
-        if self.h_abs > opts.h_max {
-            let f = opts.h_max / self.h_abs;
+        let h_max = opts.h_max.min(sys.max_step(t, &self.d[..n]).max(floor));
+        if self.h_abs > h_max {
+            let f = h_max / self.h_abs;
             self.change_d(f);
-            self.h_abs = opts.h_max;
+            self.h_abs = h_max;
             self.n_equal_steps = 0;
             self.lu_valid = false;
         } else if self.h_abs < floor && !fixed {

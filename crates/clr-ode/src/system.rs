@@ -119,6 +119,14 @@ pub trait OdeSystem {
         false
     }
 
+    /// An upper bound on the next step from the state at its start, s (default: none). The
+    /// solvers take min(h, `h_max`, this) for every step, so a model can keep fast bodies from
+    /// passing through each other within one step, where an event function sampled at step
+    /// ends would miss the contact.
+    fn max_step(&mut self, _t: f64, _y: &[f64]) -> f64 {
+        f64::INFINITY
+    }
+
     /// Checks the problem's own data before a run (for example a mass matrix of the wrong
     /// size); an `Err(message)` becomes [`crate::OdeError::InvalidInput`].
     fn validate(&self) -> Result<(), String> {
@@ -171,6 +179,9 @@ macro_rules! forward_ode_system {
             }
             fn event_terminal(&self, i: usize) -> bool {
                 (**self).event_terminal(i)
+            }
+            fn max_step(&mut self, t: f64, y: &[f64]) -> f64 {
+                (**self).max_step(t, y)
             }
             fn validate(&self) -> Result<(), String> {
                 (**self).validate()

@@ -5,6 +5,7 @@ mod clr;
 mod mbd;
 mod ode;
 mod peers;
+mod shapes;
 
 use std::process::ExitCode;
 use std::str::FromStr;
@@ -36,13 +37,19 @@ const USAGE: &str =
         factorizations and the growth of cost per step per 4x elements (issue 13: <= 2.5x);
         --jacobian fd uses finite-difference Newton matrices, --both runs both,
         --scale-velocity-error scales the velocities' error by min(h, 1); writes
-        target/bench/beam.{json,md}";
+        target/bench/beam.{json,md}
+       cargo xtask bench shapes [--runs N]
+  shapes  100 shape contact pairs (10 balls bouncing on floors, 90 pairs apart) against the
+        same model with its 10 touching pairs only: cost per step and its ratio (the broad
+        phase), and the narrow-phase and box-test costs of one pair apart; writes
+        target/bench/shapes.{json,md}";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {
         Some("ode") => ode::run(&args[1..]),
         Some("mbd") => mbd::run(&args[1..]),
         Some("beam") => beam::run(&args[1..]),
+        Some("shapes") => shapes::run(&args[1..]),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

@@ -17,6 +17,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     let anchors = (desc.joints.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.forces.iter().map(|e| (e.name(), e.anchors())))
+        .chain(desc.shapes.iter().map(|s| (s.name.as_str(), vec![&s.at])))
         .chain(desc.clearances.iter().map(|e| (e.name(), e.anchors())))
         .collect();
     let mut c = Compiler::new(&Inputs {
@@ -35,6 +36,9 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     }
     for f in &desc.forces {
         f.compile(&mut c)?;
+    }
+    for (k, s) in desc.shapes.iter().enumerate() {
+        s.compile(k, &mut c)?;
     }
     for cl in &desc.clearances {
         cl.compile(&mut c)?;
@@ -58,7 +62,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
 /// A blank name cannot be referred to and would leave errors about its item without a place
 /// (`cargo xtask fuzz` found both a `[[point]]` and a joint named " "): refused at its field.
 fn refuse_blank_names(desc: &ModelDesc) -> Result<(), MbdError> {
-    let sections: [(&str, Vec<&str>); 8] = [
+    let sections: [(&str, Vec<&str>); 9] = [
         (
             "body",
             desc.bodies.iter().map(|b| b.name.as_str()).collect(),
@@ -78,6 +82,10 @@ fn refuse_blank_names(desc: &ModelDesc) -> Result<(), MbdError> {
         ("joint", desc.joints.iter().map(|e| e.name()).collect()),
         ("driver", desc.drivers.iter().map(|e| e.name()).collect()),
         ("force", desc.forces.iter().map(|e| e.name()).collect()),
+        (
+            "shape",
+            desc.shapes.iter().map(|s| s.name.as_str()).collect(),
+        ),
         (
             "clearance",
             desc.clearances.iter().map(|e| e.name()).collect(),
@@ -120,6 +128,7 @@ fn claim_names(desc: &ModelDesc) -> Result<(), MbdError> {
         .chain(desc.joints.iter().map(|e| (e.name(), e.kind())))
         .chain(desc.drivers.iter().map(|e| (e.name(), e.kind())))
         .chain(desc.forces.iter().map(|e| (e.name(), e.kind())))
+        .chain(desc.shapes.iter().map(|s| (s.name.as_str(), "shape")))
         .chain(desc.clearances.iter().map(|e| (e.name(), e.kind())));
     for (name, kind) in all {
         if let Some(first) = names.get(name) {

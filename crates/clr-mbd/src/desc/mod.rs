@@ -29,7 +29,7 @@ pub use crate::field::{closest, edit_distance, suggestion, FieldError};
 use crate::element::{Clearance, Driver, Force, Joint};
 
 /// A whole model as data. Sections in a file: `[model]`, `[[body]]`, `[[point]]`, `[[beam]]`,
-/// `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`,
+/// `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[shape]]`, `[[clearance]]`, `[solver]`,
 /// `[output]`. Constraint rows follow the order joints, then drivers (then the node ties of
 /// floating bodies, first); force elements and contacts keep their section order.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -63,6 +63,9 @@ pub struct ModelDesc {
     /// Force elements.
     #[serde(default, rename = "force", skip_serializing_if = "Vec::is_empty")]
     pub forces: Vec<Force>,
+    /// Contact shapes on bodies (used by `contact` elements).
+    #[serde(default, rename = "shape", skip_serializing_if = "Vec::is_empty")]
+    pub shapes: Vec<crate::element::shape::ShapeDesc>,
     /// Clearance joints and sliders (contact elements).
     #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
     pub clearances: Vec<Clearance>,

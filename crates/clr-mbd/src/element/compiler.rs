@@ -45,6 +45,8 @@ pub(crate) struct Compiler {
     pub(crate) forces: Vec<ForceEl>,
     pub(crate) clearances: Vec<Clearance>,
     pub(crate) force_application: ForceApplication,
+    /// `[[shape]]` items by name.
+    pub(crate) shapes: HashMap<String, crate::element::shape::PlacedShape>,
 }
 
 /// What the compiler needs of a description before its element sections: `[model]`, bodies,
@@ -89,6 +91,7 @@ impl Compiler {
             motions: Vec::new(),
             forces: Vec::new(),
             clearances: Vec::new(),
+            shapes: HashMap::new(),
             force_application: match desc.model.clearance_force_application {
                 Some(ForceApplicationDesc::ContactPoints) => ForceApplication::ContactPoints,
                 _ => ForceApplication::CommonPoint,
@@ -361,6 +364,7 @@ impl Compiler {
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
         let bristles = crate::lugre::assign_bristles(&mut clearances);
+        let broad = crate::shape_pair::BroadPhase::new(&clearances);
         Ok(Model {
             body_names,
             bodies,
@@ -390,6 +394,7 @@ impl Compiler {
             qf: vec![0.0; n],
             sol: vec![0.0; n + m],
             contacts: vec![ContactReport::default(); nc],
+            broad,
             solve_ok: true,
             p_diss: 0.0,
             p_loads: 0.0,
@@ -485,6 +490,13 @@ impl Compiler {
                     })
             }
         }
+    }
+
+    /// Every `[[shape]]` name, comma-separated (for messages).
+    pub(crate) fn shape_names(&self) -> String {
+        let mut all: Vec<&str> = self.shapes.keys().map(String::as_str).collect();
+        all.sort_unstable();
+        all.join(", ")
     }
 
     /// Every named point, comma-separated (for messages).

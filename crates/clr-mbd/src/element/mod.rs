@@ -20,6 +20,8 @@ pub mod nodal_load;
 pub mod revolute;
 pub mod revolute_clearance;
 pub mod rotational_spring_damper;
+pub mod shape;
+pub mod shape_contact;
 pub mod slider_on_beam;
 pub mod spring_damper;
 pub mod torque_between;
@@ -207,6 +209,8 @@ section! {
         Translational(translational_clearance::TranslationalClearance) = "translational",
         /// Slider on a flexible beam face.
         SliderOnBeam(slider_on_beam::SliderOnBeam) = "slider_on_beam",
+        /// Contact between two `[[shape]]`s.
+        Contact(shape_contact::ShapeContact) = "contact",
     }
 }
 

@@ -1,5 +1,6 @@
-//! Analytic ∂Q/∂q and ∂Q/∂q̇ of the rigid contact elements: the revolute clearance joint and the
-//! translational clearance joint (slider corners against the guide faces).
+//! Analytic ∂Q/∂q and ∂Q/∂q̇ of the rigid contact elements: the revolute clearance joint, the
+//! translational clearance joint (slider corners against the guide faces) and shape contact
+//! pairs.
 //!
 //! Each element's generalized forces are re-evaluated in first-order dual numbers
 //! ([`super::dual`]) seeded with the coordinates and velocities of its two frames, following the
@@ -9,12 +10,15 @@
 
 use clr_contact::translational::{GuideSide, TranslationalClearance};
 use clr_contact::RevoluteClearance;
-use clr_contact::{BodyState, ContactMemory, ForceApplication, FrictionLaw, NormalLaw};
+use clr_contact::{
+    BodyState, ContactMemory, Feature, ForceApplication, FrictionLaw, NormalLaw, ShapeContactPoint,
+};
 use nalgebra::Vector2;
 
 use super::dual::{DBody, D, V};
 use crate::clearance::Clearance;
 use crate::runtime::{Frame, GROUND_ID};
+use crate::shape_pair::ShapePair;
 
 /// Directions of a two-frame element: frame i (q then q̇) at 0..6, frame j at 6..12.
 const N: usize = 12;
@@ -247,5 +251,76 @@ pub(super) fn translational(
         let f = n.scale(-f_n) + t.scale(f_t);
         out.add_frame(cl.j, &[f.x, f.y, (p - bj.r).cross(f)], &seeds);
         out.add_frame(cl.i, &[-f.x, -f.y, (gp - bi.r).cross(-f)], &seeds);
+    }
+}
+
+/// Shape contact pair (`crate::shape_pair`): at each penetrating point, f = F_N n + F_T t on B at
+/// p_B and −f on A at p_A, with δ, n, p_A, p_B carried as dual numbers through a local model of
+/// the two features that touch ([`point_geometry`]). The points, their features and slots are
+/// those the force evaluation finds at this state; the feature pair is held fixed, as parry's
+/// answer is piecewise in it.
+pub(super) fn shapes(
+    cl: &Clearance,
+    pair: &ShapePair,
+    [si, sj]: [&BodyState; 2],
+    memory: &mut ContactMemory,
+    out: &mut Out,
+) {
+    let bi = DBody::<N>::seed(si, Some(0));
+    let bj = DBody::<N>::seed(sj, Some(6));
+    let seeds = [(cl.i, 0), (cl.j, 6)];
+    pair.with_points(si, sj, |kept| {
+        for k in kept.iter().filter(|k| k.point.depth > 0.0) {
+            let (delta, n, pa, pb) = point_geometry(&k.point, [si, sj], [&bi, &bj]);
+            let v = bj.point_velocity(pb) - bi.point_velocity(pa);
+            let t = n.perp();
+            let (vn, vt) = (-v.dot(n), v.dot(t));
+            let vm = memory.impact_velocity(cl.mem + k.slot, delta.v, vn.v);
+            let (f_n, f_t, _) = law_forces(&cl.normal, &cl.friction, [delta, vn, vt], vm);
+            let f = n.scale(f_n) + t.scale(f_t);
+            out.add_frame(cl.j, &[f.x, f.y, (pb - bj.r).cross(f)], &seeds);
+            out.add_frame(cl.i, &[-f.x, -f.y, (pa - bi.r).cross(-f)], &seeds);
+        }
+    });
+}
+
+/// (δ, n, p_A, p_B) of one contact point as functions of the two frames' coordinates. The core
+/// features (`point_a − r_A n` on A, `point_b + r_B n` on B: a polygon vertex, a ball centre, a
+/// point of a face) move as material points of their bodies, and
+/// * two rounded vertices (balls): n along the line of centres, δ = r_A + r_B − |c_B − c_A|;
+/// * a vertex of A on a face of B: n turns with B, δ = (c_A − c_B)·n + r_A + r_B;
+/// * otherwise (a vertex of B on a face of A, or features parry did not name): n turns with A,
+///   the same δ.
+///
+/// This is the exact signed distance of a vertex–face or ball–ball pair near the state, so
+/// ∂Q/∂q is exact there; for a face sliding past a vertex of the same body it is first-order
+/// (∂δ/∂q holds for any pair by the envelope theorem, the turning of n differs). ∂Q/∂q̇ is exact.
+fn point_geometry(
+    p: &ShapeContactPoint,
+    [si, sj]: [&BodyState; 2],
+    [bi, bj]: [&DBody<N>; 2],
+) -> (D<N>, V<N>, V<N>, V<N>) {
+    let (ra, rb, n0) = (p.radius_a, p.radius_b, p.normal);
+    let ca = bi.point(si.to_local(p.point_a - n0 * ra));
+    let cb = bj.point(sj.to_local(p.point_b + n0 * rb));
+    let (va, vb) = (
+        p.feature_a == Feature::Vertex,
+        p.feature_b == Feature::Vertex,
+    );
+    if va && vb && ra + rb > 0.0 {
+        let d = cb - ca;
+        let len = d.norm();
+        let n = d.scale(D::cst(1.0) / len);
+        return (-len + (ra + rb), n, ca + n * ra, cb - n * rb);
+    }
+    let owner = if va && !vb { (sj, bj) } else { (si, bi) };
+    let n = V::cst(clr_contact::body::rotate(-owner.0.angle, n0)).rot(owner.1.th);
+    let delta = (ca - cb).dot(n) + (ra + rb);
+    if va && !vb {
+        let pa = ca + n * ra;
+        (delta, n, pa, pa - n.scale(delta))
+    } else {
+        let pb = cb - n * rb;
+        (delta, n, pb + n.scale(delta), pb)
     }
 }

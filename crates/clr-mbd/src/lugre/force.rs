@@ -102,7 +102,8 @@ pub(crate) fn apply(
         }
         // refused when the element is compiled (`FrictionSpec::build`): a slider on a flexible
         // guide takes stateless laws only
-        ClearanceKind::FlexGuide(_) => {}
+        // LuGre is refused for these at compile time
+        ClearanceKind::FlexGuide(_) | ClearanceKind::Shapes(_) => {}
     }
     rep
 }

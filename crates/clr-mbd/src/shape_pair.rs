@@ -1,0 +1,441 @@
+//! Runtime form of a shape contact pair (`[[clearance]] type = "contact"`): two placed shapes,
+//! a broad phase on their bounding boxes, parry's contact points reduced to one point per
+//! contact patch, and a stable slot per point for the contact memory.
+//!
+//! * **Reduction.** A smooth body pressed into a fine polyline touches several segments, each
+//!   with its own point; summing a law over them would count one contact several times. Points
+//!   are taken deepest first and a point is dropped when a kept point lies within the merge
+//!   distance with a normal within 37° (cos > 0.8: the two sides of a corner stay separate).
+//!   Then at most `max_points` points are kept.
+//! * **Slots.** Each kept point gets one of `max_points` memory slots: the slot whose point at
+//!   the last accepted step lies nearest (on either body, within the match distance), else a
+//!   free slot. A contact that slides or rolls keeps its slot and its impact velocity δ̇⁻; the
+//!   assignment depends only on the committed keys and the state, as the memory rules need.
+//! * **Forces.** At each point with δ > 0: F_N from the normal law with the slot's δ̇⁻, F_T
+//!   from the friction law with the slip v_T; f = F_N n + F_T t on B at its contact point and
+//!   −f on A at its own (the two points are δ apart along n, so the pair has no moment). With
+//!   v = ṙ_B(p_B) − ṙ_A(p_A): δ̇ = −v·n, v_T = v·t, t = k̂ × n. δ̇ is the exact rate of the
+//!   signed distance (its first variation with the closest points held, the envelope theorem),
+//!   so the pair's power is −F_N δ̇ + F_T v_T and the energy balance closes.
+
+use std::cell::RefCell;
+
+use clr_contact::{
+    boxes_gap, boxes_overlap, contact_points, shape_distance, BodyState, ContactMemory,
+    ContactShape, FrictionLaw, NormalLaw, ShapeContactPoint, ShapeContactWorkspace,
+};
+use nalgebra::Vector2;
+
+use crate::clearance::ContactReport;
+use crate::element::shape::PlacedShape;
+
+/// One side of a pair: the placed shape.
+pub(crate) struct Side {
+    /// Origin of the shape frame from the frame's reference point, m (frame coordinates).
+    pub(crate) arm: Vector2<f64>,
+    /// Angle of the shape frame in the body frame, rad.
+    pub(crate) angle: f64,
+    pub(crate) shape: ContactShape,
+    /// Radius of a circle about the shape origin holding the shape, m.
+    pub(crate) radius: f64,
+    /// Distance from the frame's reference point to the farthest point of the shape, m.
+    pub(crate) reach: f64,
+    /// The shape origin in the world when the shape is on the ground (it never moves).
+    pub(crate) fixed: Option<Vector2<f64>>,
+}
+
+impl Side {
+    fn new(p: &PlacedShape) -> Self {
+        let radius = p.shape.bounding_radius();
+        Self {
+            arm: p.arm,
+            angle: p.angle,
+            shape: p.shape.clone(),
+            radius,
+            reach: p.arm.norm() + radius,
+            fixed: (p.frame == crate::runtime::GROUND_ID).then_some(p.arm),
+        }
+    }
+
+    /// A circle holding the shape for the body at `b`, (centre, radius) in m: about the frame's
+    /// reference point (no trigonometry), or the shape's own circle on the ground.
+    fn circle(&self, b: &BodyState) -> (Vector2<f64>, f64) {
+        match self.fixed {
+            Some(c) => (c, self.radius),
+            None => (b.position, self.reach),
+        }
+    }
+
+    /// Pose of the shape frame (position and angle only) for the body at `b`.
+    fn pose(&self, b: &BodyState) -> BodyState {
+        BodyState::fixed(b.point(self.arm), b.angle + self.angle)
+    }
+}
+
+/// Tuning of a pair, m (documented on the model-file element).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct PairSettings {
+    /// Points within this gap are reported (δ ≤ 0) so that their slot and last (δ, δ̇) are
+    /// known before they touch.
+    pub(crate) prediction: f64,
+    /// Points of one patch closer than this are merged.
+    pub(crate) merge: f64,
+    /// A point keeps its slot when it moved less than this since the last accepted step.
+    pub(crate) matching: f64,
+    /// Memory slots, the most points kept.
+    pub(crate) max_points: usize,
+}
+
+/// A kept contact point and its memory slot.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Kept {
+    pub(crate) point: ShapeContactPoint,
+    pub(crate) slot: usize,
+}
+
+/// Reusable buffers of one detection (interior mutability: detection runs where the model is
+/// borrowed immutably, e.g. event functions; the model is used by one thread at a time).
+#[derive(Default)]
+struct Scratch {
+    ws: ShapeContactWorkspace,
+    kept: Vec<Kept>,
+    taken: Vec<bool>,
+}
+
+/// A shape contact pair: shape A on frame `i`, shape B on frame `j` of the clearance.
+pub(crate) struct ShapePair {
+    pub(crate) a: Side,
+    pub(crate) b: Side,
+    pub(crate) settings: PairSettings,
+    scratch: RefCell<Scratch>,
+    /// Body-local contact points (on A's frame, on B's frame) of each slot at the last accepted
+    /// step, `None` for a free slot.
+    keys: Vec<Option<[Vector2<f64>; 2]>>,
+}
+
+impl ShapePair {
+    pub(crate) fn new(a: &PlacedShape, b: &PlacedShape, settings: PairSettings) -> Self {
+        Self {
+            a: Side::new(a),
+            b: Side::new(b),
+            settings,
+            scratch: RefCell::new(Scratch {
+                kept: Vec::with_capacity(settings.max_points),
+                taken: vec![false; settings.max_points],
+                ..Default::default()
+            }),
+            keys: vec![None; settings.max_points],
+        }
+    }
+
+    /// Refuse a pair parry has no contact query for (one query at the shapes' origins).
+    pub(crate) fn check_query(&self) -> Result<(), clr_contact::ContactError> {
+        let origin = BodyState::default();
+        let mut ws = ShapeContactWorkspace::new();
+        contact_points(&self.a.shape, &origin, &self.b.shape, &origin, 0.0, &mut ws).map(|_| ())
+    }
+
+    /// Detect, reduce and assign slots at the bodies' states; `f` reads the kept points.
+    pub(crate) fn with_points<R>(
+        &self,
+        bi: &BodyState,
+        bj: &BodyState,
+        f: impl FnOnce(&[Kept]) -> R,
+    ) -> R {
+        let mut s = self.scratch.borrow_mut();
+        self.detect(bi, bj, &mut s);
+        f(&s.kept)
+    }
+
+    fn detect(&self, bi: &BodyState, bj: &BodyState, s: &mut Scratch) {
+        let Scratch { ws, kept, taken } = s;
+        kept.clear();
+        let margin = self.settings.prediction;
+        // broad phase: bounding circles (no trigonometry), then boxes, so that a pair far
+        // apart costs next to nothing
+        if self.circle_gap(bi, bj) > margin {
+            return;
+        }
+        let (pa, pb) = (self.a.pose(bi), self.b.pose(bj));
+        if !boxes_overlap(&self.a.shape.aabb(&pa), &self.b.shape.aabb(&pb), margin) {
+            return;
+        }
+        // a pose with NaN (a failed step) gives no contact; the integrator rejects that step
+        let Ok(points) = contact_points(&self.a.shape, &pa, &self.b.shape, &pb, margin, ws) else {
+            return;
+        };
+        reduce(points, &self.settings, kept);
+        self.assign_slots(bi, bj, kept, taken);
+    }
+
+    /// Slots by nearness to the committed keys (deepest point first), then free slots.
+    fn assign_slots(&self, bi: &BodyState, bj: &BodyState, kept: &mut [Kept], taken: &mut [bool]) {
+        taken.fill(false);
+        let reach = self.settings.matching;
+        for k in kept.iter_mut() {
+            let la = bi.to_local(k.point.point_a);
+            let lb = bj.to_local(k.point.point_b);
+            let near = self
+                .keys
+                .iter()
+                .enumerate()
+                .filter(|(s, _)| !taken[*s])
+                .filter_map(|(s, key)| {
+                    let [ka, kb] = (*key)?;
+                    let d = (la - ka).norm().min((lb - kb).norm());
+                    (d <= reach).then_some((s, d))
+                });
+            let best = near.min_by(|x, y| x.1.total_cmp(&y.1)).map(|(s, _)| s);
+            let free = || (0..taken.len()).find(|&s| !taken[s] && self.keys[s].is_none());
+            let any = || (0..taken.len()).find(|&s| !taken[s]);
+            // `reduce` keeps at most as many points as there are slots
+            k.slot = best.or_else(free).or_else(any).unwrap_or(0);
+            taken[k.slot] = true;
+        }
+    }
+
+    /// Gap between the two bounding circles, m: a lower bound of the shapes' distance.
+    fn circle_gap(&self, bi: &BodyState, bj: &BodyState) -> f64 {
+        let (ca, ra) = self.a.circle(bi);
+        let (cb, rb) = self.b.circle(bj);
+        (cb - ca).norm() - ra - rb
+    }
+
+    /// The pair's event function: the largest signed penetration, m (−prediction when nothing
+    /// lies within the prediction distance, continuous with the reported points).
+    pub(crate) fn max_depth(&self, bi: &BodyState, bj: &BodyState) -> f64 {
+        let floor = -self.settings.prediction;
+        self.with_points(bi, bj, |kept| {
+            kept.iter().fold(floor, |g, k| g.max(k.point.depth))
+        })
+    }
+
+    /// Add the forces of the penetrating points through `add(frame side, [f_x, f_y, m])`
+    /// (side 0 = A on frame i, 1 = B on frame j) and fill the report.
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn apply(
+        &self,
+        [bi, bj]: [&BodyState; 2],
+        (normal, friction): (&NormalLaw, &FrictionLaw),
+        mem: usize,
+        memory: &mut ContactMemory,
+        rep: &mut ContactReport,
+        mut add: impl FnMut(usize, [f64; 3]),
+    ) {
+        let floor = -self.settings.prediction;
+        rep.penetration = floor;
+        rep.eccentricity = [0.0, 0.0];
+        self.with_points(bi, bj, |kept| {
+            // the deepest point within the prediction distance, on A, world frame
+            if let Some(k) = kept.first() {
+                rep.eccentricity = [k.point.point_a.x, k.point.point_a.y];
+            }
+            for k in kept {
+                let p = &k.point;
+                let (vn, vt) = rates(p, bi, bj);
+                if p.depth > rep.penetration {
+                    rep.penetration = p.depth;
+                    rep.penetration_rate = vn;
+                }
+                if p.depth <= 0.0 {
+                    continue;
+                }
+                let vm = memory.impact_velocity(mem + k.slot, p.depth, vn);
+                let f_n = normal.force(p.depth, vn, vm);
+                let f_t = friction.force(vt, f_n);
+                let f = p.normal * f_n + perp(p.normal) * f_t;
+                add(0, [-f.x, -f.y, cross(p.point_a - bi.position, -f)]);
+                add(1, [f.x, f.y, cross(p.point_b - bj.position, f)]);
+                rep.active_points += 1;
+                rep.normal_force += f_n;
+                rep.friction_force += f_t;
+                rep.dissipated_power += (f_n - normal.elastic_force(p.depth)) * vn - f_t * vt;
+            }
+        });
+    }
+
+    /// Commit the memory at an accepted state: each kept point's (δ, δ̇) into its slot and its
+    /// body-local points as the slot's key; free slots as separated (δ = −1 m marker, δ̇ = 0).
+    pub(crate) fn commit(
+        &mut self,
+        bi: &BodyState,
+        bj: &BodyState,
+        mem: usize,
+        memory: &mut ContactMemory,
+    ) {
+        {
+            // detected with the previous keys, which are replaced below
+            let mut s = self.scratch.borrow_mut();
+            self.detect(bi, bj, &mut s);
+            let Scratch { kept, taken, .. } = &mut *s;
+            taken.fill(false);
+            for k in kept.iter() {
+                let (vn, _) = rates(&k.point, bi, bj);
+                memory.commit(mem + k.slot, k.point.depth, vn);
+                taken[k.slot] = true;
+            }
+            for (slot, _) in taken.iter().enumerate().filter(|(_, t)| !**t) {
+                memory.commit(mem + slot, -1.0, 0.0);
+            }
+        }
+        self.keys.iter_mut().for_each(|k| *k = None);
+        for k in &self.scratch.get_mut().kept {
+            self.keys[k.slot] = Some([bi.to_local(k.point.point_a), bj.to_local(k.point.point_b)]);
+        }
+    }
+
+    /// The longest next step that cannot carry the shapes through each other, s: with the gap
+    /// d between them (the boxes' gap when the boxes are apart, parry's distance otherwise),
+    /// every point of a shape moves by at most v·h + a·h²/2 relative to the other, where v and a
+    /// bound the relative speed and acceleration of any point (reference points plus ω·R and
+    /// (|α| + ω²)·R with R the reach of each shape from its frame's reference point), so
+    /// h = 2D/(v + √(v² + 2aD)) with D = d + prediction/2 lets them close the gap and penetrate
+    /// by at most half the prediction distance within a step — conservative advancement
+    /// (Mirtich, *Impulse-based dynamic simulation of rigid body systems*, PhD thesis, UC
+    /// Berkeley, 1996, §3.3). `acc` holds each frame's (acceleration, angular acceleration).
+    /// Unbounded while they touch: then the error control follows the contact.
+    pub(crate) fn max_step(&self, [bi, bj]: [&BodyState; 2], acc: [(Vector2<f64>, f64); 2]) -> f64 {
+        // lower bounds of the distance first: circles, then boxes, then parry's distance
+        let mut gap = self.circle_gap(bi, bj);
+        if gap <= 0.0 {
+            let (pa, pb) = (self.a.pose(bi), self.b.pose(bj));
+            let (ba, bb) = (self.a.shape.aabb(&pa), self.b.shape.aabb(&pb));
+            gap = if boxes_overlap(&ba, &bb, 0.0) {
+                shape_distance(&self.a.shape, &pa, &self.b.shape, &pb).unwrap_or(0.0)
+            } else {
+                boxes_gap(&ba, &bb)
+            };
+        }
+        if gap <= 0.0 {
+            return f64::INFINITY;
+        }
+        let d = gap + 0.5 * self.settings.prediction;
+        let (ra, rb) = (self.a.reach, self.b.reach);
+        let (wi, wj) = (bi.angular_velocity, bj.angular_velocity);
+        let v = (bj.velocity - bi.velocity).norm() + wi.abs() * ra + wj.abs() * rb;
+        let a = (acc[1].0 - acc[0].0).norm()
+            + (acc[0].1.abs() + wi * wi) * ra
+            + (acc[1].1.abs() + wj * wj) * rb;
+        2.0 * d / (v + (v * v + 2.0 * a * d).sqrt())
+    }
+
+    /// Commit a pair known to be apart (the broad phase): every slot separated.
+    pub(crate) fn commit_apart(&mut self, mem: usize, memory: &mut ContactMemory) {
+        for (slot, key) in self.keys.iter_mut().enumerate() {
+            memory.commit(mem + slot, -1.0, 0.0);
+            *key = None;
+        }
+    }
+
+    /// The report of a pair with no point within the prediction distance.
+    pub(crate) fn apart_report(&self) -> ContactReport {
+        ContactReport {
+            penetration: -self.settings.prediction,
+            ..Default::default()
+        }
+    }
+
+    /// Elastic energy ∫F_e dδ over the penetrating points at the bodies' states, J.
+    pub(crate) fn elastic_energy(
+        &self,
+        bi: &BodyState,
+        bj: &BodyState,
+        law: impl Fn(f64) -> f64,
+    ) -> f64 {
+        self.with_points(bi, bj, |kept| kept.iter().map(|k| law(k.point.depth)).sum())
+    }
+}
+
+/// (δ̇, v_T) of a point: v = ṙ_B(p_B) − ṙ_A(p_A), δ̇ = −v·n, v_T = v·t (module docs).
+fn rates(p: &ShapeContactPoint, bi: &BodyState, bj: &BodyState) -> (f64, f64) {
+    let v = bj.point_velocity(p.point_b) - bi.point_velocity(p.point_a);
+    (-v.dot(&p.normal), v.dot(&perp(p.normal)))
+}
+
+/// Deepest first; drop a point near a deeper kept one with a similar normal; at most
+/// `max_points` (module docs).
+fn reduce(points: &[ShapeContactPoint], s: &PairSettings, kept: &mut Vec<Kept>) {
+    let near = |a: &ShapeContactPoint, b: &ShapeContactPoint| {
+        (a.point_a - b.point_a).norm() <= s.merge && a.normal.dot(&b.normal) > 0.8
+    };
+    for p in points {
+        if kept
+            .iter()
+            .any(|k| near(&k.point, p) && k.point.depth >= p.depth)
+        {
+            continue;
+        }
+        // the near kept points are all shallower than p: p replaces them
+        kept.retain(|k| !near(&k.point, p));
+        let at = kept.partition_point(|k| k.point.depth >= p.depth);
+        kept.insert(at, Kept { point: *p, slot: 0 });
+    }
+    kept.truncate(s.max_points);
+}
+
+fn perp(v: Vector2<f64>) -> Vector2<f64> {
+    Vector2::new(-v.y, v.x)
+}
+
+fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+    a.x * b.y - a.y * b.x
+}
+
+/// The model's broad phase over its shape pairs: every pair's two bounding circles in one compact
+/// array, tested in a tight loop before the elements are visited, so that a pair far apart costs
+/// a few loads and a square root per evaluation (the same test [`ShapePair`] makes first, so
+/// the results do not change).
+#[derive(Default)]
+pub(crate) struct BroadPhase {
+    pairs: Vec<Circles>,
+    /// Per clearance element: true when it is a shape pair beyond its prediction distance at
+    /// the state of the last [`BroadPhase::update`].
+    pub(crate) apart: Vec<bool>,
+}
+
+/// The bounding circles of one pair ([`Side::circle`]).
+struct Circles {
+    clearance: usize,
+    frames: [usize; 2],
+    fixed: [Option<Vector2<f64>>; 2],
+    radius: [f64; 2],
+    margin: f64,
+}
+
+impl BroadPhase {
+    /// The shape pairs among `clearances`.
+    pub(crate) fn new(clearances: &[crate::clearance::Clearance]) -> Self {
+        let pairs = clearances
+            .iter()
+            .enumerate()
+            .filter_map(|(k, c)| match &c.kind {
+                crate::clearance::ClearanceKind::Shapes(p) => Some(Circles {
+                    clearance: k,
+                    frames: [c.i, c.j],
+                    fixed: [p.a.fixed, p.b.fixed],
+                    radius: [
+                        p.a.fixed.map_or(p.a.reach, |_| p.a.radius),
+                        p.b.fixed.map_or(p.b.reach, |_| p.b.radius),
+                    ],
+                    margin: p.settings.prediction,
+                }),
+                _ => None,
+            })
+            .collect();
+        Self {
+            pairs,
+            apart: vec![false; clearances.len()],
+        }
+    }
+
+    /// Test every pair at the coordinates `q`.
+    pub(crate) fn update(&mut self, frames: &[crate::runtime::Frame], q: &[f64]) {
+        for c in &self.pairs {
+            let centre = |s: usize| {
+                c.fixed[s].unwrap_or_else(|| crate::runtime::frame_position(frames, c.frames[s], q))
+            };
+            let gap = (centre(1) - centre(0)).norm() - c.radius[0] - c.radius[1];
+            self.apart[c.clearance] = gap > c.margin;
+        }
+    }
+}
