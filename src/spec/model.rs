@@ -10,7 +10,7 @@ use super::parse::parse_path;
 use super::SpecError;
 
 /// Item sections of a model file, in the order their names are searched.
-const ITEM_SECTIONS: [&str; 8] = [
+const ITEM_SECTIONS: [&str; 9] = [
     "body",
     "beam",
     "flexible_body",
@@ -18,6 +18,7 @@ const ITEM_SECTIONS: [&str; 8] = [
     "joint",
     "driver",
     "force",
+    "shape",
     "clearance",
 ];
 

@@ -189,6 +189,11 @@ impl Path {
         })
     }
 
+    /// Undeformed arc length at the start of each element along the path, m.
+    pub fn element_starts(&self) -> &[f64] {
+        &self.s_start
+    }
+
     /// Path length (m).
     pub fn length(&self) -> f64 {
         self.length

@@ -40,8 +40,8 @@ pub use multipoint::{
 };
 pub use revolute::{ForceApplication, RevoluteClearance, RevoluteContact};
 pub use shapes::{
-    boxes_gap, boxes_overlap, contact_points, shape_distance, ContactShape, Feature, Shape,
-    ShapeContactPoint, ShapeContactWorkspace,
+    boxes_gap, boxes_overlap, contact_points, segment_contact_points, shape_distance, ContactShape,
+    Feature, Shape, ShapeContactPoint, ShapeContactWorkspace,
 };
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
 pub use wear::{ArchardWear, BearingProfile, LineContact, PressureDistribution};

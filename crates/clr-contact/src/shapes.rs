@@ -562,32 +562,122 @@ pub fn contact_points<'w>(
     prediction: f64,
     workspace: &'w mut ShapeContactWorkspace,
 ) -> Result<&'w [ShapeContactPoint], ContactError> {
-    if !(prediction >= 0.0 && prediction.is_finite()) {
-        return Err(ContactError::invalid(
+    check_prediction(prediction)?;
+    let pa = pose_of(pose_a)?;
+    let pb = pose_of(pose_b)?;
+    let side_a = Posed {
+        shape: &*a.parry,
+        desc: Some(&a.desc),
+        pose: pa,
+    };
+    let side_b = Posed {
+        shape: &*b.parry,
+        desc: Some(&b.desc),
+        pose: pb,
+    };
+    query_points(side_a, side_b, prediction, workspace).map_err(|()| unsupported(a, b))?;
+    Ok(&workspace.points)
+}
+
+/// Contact points between the segment `p0`–`p1` (world frame, m; A, e.g. a piece of a deformed
+/// beam face) and shape B at `pose_b`, with the conventions of [`contact_points`] (the
+/// segment's part index is 0, its features faces or vertices, radius 0). The segment is built
+/// on the stack: nothing is allocated for it.
+///
+/// # Errors
+/// A non-finite point, pose or prediction, or a shape B parry has no query for.
+pub fn segment_contact_points<'w>(
+    [p0, p1]: [Vector2<f64>; 2],
+    b: &ContactShape,
+    pose_b: &BodyState,
+    prediction: f64,
+    workspace: &'w mut ShapeContactWorkspace,
+) -> Result<&'w [ShapeContactPoint], ContactError> {
+    check_prediction(prediction)?;
+    for c in [p0.x, p0.y, p1.x, p1.y] {
+        finite("segment end point (m)", c)?;
+    }
+    let segment =
+        parry2d_f64::shape::Segment::new(Vector::new(p0.x, p0.y), Vector::new(p1.x, p1.y));
+    let side_a = Posed {
+        shape: &segment,
+        desc: None,
+        pose: Pose::IDENTITY,
+    };
+    let side_b = Posed {
+        shape: &*b.parry,
+        desc: Some(&b.desc),
+        pose: pose_of(pose_b)?,
+    };
+    query_points(side_a, side_b, prediction, workspace).map_err(|()| {
+        ContactError::invalid(
+            LAW,
+            "shape pair",
+            f64::NAN,
+            format!(
+                "parry2d has no contact query for a segment against {:?}",
+                kind(&b.desc)
+            ),
+        )
+    })?;
+    Ok(&workspace.points)
+}
+
+fn check_prediction(prediction: f64) -> Result<(), ContactError> {
+    if prediction >= 0.0 && prediction.is_finite() {
+        Ok(())
+    } else {
+        Err(ContactError::invalid(
             LAW,
             "prediction (m)",
             prediction,
             "must be ≥ 0 and finite",
-        ));
+        ))
     }
-    let pa = pose_of(pose_a)?;
-    let pb = pose_of(pose_b)?;
-    workspace.points.clear();
+}
 
-    let ball_pair = (matches!(a.desc, Shape::Ball { .. }) && b.desc.is_convex())
-        || (matches!(b.desc, Shape::Ball { .. }) && a.desc.is_convex());
-    if ball_pair {
-        let c = query::contact(&pa, &*a.parry, &pb, &*b.parry, prediction)
-            .map_err(|_| unsupported(a, b))?;
+/// A parry shape at a pose with its description (`None`: a bare segment).
+struct Posed<'s> {
+    shape: &'s dyn parry2d_f64::shape::Shape,
+    desc: Option<&'s Shape>,
+    pose: Pose,
+}
+
+impl Posed<'_> {
+    fn is_ball(&self) -> bool {
+        matches!(self.desc, Some(Shape::Ball { .. }))
+    }
+    fn is_convex(&self) -> bool {
+        self.desc.is_none_or(Shape::is_convex)
+    }
+    /// The feature and radius parry's `contact` leaves unnamed: a ball is a rounded vertex at
+    /// its centre; the other shape is whatever carries the closest point (a face unless it is a
+    /// ball too).
+    fn unnamed_feature(&self) -> (Feature, f64) {
+        match self.desc {
+            Some(Shape::Ball { radius }) => (Feature::Vertex, *radius),
+            Some(Shape::Capsule { radius, .. }) => (Feature::Unknown, *radius),
+            _ => (Feature::Unknown, 0.0),
+        }
+    }
+    fn part_radius(&self, k: u32) -> f64 {
+        self.desc.map_or(0.0, |d| part_radius(d, k))
+    }
+}
+
+/// The points of [`contact_points`] into `workspace.points`; `Err` when parry has no query.
+fn query_points(
+    a: Posed,
+    b: Posed,
+    prediction: f64,
+    workspace: &mut ShapeContactWorkspace,
+) -> Result<(), ()> {
+    workspace.points.clear();
+    if (a.is_ball() && b.is_convex()) || (b.is_ball() && a.is_convex()) {
+        let c = query::contact(&a.pose, a.shape, &b.pose, b.shape, prediction).map_err(|_| ())?;
         if let Some(c) = c {
-            // the ball is a rounded vertex at its centre; the other shape is whatever carries
-            // the closest point (parry's `contact` does not say): a face unless it is a ball too
-            let side = |s: &Shape| match s {
-                Shape::Ball { radius } => (Feature::Vertex, *radius),
-                Shape::Capsule { radius, .. } => (Feature::Unknown, *radius),
-                _ => (Feature::Unknown, 0.0),
-            };
-            let ((feature_a, radius_a), (feature_b, radius_b)) = (side(&a.desc), side(&b.desc));
+            let ((feature_a, radius_a), (feature_b, radius_b)) =
+                (a.unnamed_feature(), b.unnamed_feature());
             workspace.points.push(ShapeContactPoint {
                 depth: -c.dist,
                 normal: nv(c.normal1),
@@ -601,25 +691,23 @@ pub fn contact_points<'w>(
                 radius_b,
             });
         }
-        return Ok(&workspace.points);
+        return Ok(());
     }
-
     // Recompute every point from scratch: no reuse of the previous call's points.
     for m in &mut workspace.manifolds {
         m.clear();
     }
-    let pos12 = pa.inv_mul(&pb);
+    let pos12 = a.pose.inv_mul(&b.pose);
     DefaultQueryDispatcher
         .contact_manifolds(
             &pos12,
-            &*a.parry,
-            &*b.parry,
+            a.shape,
+            b.shape,
             prediction,
             &mut workspace.manifolds,
             &mut workspace.parry,
         )
-        .map_err(|_| unsupported(a, b))?;
-
+        .map_err(|_| ())?;
     for m in &workspace.manifolds {
         if m.points.is_empty() {
             continue;
@@ -629,11 +717,11 @@ pub fn contact_points<'w>(
             Some(s) => (s.pos1, s.pos2),
             None => (None, None),
         };
-        let fa = sub1.map_or(pa, |s| pa * s);
-        let fb = sub2.map_or(pb, |s| pb * s);
+        let fa = sub1.map_or(a.pose, |s| a.pose * s);
+        let fb = sub2.map_or(b.pose, |s| b.pose * s);
         let normal = nv(fa.rotation * m.local_n1);
-        let radius_a = part_radius(&a.desc, m.subshape1);
-        let radius_b = part_radius(&b.desc, m.subshape2);
+        let radius_a = a.part_radius(m.subshape1);
+        let radius_b = b.part_radius(m.subshape2);
         for p in &m.points {
             // parry's polygon clipping keeps both face points even when one lies beyond the
             // prediction distance; report only those within it.
@@ -654,7 +742,7 @@ pub fn contact_points<'w>(
             });
         }
     }
-    Ok(&workspace.points)
+    Ok(())
 }
 
 /// The rounding radius of part `k` of a shape (m): ball and capsule radii, else 0.

@@ -45,7 +45,7 @@ pub(crate) struct FlexGuide {
 }
 
 /// The deformed beam face as a clr-contact guide surface (s = undeformed arc length).
-struct BeamFace<'a> {
+pub(crate) struct BeamFace<'a> {
     path: &'a Path,
     face: Face,
     q: &'a [f64],
@@ -95,7 +95,7 @@ impl GuideSurface for BeamFace<'_> {
 /// tangent, normal and elastic velocity from the beam interpolation at u = T q_f ([`BeamFace`]),
 /// then r = R + A p̄, t = A t̄, n = A n̄, ṙ = Ṙ + θ̇ Ĩ A p̄ + A p̄̇ (Shabana 2020, eq. 5.4 and its
 /// time derivative).
-struct FloatFace<'a> {
+pub(crate) struct FloatFace<'a> {
     local: BeamFace<'a>,
     origin: Vector2<f64>,
     angle: f64,
@@ -122,6 +122,110 @@ impl GuideSurface for FloatFace<'_> {
         self.velocity
             + self.omega * perp(arm)
             + rot(self.angle, Vector2::new(p.velocity[0], p.velocity[1]))
+    }
+}
+
+/// The deformed face of a ground-fixed or floating beam at (q, q̇), as a clr-contact guide
+/// surface ([`BeamFace`], [`FloatFace`]).
+pub(crate) enum Surface<'a> {
+    Fixed(BeamFace<'a>),
+    Floating(FloatFace<'a>),
+}
+
+impl<'a> Surface<'a> {
+    /// Scatter the beam's coordinates and velocities into the full-DOF buffers `full` and
+    /// build the surface of `face` on `path`.
+    pub(crate) fn new(
+        guide: GuideRef,
+        q: &[f64],
+        qd: &[f64],
+        (path, face): (&'a Path, Face),
+        (u, ud): (&'a mut Vec<f64>, &'a mut Vec<f64>),
+    ) -> Self {
+        match guide {
+            GuideRef::Fixed(fb) => {
+                u.fill(0.0);
+                ud.fill(0.0);
+                for (a, &d) in fb.free.iter().enumerate() {
+                    u[d] = q[fb.offset + a];
+                    ud[d] = qd[fb.offset + a];
+                }
+                Surface::Fixed(BeamFace {
+                    path,
+                    face,
+                    q: u,
+                    qd: ud,
+                })
+            }
+            GuideRef::Floating(fl) => {
+                fl.full_displacements(q, qd, u, ud);
+                let o = fl.offset;
+                Surface::Floating(FloatFace {
+                    local: BeamFace {
+                        path,
+                        face,
+                        q: u,
+                        qd: ud,
+                    },
+                    origin: Vector2::new(q[o], q[o + 1]),
+                    angle: q[o + 2],
+                    velocity: Vector2::new(qd[o], qd[o + 1]),
+                    omega: qd[o + 2],
+                })
+            }
+        }
+    }
+
+    fn inner(&self) -> &dyn GuideSurface {
+        match self {
+            Surface::Fixed(f) => f,
+            Surface::Floating(f) => f,
+        }
+    }
+}
+
+impl GuideSurface for Surface<'_> {
+    fn arc_range(&self) -> (f64, f64) {
+        self.inner().arc_range()
+    }
+    fn point(&self, s: f64) -> Vector2<f64> {
+        self.inner().point(s)
+    }
+    fn tangent(&self, s: f64) -> Vector2<f64> {
+        self.inner().tangent(s)
+    }
+    fn normal(&self, s: f64) -> Vector2<f64> {
+        self.inner().normal(s)
+    }
+    fn velocity(&self, s: f64) -> Vector2<f64> {
+        self.inner().velocity(s)
+    }
+}
+
+/// Add a world force `force` (N) acting on the face `(path, face, u)` of a beam (u: its full-DOF
+/// displacements) at arc coordinate s, world point `point`, as work-equivalent nodal loads
+/// (clr-beam `surface_load_row`) on a ground-fixed beam's free DOF, or through
+/// `FloatingBody::add_point_force` on a floating body's (R, θ, q_f).
+pub(crate) fn add_face_load(
+    guide: GuideRef,
+    (path, face, u): (&Path, Face, &[f64]),
+    (s, point): (f64, Vector2<f64>),
+    force: Vector2<f64>,
+    q: &[f64],
+    qf: &mut [f64],
+) {
+    let Ok(row) = path.surface_load_row(s, face, u) else {
+        return;
+    };
+    match guide {
+        GuideRef::Fixed(fb) => {
+            for k in 0..6 {
+                if let Some(fi) = fb.free_index[row.dofs[k]] {
+                    qf[fb.offset + fi] += row.fx[k] * force.x + row.fy[k] * force.y;
+                }
+            }
+        }
+        GuideRef::Floating(fl) => fl.add_point_force(q, point, &row, force, qf),
     }
 }
 
@@ -152,6 +256,9 @@ pub(crate) enum ClearanceKind {
     FlexGuide(Box<FlexGuide>),
     /// Two shapes in contact: shape A on frame i, shape B on frame j.
     Shapes(Box<crate::shape_pair::ShapePair>),
+    /// A rigid shape (frame j) against the deformed face of a flexible beam (frame i: the
+    /// ground or the floating body).
+    FacePair(Box<crate::face_pair::FacePair>),
 }
 
 pub(crate) struct Clearance {
@@ -220,6 +327,7 @@ impl Clearance {
             ClearanceKind::Translational { .. } => 4,
             ClearanceKind::FlexGuide(g) => g.detector.point_count(),
             ClearanceKind::Shapes(p) => p.settings.max_points,
+            ClearanceKind::FacePair(p) => p.settings.max_points,
         }
     }
 
@@ -228,7 +336,7 @@ impl Clearance {
         match &self.kind {
             ClearanceKind::FlexGuide(_) => 0,
             // one per pair: its deepest point (a continuous function of the state)
-            ClearanceKind::Shapes(_) => 1,
+            ClearanceKind::Shapes(_) | ClearanceKind::FacePair(_) => 1,
             _ => self.points(),
         }
     }
@@ -258,6 +366,8 @@ impl Clearance {
             ClearanceKind::FlexGuide(_) => (-1.0, 0.0),
             // the pair's deepest point (its rate is in the report)
             ClearanceKind::Shapes(p) => (p.max_depth(bi, bj), 0.0),
+            // at the state of its last update (`Model::refresh_face`)
+            ClearanceKind::FacePair(p) => (p.max_depth(), 0.0),
         }
     }
 
@@ -331,8 +441,8 @@ impl Clearance {
                 });
                 self.report_corners(bi, bj, &f, (n_active, power), &mut rep, add);
             }
-            // handled by apply_flex (it needs the beam coordinates)
-            ClearanceKind::FlexGuide(_) => {}
+            // handled by apply_flex (they need the beam coordinates)
+            ClearanceKind::FlexGuide(_) | ClearanceKind::FacePair(_) => {}
             ClearanceKind::Shapes(p) => {
                 let (i, j) = (self.i, self.j);
                 let laws = (&self.normal, &self.friction);
@@ -410,7 +520,16 @@ impl Clearance {
     pub(crate) fn flex_beam(&self) -> Option<GuideBeam> {
         match &self.kind {
             ClearanceKind::FlexGuide(g) => Some(g.beam),
+            ClearanceKind::FacePair(p) => Some(p.beam),
             _ => None,
+        }
+    }
+
+    /// Sample the face of a beam-face pair at (q, q̇) and detect against it (no-op for other
+    /// kinds): the state its gap, energy and report then refer to.
+    pub(crate) fn refresh_face(&mut self, guide: GuideRef, q: &[f64], qd: &[f64], bj: &BodyState) {
+        if let ClearanceKind::FacePair(p) = &mut self.kind {
+            p.update(guide, q, qd, bj);
         }
     }
 
@@ -419,40 +538,14 @@ impl Clearance {
         let ClearanceKind::FlexGuide(g) = &mut self.kind else {
             return;
         };
-        match guide {
-            GuideRef::Fixed(fb) => {
-                g.qfull.fill(0.0);
-                g.qdfull.fill(0.0);
-                for (a, &d) in fb.free.iter().enumerate() {
-                    g.qfull[d] = q[fb.offset + a];
-                    g.qdfull[d] = qd[fb.offset + a];
-                }
-                let surface = BeamFace {
-                    path: &g.path,
-                    face: g.face,
-                    q: &g.qfull,
-                    qd: &g.qdfull,
-                };
-                g.detector.detect(&surface, bj);
-            }
-            GuideRef::Floating(fl) => {
-                fl.full_displacements(q, qd, &mut g.qfull, &mut g.qdfull);
-                let o = fl.offset;
-                let surface = FloatFace {
-                    local: BeamFace {
-                        path: &g.path,
-                        face: g.face,
-                        q: &g.qfull,
-                        qd: &g.qdfull,
-                    },
-                    origin: Vector2::new(q[o], q[o + 1]),
-                    angle: q[o + 2],
-                    velocity: Vector2::new(qd[o], qd[o + 1]),
-                    omega: qd[o + 2],
-                };
-                g.detector.detect(&surface, bj);
-            }
-        }
+        let surface = Surface::new(
+            guide,
+            q,
+            qd,
+            (&g.path, g.face),
+            (&mut g.qfull, &mut g.qdfull),
+        );
+        g.detector.detect(&surface, bj);
     }
 
     /// Forces of a slider on a flexible guide: on the slider through `add_slider(qf, [f_x, f_y,
@@ -471,6 +564,11 @@ impl Clearance {
         qf: &mut [f64],
         mut add_slider: impl FnMut(&mut [f64], [f64; 3]),
     ) -> ContactReport {
+        if let ClearanceKind::FacePair(p) = &mut self.kind {
+            p.update(guide, q, qd, bj);
+            let laws = (&self.normal, &self.friction);
+            return p.apply(guide, (q, bj), laws, self.mem, memory, qf, add_slider);
+        }
         self.detect_flex(guide, q, qd, bj);
         let (normal, friction, mem) = (&self.normal, &self.friction, self.mem);
         let ClearanceKind::FlexGuide(g) = &mut self.kind else {
@@ -509,20 +607,8 @@ impl Clearance {
         }
         add_slider(qf, gf.as_array());
         for load in g.detector.loads() {
-            let Ok(row) = g.path.surface_load_row(load.arc, g.face, &g.qfull) else {
-                continue;
-            };
-            match guide {
-                GuideRef::Fixed(fb) => {
-                    for k in 0..6 {
-                        if let Some(fi) = fb.free_index[row.dofs[k]] {
-                            qf[fb.offset + fi] +=
-                                row.fx[k] * load.force.x + row.fy[k] * load.force.y;
-                        }
-                    }
-                }
-                GuideRef::Floating(fl) => fl.add_point_force(q, load.point, &row, load.force, qf),
-            }
+            let face = (&g.path, g.face, &g.qfull[..]);
+            add_face_load(guide, face, (load.arc, load.point), load.force, q, qf);
         }
         // slider reference point in the guide body's frame (the world frame for a fixed beam)
         let local = match guide {
@@ -547,8 +633,13 @@ impl Clearance {
         bj: &BodyState,
         memory: &mut ContactMemory,
     ) {
-        self.detect_flex(guide, q, qd, bj);
         let mem = self.mem;
+        if let ClearanceKind::FacePair(p) = &mut self.kind {
+            p.update(guide, q, qd, bj);
+            p.commit(bj, mem, memory);
+            return;
+        }
+        self.detect_flex(guide, q, qd, bj);
         let ClearanceKind::FlexGuide(g) = &self.kind else {
             return;
         };
@@ -599,6 +690,9 @@ impl Clearance {
     pub(crate) fn elastic_energy(&self, bi: &BodyState, bj: &BodyState) -> f64 {
         if let ClearanceKind::Shapes(p) = &self.kind {
             return p.elastic_energy(bi, bj, |d| elastic_energy(&self.normal, d));
+        }
+        if let ClearanceKind::FacePair(p) = &self.kind {
+            return p.elastic_energy(|d| elastic_energy(&self.normal, d));
         }
         if let ClearanceKind::FlexGuide(g) = &self.kind {
             let area = g.area_normal;

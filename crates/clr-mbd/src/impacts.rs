@@ -106,9 +106,12 @@ pub(crate) struct ImpactTracker {
 
 impl ImpactTracker {
     /// A tracker for the located clearance joints of `model`, starting at (t0, y0).
-    pub(crate) fn new(model: &Model, t0: f64, y0: &[f64]) -> Self {
-        let joints = (0..model.clearances.len())
+    pub(crate) fn new(model: &mut Model, t0: f64, y0: &[f64]) -> Self {
+        let tracked: Vec<usize> = (0..model.clearances.len())
             .filter(|&k| model.clearances[k].event_points() > 0)
+            .collect();
+        let joints = tracked
+            .into_iter()
             .map(|k| JointTrack {
                 clearance: k,
                 name: model.clearances[k].name.clone(),
@@ -427,8 +430,9 @@ fn brent_max(
 impl Model {
     /// Largest signed penetration δ over the points of clearance joint `k` at y, m (> 0 in
     /// contact).
-    pub(crate) fn joint_gap(&self, k: usize, y: &[f64]) -> f64 {
+    pub(crate) fn joint_gap(&mut self, k: usize, y: &[f64]) -> f64 {
         let (q, qd) = y[..2 * self.n].split_at(self.n);
+        self.refresh_face(k, q, qd);
         let cl = &self.clearances[k];
         let bi = body_state(&self.frames, cl.i, q, qd);
         let bj = body_state(&self.frames, cl.j, q, qd);
@@ -440,11 +444,21 @@ impl Model {
     /// anything: tentative onset values are cleared by the commit that follows.
     pub(crate) fn joint_probe(&mut self, k: usize, y: &[f64]) -> Probe {
         let (q, qd) = y[..2 * self.n].split_at(self.n);
-        let cl = &self.clearances[k];
-        let bi = body_state(&self.frames, cl.i, q, qd);
-        let bj = body_state(&self.frames, cl.j, q, qd);
-        // LuGre joints carry a frictionless `friction`: the normal force is the same
-        let rep = cl.apply(&bi, &bj, &mut self.memory, |_, _| {});
+        let bi = body_state(&self.frames, self.clearances[k].i, q, qd);
+        let bj = body_state(&self.frames, self.clearances[k].j, q, qd);
+        let rep = match self.clearances[k].flex_beam() {
+            // a beam-face pair loads the beam: into a scratch copy of the force workspace
+            Some(b) => {
+                let mut qf = std::mem::take(&mut self.qf);
+                let guide = crate::system::guide_ref(&self.beams, &self.floating, b);
+                let cl = &mut self.clearances[k];
+                let rep = cl.apply_flex(guide, q, qd, &bj, &mut self.memory, &mut qf, |_, _| {});
+                self.qf = qf;
+                rep
+            }
+            // LuGre joints carry a frictionless `friction`: the normal force is the same
+            None => self.clearances[k].apply(&bi, &bj, &mut self.memory, |_, _| {}),
+        };
         Probe {
             pen: rep.penetration,
             rate: rep.penetration_rate,

@@ -336,6 +336,7 @@ impl Model {
                     }
                 }
                 ClearanceKind::Shapes(p) => contact::shapes(cl, p, [&bi, &bj], memory, &mut out),
+                ClearanceKind::FacePair(_) => {}
             }
         }
     }
@@ -776,6 +777,8 @@ fn clearance_is_analytic(c: &Clearance) -> bool {
             // curvature terms are not in it yet, so a worn joint takes central differences
             ClearanceKind::Revolute(g, _) => g.profile().is_none_or(|p| p.max_depth() == 0.0),
             ClearanceKind::Translational { .. } | ClearanceKind::Shapes(_) => true,
+            // central differences over the beam's and the body's coordinates
+            ClearanceKind::FacePair(_) => false,
         }
 }
 

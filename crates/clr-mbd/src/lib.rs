@@ -35,6 +35,7 @@ mod clearance;
 pub mod desc;
 pub mod element;
 pub mod error;
+mod face_pair;
 mod field;
 mod flexible;
 pub mod floating;

@@ -45,7 +45,7 @@ pub(crate) struct Side {
 }
 
 impl Side {
-    fn new(p: &PlacedShape) -> Self {
+    pub(crate) fn new(p: &PlacedShape) -> Self {
         let radius = p.shape.bounding_radius();
         Self {
             arm: p.arm,
@@ -168,30 +168,9 @@ impl ShapePair {
         self.assign_slots(bi, bj, kept, taken);
     }
 
-    /// Slots by nearness to the committed keys (deepest point first), then free slots.
     fn assign_slots(&self, bi: &BodyState, bj: &BodyState, kept: &mut [Kept], taken: &mut [bool]) {
-        taken.fill(false);
-        let reach = self.settings.matching;
-        for k in kept.iter_mut() {
-            let la = bi.to_local(k.point.point_a);
-            let lb = bj.to_local(k.point.point_b);
-            let near = self
-                .keys
-                .iter()
-                .enumerate()
-                .filter(|(s, _)| !taken[*s])
-                .filter_map(|(s, key)| {
-                    let [ka, kb] = (*key)?;
-                    let d = (la - ka).norm().min((lb - kb).norm());
-                    (d <= reach).then_some((s, d))
-                });
-            let best = near.min_by(|x, y| x.1.total_cmp(&y.1)).map(|(s, _)| s);
-            let free = || (0..taken.len()).find(|&s| !taken[s] && self.keys[s].is_none());
-            let any = || (0..taken.len()).find(|&s| !taken[s]);
-            // `reduce` keeps at most as many points as there are slots
-            k.slot = best.or_else(free).or_else(any).unwrap_or(0);
-            taken[k.slot] = true;
-        }
+        let local = |p: &ShapeContactPoint| [bi.to_local(p.point_a), bj.to_local(p.point_b)];
+        assign_slots(&self.keys, self.settings.matching, kept, taken, local);
     }
 
     /// Gap between the two bounding circles, m: a lower bound of the shapes' distance.
@@ -346,6 +325,37 @@ impl ShapePair {
     }
 }
 
+/// Slots by nearness to the committed `keys` (deepest point first; a point keeps a slot when
+/// either of its two `local` points moved less than `reach` since the commit), then free
+/// slots, then any slot.
+pub(crate) fn assign_slots(
+    keys: &[Option<[Vector2<f64>; 2]>],
+    reach: f64,
+    kept: &mut [Kept],
+    taken: &mut [bool],
+    local: impl Fn(&ShapeContactPoint) -> [Vector2<f64>; 2],
+) {
+    taken.fill(false);
+    for k in kept.iter_mut() {
+        let [la, lb] = local(&k.point);
+        let near = keys
+            .iter()
+            .enumerate()
+            .filter(|(s, _)| !taken[*s])
+            .filter_map(|(s, key)| {
+                let [ka, kb] = (*key)?;
+                let d = (la - ka).norm().min((lb - kb).norm());
+                (d <= reach).then_some((s, d))
+            });
+        let best = near.min_by(|x, y| x.1.total_cmp(&y.1)).map(|(s, _)| s);
+        let free = || (0..taken.len()).find(|&s| !taken[s] && keys[s].is_none());
+        let any = || (0..taken.len()).find(|&s| !taken[s]);
+        // `reduce` keeps at most as many points as there are slots
+        k.slot = best.or_else(free).or_else(any).unwrap_or(0);
+        taken[k.slot] = true;
+    }
+}
+
 /// (δ̇, v_T) of a point: v = ṙ_B(p_B) − ṙ_A(p_A), δ̇ = −v·n, v_T = v·t (module docs).
 fn rates(p: &ShapeContactPoint, bi: &BodyState, bj: &BodyState) -> (f64, f64) {
     let v = bj.point_velocity(p.point_b) - bi.point_velocity(p.point_a);
@@ -354,7 +364,7 @@ fn rates(p: &ShapeContactPoint, bi: &BodyState, bj: &BodyState) -> (f64, f64) {
 
 /// Deepest first; drop a point near a deeper kept one with a similar normal; at most
 /// `max_points` (module docs).
-fn reduce(points: &[ShapeContactPoint], s: &PairSettings, kept: &mut Vec<Kept>) {
+pub(crate) fn reduce(points: &[ShapeContactPoint], s: &PairSettings, kept: &mut Vec<Kept>) {
     let near = |a: &ShapeContactPoint, b: &ShapeContactPoint| {
         (a.point_a - b.point_a).norm() <= s.merge && a.normal.dot(&b.normal) > 0.8
     };
@@ -373,11 +383,11 @@ fn reduce(points: &[ShapeContactPoint], s: &PairSettings, kept: &mut Vec<Kept>) 
     kept.truncate(s.max_points);
 }
 
-fn perp(v: Vector2<f64>) -> Vector2<f64> {
+pub(crate) fn perp(v: Vector2<f64>) -> Vector2<f64> {
     Vector2::new(-v.y, v.x)
 }
 
-fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
+pub(crate) fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
     a.x * b.y - a.y * b.x
 }
 

@@ -651,6 +651,25 @@ impl Model {
             .collect()
     }
 
+    /// Sample every beam-face contact pair at (q, q̇) (their gap and energy are those of the last
+    /// update).
+    pub(crate) fn refresh_faces(&mut self, q: &[f64], qd: &[f64]) {
+        for k in 0..self.clearances.len() {
+            self.refresh_face(k, q, qd);
+        }
+    }
+
+    /// Sample clearance `k` at (q, q̇) if it is a beam-face contact pair.
+    pub(crate) fn refresh_face(&mut self, k: usize, q: &[f64], qd: &[f64]) {
+        let cl = &mut self.clearances[k];
+        let Some(b) = cl.flex_beam() else {
+            return;
+        };
+        let bj = body_state(&self.frames, cl.j, q, qd);
+        let guide = guide_ref(&self.beams, &self.floating, b);
+        cl.refresh_face(guide, q, qd, &bj);
+    }
+
     /// Reports of the clearance joints at the last evaluation.
     pub fn contact_reports(&self) -> &[ContactReport] {
         &self.contacts
@@ -721,7 +740,7 @@ fn frame_rates(frames: &[Frame], k: usize, qdd: &[f64]) -> (Vector2<f64>, f64) {
 }
 
 #[inline]
-fn guide_ref<'a>(
+pub(crate) fn guide_ref<'a>(
     beams: &'a [FlexBeam],
     floating: &'a [FloatingBody],
     b: GuideBeam,
@@ -770,6 +789,7 @@ impl OdeSystem for Model {
         let (q, qd) = y.split_at(n);
         let mut ev = 0;
         self.broad.update(&self.frames, q);
+        self.refresh_faces(q, qd);
         for (k, cl) in self.clearances.iter().enumerate() {
             if self.broad.apart[k] {
                 g[ev] = cl.apart_report().penetration;

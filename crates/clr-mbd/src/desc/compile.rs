@@ -17,7 +17,11 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     let anchors = (desc.joints.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.forces.iter().map(|e| (e.name(), e.anchors())))
-        .chain(desc.shapes.iter().map(|s| (s.name.as_str(), vec![&s.at])))
+        .chain(
+            desc.shapes
+                .iter()
+                .map(|s| (s.name.as_str(), s.at.iter().collect())),
+        )
         .chain(desc.clearances.iter().map(|e| (e.name(), e.anchors())))
         .collect();
     let mut c = Compiler::new(&Inputs {
@@ -37,8 +41,8 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     for f in &desc.forces {
         f.compile(&mut c)?;
     }
-    for (k, s) in desc.shapes.iter().enumerate() {
-        s.compile(k, &mut c)?;
+    for s in &desc.shapes {
+        s.compile(&mut c)?;
     }
     for cl in &desc.clearances {
         cl.compile(&mut c)?;

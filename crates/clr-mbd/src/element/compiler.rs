@@ -10,7 +10,7 @@ use nalgebra::Vector2;
 use super::anchor::Anchor;
 use super::floating_body::FlexibleBody;
 use super::ground_beam::GroundBeam;
-use crate::clearance::Clearance;
+use crate::clearance::{Clearance, GuideBeam};
 use crate::desc::parts::{Body, ForceApplicationDesc, ModelInfo, Point};
 use crate::error::MbdError;
 use crate::flexible::FlexBeam;
@@ -46,7 +46,7 @@ pub(crate) struct Compiler {
     pub(crate) clearances: Vec<Clearance>,
     pub(crate) force_application: ForceApplication,
     /// `[[shape]]` items by name.
-    pub(crate) shapes: HashMap<String, crate::element::shape::PlacedShape>,
+    pub(crate) shapes: HashMap<String, crate::element::shape::Placed>,
 }
 
 /// What the compiler needs of a description before its element sections: `[model]`, bodies,
@@ -490,6 +490,52 @@ impl Compiler {
                     })
             }
         }
+    }
+
+    /// A flexible beam by name (a `[[beam]]` or a `[[flexible_body]]`) for an element running on
+    /// its face: (which beam, the frame its face moves with — the ground or the floating body —,
+    /// its element path, the length of its full-DOF vector). `path` names the field, for errors.
+    pub(crate) fn flexible_face(
+        &self,
+        path: &str,
+        beam: &str,
+    ) -> Result<(GuideBeam, usize, clr_beam::Path, usize), MbdError> {
+        let nb = self.n_rigid();
+        let found = match self.beams.iter().position(|fb| fb.name == beam) {
+            Some(b) => Some((
+                GuideBeam::Fixed(b),
+                GROUND_ID,
+                self.beams[b].path.clone(),
+                self.beams[b].n_dof_full,
+            )),
+            None => self.floating.iter().position(|f| f.name == beam).map(|f| {
+                (
+                    GuideBeam::Floating(f),
+                    nb + f,
+                    self.floating[f].path.clone(),
+                    3 * self.floating[f].nodes.len(),
+                )
+            }),
+        };
+        let Some((which, frame, p, nfull)) = found else {
+            let known: Vec<&str> = (self.beams.iter().map(|b| b.name.as_str()))
+                .chain(self.floating.iter().map(|f| f.name.as_str()))
+                .collect();
+            return Err(MbdError::UnknownBody {
+                item: path.to_string(),
+                body: beam.to_string(),
+                known: known.join(", "),
+            });
+        };
+        let Some(p) = p else {
+            return Err(MbdError::Invalid {
+                path: path.to_string(),
+                message: format!(
+                    "the elements of beam `{beam}` must form one chain (as a straight mesh does)"
+                ),
+            });
+        };
+        Ok((which, frame, p, nfull))
     }
 
     /// Every `[[shape]]` name, comma-separated (for messages).

@@ -9,6 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Anchor, Compiler};
 use crate::error::MbdError;
+use crate::face_pair::FaceSource;
 
 /// `[[shape]]`: a named shape on a body. Its frame sits at `at` turned by `angle` from the body's
 /// x axis; the geometry is written in that frame (m, rad).
@@ -19,7 +20,9 @@ pub struct ShapeDesc {
     pub name: String,
     /// Origin of the shape frame: a named point, `{ body, at }` (the ground is `"ground"`) or a
     /// beam node `{ beam, node }` (the shape then moves with the node's small-rotation frame).
-    pub at: Anchor,
+    /// Required for every geometry but `beam_face`, which follows its beam and refuses it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub at: Option<Anchor>,
     /// Angle of the shape frame from the body's x axis, rad.
     #[serde(default)]
     pub angle: f64,
@@ -89,6 +92,22 @@ pub enum Geometry {
         #[serde(default = "default_flank_points")]
         points_per_flank: u32,
     },
+    /// A face of a flexible beam (`[[beam]]` or `[[flexible_body]]`) along its deformed shape:
+    /// segments through samples of the face, rebuilt at every evaluation. Only as the first
+    /// shape (A) of a contact element, against a rigid shape; no `at` or `angle`.
+    BeamFace {
+        /// The beam's name.
+        beam: String,
+        /// Which face.
+        face: super::slider_on_beam::FaceDesc,
+        /// Samples per element (default 4: the segments' chord error falls as its square).
+        #[serde(default = "default_face_samples")]
+        samples_per_element: usize,
+    },
+}
+
+fn default_face_samples() -> usize {
+    4
 }
 
 fn default_pressure_angle() -> f64 {
@@ -157,6 +176,12 @@ impl Geometry {
                 points_per_flank: *points_per_flank,
             }
             .shape(),
+            Self::BeamFace { .. } => Err(clr_contact::ContactError::invalid(
+                "contact shape",
+                "geometry",
+                f64::NAN,
+                "a beam_face follows its beam's deformed face and has no rigid shape",
+            )),
         }
     }
 }
@@ -171,33 +196,98 @@ pub(crate) struct PlacedShape {
     pub(crate) shape: ContactShape,
 }
 
+/// A compiled `[[shape]]`: rigid, or the face of a flexible beam (with the frame of its beam:
+/// the ground or the floating body).
+#[derive(Clone)]
+pub(crate) enum Placed {
+    Rigid(PlacedShape),
+    Face(usize, FaceSource),
+}
+
 impl ShapeDesc {
     /// Validate and register the shape in the compiler under its name.
-    pub(crate) fn compile(&self, k: usize, c: &mut Compiler) -> Result<(), MbdError> {
-        let (frame, arm) = c.anchor(&self.name, "at", &self.at)?;
+    pub(crate) fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let name = &self.name;
         if !self.angle.is_finite() {
             return Err(MbdError::Invalid {
-                path: format!("shape[{k}].angle"),
+                path: format!("{name}.angle"),
                 message: format!("{} rad must be finite", self.angle),
             });
         }
-        let shape = self
-            .geometry
-            .to_shape()
-            .and_then(ContactShape::new)
-            .map_err(|source| MbdError::Contact {
-                item: format!("shape[{k}] ({}).geometry", self.name),
-                source,
-            })?;
-        c.shapes.insert(
-            self.name.clone(),
-            PlacedShape {
-                frame,
-                arm,
-                angle: self.angle,
-                shape,
-            },
-        );
+        let placed = match (&self.geometry, &self.at) {
+            (Geometry::BeamFace { .. }, Some(_)) => {
+                return Err(MbdError::Invalid {
+                    path: format!("{name}.at"),
+                    message: "a beam_face follows its beam: remove `at`".into(),
+                })
+            }
+            (
+                Geometry::BeamFace {
+                    beam,
+                    face,
+                    samples_per_element,
+                },
+                None,
+            ) => self.face(c, beam, *face, *samples_per_element)?,
+            (_, None) => {
+                return Err(MbdError::Invalid {
+                    path: format!("{name}.at"),
+                    message: "missing field `at`: where the shape sits, e.g. \
+                              { body = \"link\", at = [0.1, 0.0] } (m)"
+                        .into(),
+                })
+            }
+            (geometry, Some(at)) => {
+                let (frame, arm) = c.anchor(name, "at", at)?;
+                let shape = geometry
+                    .to_shape()
+                    .and_then(ContactShape::new)
+                    .map_err(|source| MbdError::Contact {
+                        item: format!("{name}.geometry"),
+                        source,
+                    })?;
+                Placed::Rigid(PlacedShape {
+                    frame,
+                    arm,
+                    angle: self.angle,
+                    shape,
+                })
+            }
+        };
+        c.shapes.insert(name.clone(), placed);
         Ok(())
+    }
+
+    fn face(
+        &self,
+        c: &Compiler,
+        beam: &str,
+        face: super::slider_on_beam::FaceDesc,
+        samples: usize,
+    ) -> Result<Placed, MbdError> {
+        let name = &self.name;
+        if self.angle != 0.0 {
+            return Err(MbdError::Invalid {
+                path: format!("{name}.angle"),
+                message: "a beam_face has no angle of its own: remove `angle`".into(),
+            });
+        }
+        if !(1..=64).contains(&samples) {
+            return Err(MbdError::Invalid {
+                path: format!("{name}.geometry.samples_per_element"),
+                message: format!("{samples} must be between 1 and 64"),
+            });
+        }
+        let (beam, frame, path, n_full) = c.flexible_face(&format!("{name}.geometry"), beam)?;
+        Ok(Placed::Face(
+            frame,
+            FaceSource {
+                beam,
+                path,
+                face: face.into(),
+                n_full,
+                samples,
+            },
+        ))
     }
 }

@@ -6,11 +6,13 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::shape::Placed;
 use super::{Compiler, Element};
 use crate::clearance::{Clearance as Runtime, ClearanceKind};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
-use crate::shape_pair::{PairSettings, ShapePair};
+use crate::face_pair::FacePair;
+use crate::shape_pair::{PairSettings, ShapePair, Side};
 
 /// `type = "contact"`: two `[[shape]]`s in contact. The normal points from `shapes[0]` (A) to
 /// `shapes[1]` (B).
@@ -57,20 +59,44 @@ impl Element for ShapeContact {
                 })
         };
         let (a, b) = (placed(0)?, placed(1)?);
-        c.distinct(name, a.frame, b.frame)?;
-        let settings = self.settings(&a, &b)?;
+        let Placed::Rigid(b) = b else {
+            return Err(MbdError::Invalid {
+                path: format!("{name}.shapes[1]"),
+                message: "a beam_face can only be the first shape (A) of a contact, against a \
+                          rigid shape: swap the two names (the normal then points from the face \
+                          to the other shape)"
+                    .into(),
+            });
+        };
         let normal = self.normal.build(&format!("{name}.normal"), None)?;
         let friction = self.friction.build(&format!("{name}.friction"))?;
-        let pair = ShapePair::new(&a, &b, settings);
-        pair.check_query().map_err(|source| MbdError::Contact {
-            item: name.clone(),
-            source,
-        })?;
+        let (i, kind) = match a {
+            Placed::Rigid(a) => {
+                c.distinct(name, a.frame, b.frame)?;
+                let size = a.shape.bounding_radius().min(b.shape.bounding_radius());
+                let merge = 2.0 * longest_segment(&a.shape).max(longest_segment(&b.shape));
+                let pair = ShapePair::new(&a, &b, self.settings(size, merge)?);
+                pair.check_query().map_err(|source| MbdError::Contact {
+                    item: name.clone(),
+                    source,
+                })?;
+                (a.frame, ClearanceKind::Shapes(Box::new(pair)))
+            }
+            Placed::Face(frame, src) => {
+                c.distinct(name, frame, b.frame)?;
+                // the face's samples are its natural scale for merging
+                let step = face_step(&src);
+                let size = b.shape.bounding_radius();
+                let side = Side::new(&b);
+                let pair = FacePair::new(src, side, self.settings(size, 2.0 * step)?);
+                (frame, ClearanceKind::FacePair(Box::new(pair)))
+            }
+        };
         c.clearances.push(Runtime {
             name: name.clone(),
-            i: a.frame,
+            i,
             j: b.frame,
-            kind: ClearanceKind::Shapes(Box::new(pair)),
+            kind,
             normal,
             friction,
             mem: 0,
@@ -82,17 +108,12 @@ impl Element for ShapeContact {
 }
 
 impl ShapeContact {
-    fn settings(
-        &self,
-        a: &super::shape::PlacedShape,
-        b: &super::shape::PlacedShape,
-    ) -> Result<PairSettings, MbdError> {
+    /// The pair's settings with the defaults for shapes of size `size` (the smaller bounding
+    /// radius, m) and the default merge distance `merge` (m).
+    fn settings(&self, size: f64, merge: f64) -> Result<PairSettings, MbdError> {
         let name = &self.name;
-        let size = a.shape.bounding_radius().min(b.shape.bounding_radius());
         let prediction = self.prediction.unwrap_or(0.1 * size);
-        let merge = self
-            .merge_distance
-            .unwrap_or_else(|| 2.0 * longest_segment(&a.shape).max(longest_segment(&b.shape)));
+        let merge = self.merge_distance.unwrap_or(merge);
         super::non_negative(name, "prediction (m)", prediction)?;
         super::non_negative(name, "merge_distance (m)", merge)?;
         let max_points = self.max_points.unwrap_or(4);
@@ -110,6 +131,17 @@ impl ShapeContact {
             max_points,
         })
     }
+}
+
+/// The longest arc step between the samples of a beam face, m.
+fn face_step(src: &crate::face_pair::FaceSource) -> f64 {
+    let starts = src.path.element_starts();
+    let ends = starts.iter().skip(1).copied().chain([src.path.length()]);
+    starts
+        .iter()
+        .zip(ends)
+        .map(|(s0, s1)| (s1 - s0) / src.samples as f64)
+        .fold(0.0, f64::max)
 }
 
 /// The longest segment of a polyline shape, m (0 for other kinds).

@@ -7,7 +7,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::{slider_shape, Anchor, Compiler, Element};
-use crate::clearance::{Clearance as Runtime, ClearanceKind, FlexGuide, GuideBeam};
+use crate::clearance::{Clearance as Runtime, ClearanceKind, FlexGuide};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
 use crate::runtime::GROUND_ID;
@@ -20,6 +20,15 @@ pub enum FaceDesc {
     Upper,
     /// −h/2 face.
     Lower,
+}
+
+impl From<FaceDesc> for clr_beam::Face {
+    fn from(f: FaceDesc) -> Self {
+        match f {
+            FaceDesc::Upper => clr_beam::Face::Upper,
+            FaceDesc::Lower => clr_beam::Face::Lower,
+        }
+    }
 }
 
 impl From<clr_beam::Face> for FaceDesc {
@@ -80,46 +89,8 @@ impl Element for SliderOnBeam {
                 requirement: "the slider must be a rigid body (not the ground or a beam node)",
             });
         }
-        let nb = c.n_rigid();
-        // a ground-fixed beam, or a floating-frame body (its face moves with it)
-        let found = match c.beams.iter().position(|fb| fb.name == self.beam) {
-            Some(b) => Some((
-                GuideBeam::Fixed(b),
-                GROUND_ID,
-                c.beams[b].path.clone(),
-                c.beams[b].n_dof_full,
-            )),
-            None => c
-                .floating
-                .iter()
-                .position(|f| f.name == self.beam)
-                .map(|f| {
-                    (
-                        GuideBeam::Floating(f),
-                        nb + f,
-                        c.floating[f].path.clone(),
-                        3 * c.floating[f].nodes.len(),
-                    )
-                }),
-        };
-        let Some((guide_beam, guide_frame, path, nfull)) = found else {
-            let known: Vec<&str> = (c.beams.iter().map(|b| b.name.as_str()))
-                .chain(c.floating.iter().map(|f| f.name.as_str()))
-                .collect();
-            return Err(MbdError::UnknownBody {
-                item: format!("{name}.beam"),
-                body: self.beam.clone(),
-                known: known.join(", "),
-            });
-        };
-        let Some(path) = path else {
-            return Err(MbdError::InvalidParameter {
-                item: name.clone(),
-                what: "beam path",
-                value: f64::NAN,
-                requirement: "the beam's elements must form one chain (as a straight mesh does)",
-            });
-        };
+        let (guide_beam, guide_frame, path, nfull) =
+            c.flexible_face(&format!("{name}.beam"), &self.beam)?;
         let shape = slider_shape(
             name,
             [self.slider_length, self.slider_height],
@@ -146,10 +117,7 @@ impl Element for SliderOnBeam {
             kind: ClearanceKind::FlexGuide(Box::new(FlexGuide {
                 beam: guide_beam,
                 path,
-                face: match self.face {
-                    FaceDesc::Upper => clr_beam::Face::Upper,
-                    FaceDesc::Lower => clr_beam::Face::Lower,
-                },
+                face: self.face.into(),
                 area_normal,
                 detector,
                 qfull: vec![0.0; nfull],

@@ -103,7 +103,7 @@ pub(crate) fn apply(
         // refused when the element is compiled (`FrictionSpec::build`): a slider on a flexible
         // guide takes stateless laws only
         // LuGre is refused for these at compile time
-        ClearanceKind::FlexGuide(_) | ClearanceKind::Shapes(_) => {}
+        ClearanceKind::FlexGuide(_) | ClearanceKind::Shapes(_) | ClearanceKind::FacePair(_) => {}
     }
     rep
 }
