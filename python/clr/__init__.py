@@ -1,8 +1,9 @@
 """clr: planar mechanisms with clearance joints, contact, friction and flexible links.
 
 Build a model (:class:`Model`, or a model file, or a built-in model by name), run it
-(:func:`simulate`) and sweep its parameters in parallel (:func:`sweep`); the contact and
-friction laws on their own are in :mod:`clr.contact`. Everything runs in Rust through the same
+(:func:`simulate`) and sweep its parameters in parallel (:func:`sweep`); the geometries of
+contact shapes are in :mod:`clr.shapes`, the contact and friction laws on their own in
+:mod:`clr.contact`. Everything runs in Rust through the same
 code as the ``clr`` command, so the numbers are those of ``clr run`` and ``clr sweep`` bit for
 bit. SI units throughout (docs/python.md).
 """
@@ -13,7 +14,7 @@ import json
 import os
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import _native, contact, errors
+from . import _native, contact, errors, shapes
 from .contact import FrictionLaw, NormalLaw, RevoluteJoint
 from .errors import (
     ClrError,
@@ -38,6 +39,7 @@ __all__ = [
     "normal",
     "friction",
     "motion",
+    "shapes",
     "simulate",
     "sweep",
     "Result",

@@ -10,7 +10,8 @@ refused with a :class:`clr.errors.FieldError` naming its field (``joint[1].axis`
 Attachment points (``a``, ``b``, ``bearing``, ``journal``, ``guide``, ``slider``, ``at``) are a
 point name (``"O"``), a body and local coordinates (:func:`at`) or a beam node (:func:`node`).
 Laws and time functions are dicts as in the file; :func:`normal`, :func:`friction`,
-:func:`material` and :func:`motion` write them.
+:func:`material` and :func:`motion` write them, and :mod:`clr.shapes` the geometries of
+contact shapes (:meth:`Model.shape`).
 """
 
 from __future__ import annotations
@@ -32,7 +33,9 @@ Anchor = Union[str, Mapping[str, Any]]
 Table = Mapping[str, Any]
 
 # The sections of a model file, in the order `clr export` writes them.
-_LISTS = ("body", "point", "beam", "flexible_body", "joint", "driver", "force", "clearance")
+_LISTS = (
+    "body", "point", "beam", "flexible_body", "joint", "driver", "force", "shape", "clearance",
+)
 _TABLES = ("model", "solver", "output")
 
 
@@ -474,7 +477,54 @@ class Model:
             "force", "nodal_load", name, beam=beam, node=node, fx=fx, fy=fy, moment=moment
         )
 
+    # ----- [[shape]] ---------------------------------------------------------------------
+
+    def shape(
+        self,
+        name: str,
+        *,
+        geometry: Table,
+        at: Optional[Anchor] = None,
+        angle: Optional[float] = None,
+    ) -> "Model":
+        """``[[shape]]``: a named contact shape. Its frame has its origin at ``at`` (a point
+        name, :func:`at` on a body or ``"ground"``, or :func:`node` of a beam: the shape then
+        moves with the node's small-rotation frame) and is turned by ``angle`` (rad, from the
+        body's x axis; default 0). ``geometry`` (m, in the shape frame) is written by
+        :mod:`clr.shapes`: ``ball``, ``capsule``, ``cuboid``, ``convex_polygon``, ``polyline``,
+        ``compound``, ``involute_gear``, or ``beam_face`` (the deformed face of a flexible beam:
+        then without ``at`` and ``angle``; ``at`` is required for every other geometry). A shape
+        does nothing on its own; :meth:`contact` puts two in contact."""
+        return self._add("shape", None, name, at=at, angle=angle, geometry=geometry)
+
     # ----- [[clearance]] -----------------------------------------------------------------
+
+    def contact(
+        self,
+        name: str,
+        *,
+        shapes: Sequence[str],
+        normal: Table,
+        friction: Optional[Table] = None,
+        prediction: Optional[float] = None,
+        merge_distance: Optional[float] = None,
+        max_points: Optional[int] = None,
+    ) -> "Model":
+        """Contact between two :meth:`shape` s on different bodies (``[[clearance]] type =
+        "contact"``): ``shapes`` = [A, B] (their names; the contact normal points from A to
+        B), the ``normal`` law of each contact point (:func:`normal`: ``hertz``, ``power`` or
+        ``linear`` with ``stiffness`` in N/m^n; the element gives no radii to material-based
+        laws), ``friction`` (:func:`friction`; default none, LuGre refused), ``prediction``: the
+        gap within which points are tracked before they touch (m; default a tenth of the smaller
+        shape's bounding radius), ``merge_distance``: points of one patch closer than this merge
+        into the deepest (m; default twice the longest segment of a polyline in the pair, else
+        0), ``max_points``: most contact points at once (1–64, default 4). Onsets are located as
+        events and impacts reported as for the clearance joints."""
+        return self._add(
+            "clearance", "contact", name, shapes=shapes, normal=normal, friction=friction,
+            prediction=prediction, merge_distance=merge_distance, max_points=max_points,
+        )
+
 
     def revolute_clearance(
         self,
@@ -581,7 +631,9 @@ METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("force", "torque"): "torque",
     ("force", "torque_between"): "torque_between",
     ("force", "nodal_load"): "nodal_load",
+    ("shape", None): "shape",
     ("clearance", "revolute"): "revolute_clearance",
     ("clearance", "translational"): "translational_clearance",
     ("clearance", "slider_on_beam"): "slider_on_beam",
+    ("clearance", "contact"): "contact",
 }

@@ -269,44 +269,95 @@ pub(crate) fn run_study(py: Python<'_>, name: &str, out: std::path::PathBuf) -> 
     .map_err(pyo3::exceptions::PyRuntimeError::new_err)
 }
 
-/// Every section of a model file with its element kinds (`type` values), for the builder's
-/// consistency check.
+/// The reader's message for the probe model `text` (empty if it reads).
+fn probe_message(text: &str) -> String {
+    match clr::spec::load_str("<probe>", text, &[]) {
+        Err(e) => e.message,
+        Ok(_) => String::new(),
+    }
+}
+
+/// The comma-separated names after `marker` in `message`.
+fn names_after(message: &str, marker: &str) -> Option<Vec<String>> {
+    message
+        .split_once(marker)
+        .map(|(_, list)| list.split(", ").map(|f| f.trim().to_string()).collect())
+}
+
+const PROBE: &str = "zz_probe_field_zz";
+
+/// The headers of a probe item in `section`: `[solver]`, `[[body]]`, or the tables inside a
+/// shape (`shape.geometry`, the parts of a compound `shape.geometry.parts`); `None` for any
+/// other dotted name.
+fn probe_header(section: &str) -> Option<String> {
+    Some(match section {
+        "model" | "solver" | "output" => format!("[{section}]"),
+        "shape.geometry" => "[[shape]]\n[shape.geometry]".to_string(),
+        "shape.geometry.parts" => {
+            "[[shape]]\n[shape.geometry]\ntype = \"compound\"\n[[shape.geometry.parts]]".to_string()
+        }
+        s if s.contains('.') => return None,
+        s => format!("[[{s}]]"),
+    })
+}
+
+/// Every section of a model file, in the order the reader lists them, with its element kinds
+/// (`type` values; empty for the sections without one), then the tagged tables inside items
+/// (`shape.geometry` with its geometry types), for the builder's consistency check.
 #[pyfunction]
-pub(crate) fn element_kinds() -> Vec<(&'static str, Vec<&'static str>)> {
+pub(crate) fn element_kinds() -> PyResult<Vec<(String, Vec<String>)>> {
     use clr::mbd::element::{Clearance, Driver, Force, Joint};
-    vec![
-        ("joint", Joint::KINDS.to_vec()),
-        ("driver", Driver::KINDS.to_vec()),
-        ("force", Force::KINDS.to_vec()),
-        ("clearance", Clearance::KINDS.to_vec()),
-    ]
+    let tagged: [(&str, &[&str]); 4] = [
+        ("joint", Joint::KINDS),
+        ("driver", Driver::KINDS),
+        ("force", Force::KINDS),
+        ("clearance", Clearance::KINDS),
+    ];
+    let probe = |text: &str, marker: &str, what: &str| {
+        let message = probe_message(text);
+        names_after(&message, marker).ok_or_else(|| {
+            pyo3::exceptions::PyValueError::new_err(format!("no list of {what}: {message}"))
+        })
+    };
+    let sections = probe(&format!("{PROBE} = 0\n"), "valid fields here: ", "sections")?;
+    let mut out: Vec<(String, Vec<String>)> = sections
+        .into_iter()
+        .map(|s| {
+            let kinds = tagged
+                .iter()
+                .find(|(t, _)| *t == s)
+                .map(|(_, k)| k.iter().map(|k| k.to_string()).collect())
+                .unwrap_or_default();
+            (s, kinds)
+        })
+        .collect();
+    let geometries = probe(
+        &format!("[[shape]]\n[shape.geometry]\ntype = \"{PROBE}\"\n"),
+        "valid: ",
+        "geometry types",
+    )?;
+    out.push(("shape.geometry".to_string(), geometries));
+    Ok(out)
 }
 
 /// The fields an item of `section` (of kind `kind` for the sections with a `type`) accepts, as
-/// the model-file reader lists them: the builder's methods are checked against these.
+/// the model-file reader lists them: the builder's methods are checked against these. Besides
+/// the sections, `shape.geometry` (with its `type` as `kind`) and `shape.geometry.parts` (a
+/// part of a compound geometry).
 #[pyfunction]
 #[pyo3(signature = (section, kind=None))]
 pub(crate) fn kind_fields(section: &str, kind: Option<&str>) -> PyResult<Vec<String>> {
-    const PROBE: &str = "zz_probe_field_zz";
     let item = match kind {
         Some(k) => format!("type = \"{k}\"\n{PROBE} = 0\n"),
         None => format!("{PROBE} = 0\n"),
     };
-    let header = match section {
-        "model" | "solver" | "output" => format!("[{section}]"),
-        _ => format!("[[{section}]]"),
-    };
-    let text = format!("{header}\n{item}");
-    let message = match clr::spec::load_str("<probe>", &text, &[]) {
-        Err(e) => e.message,
-        Ok(_) => String::new(),
-    };
-    message
-        .split_once("valid fields here: ")
-        .map(|(_, list)| list.split(", ").map(|f| f.trim().to_string()).collect())
-        .ok_or_else(|| {
-            pyo3::exceptions::PyValueError::new_err(format!(
-                "no field list for [{section}] {kind:?}: {message}"
-            ))
-        })
+    let header = probe_header(section).ok_or_else(|| {
+        pyo3::exceptions::PyValueError::new_err(format!("no probe for [{section}]"))
+    })?;
+    let message = probe_message(&format!("{header}\n{item}"));
+    names_after(&message, "valid fields here: ").ok_or_else(|| {
+        pyo3::exceptions::PyValueError::new_err(format!(
+            "no field list for [{section}] {kind:?}: {message}"
+        ))
+    })
 }
