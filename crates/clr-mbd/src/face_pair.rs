@@ -20,7 +20,7 @@ use clr_contact::{
 use nalgebra::Vector2;
 
 use crate::clearance::{add_face_load, ContactReport, GuideBeam, GuideRef, Surface};
-use crate::shape_pair::{assign_slots, cross, perp, reduce, Kept, PairSettings, Side};
+use crate::shape_pair::{assign_slots, cross, perp, reduce, Kept, PairSettings, Side, SlotKey};
 
 /// The runtime form (module docs); B is on the clearance's frame j.
 pub(crate) struct FacePair {
@@ -42,8 +42,9 @@ pub(crate) struct FacePair {
     raw: Vec<ShapeContactPoint>,
     kept: Vec<Kept>,
     taken: Vec<bool>,
-    /// Committed (arc, 0) on the face and the body-local point on B of each slot.
-    keys: Vec<Option<[Vector2<f64>; 2]>>,
+    /// Committed (arc, 0) on the face, the body-local point on B and the world normal of each
+    /// slot.
+    keys: Vec<Option<SlotKey>>,
 }
 
 /// What a face pair needs from the compiled beam.
@@ -141,7 +142,7 @@ impl FacePair {
         let (pos, arcs) = (&self.pos, &self.arcs);
         let local = |p: &ShapeContactPoint| {
             let s = arc_of(pos, arcs, p);
-            [Vector2::new(s, 0.0), bj.to_local(p.point_b)]
+            [Vector2::new(s, 0.0), bj.to_local(p.point_b), p.normal]
         };
         assign_slots(
             &self.keys,
@@ -222,7 +223,8 @@ impl FacePair {
         }
         for k in &self.kept {
             let s = arc_of(&self.pos, &self.arcs, &k.point);
-            self.keys[k.slot] = Some([Vector2::new(s, 0.0), bj.to_local(k.point.point_b)]);
+            let b = bj.to_local(k.point.point_b);
+            self.keys[k.slot] = Some([Vector2::new(s, 0.0), b, k.point.normal]);
         }
     }
 

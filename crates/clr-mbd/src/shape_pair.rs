@@ -110,7 +110,7 @@ pub(crate) struct ShapePair {
     scratch: RefCell<Scratch>,
     /// Body-local contact points (on A's frame, on B's frame) of each slot at the last accepted
     /// step, `None` for a free slot.
-    keys: Vec<Option<[Vector2<f64>; 2]>>,
+    keys: Vec<Option<SlotKey>>,
 }
 
 impl ShapePair {
@@ -169,7 +169,7 @@ impl ShapePair {
     }
 
     fn assign_slots(&self, bi: &BodyState, bj: &BodyState, kept: &mut [Kept], taken: &mut [bool]) {
-        let local = |p: &ShapeContactPoint| [bi.to_local(p.point_a), bj.to_local(p.point_b)];
+        let local = |p: &ShapeContactPoint| key(bi, bj, p);
         assign_slots(&self.keys, self.settings.matching, kept, taken, local);
     }
 
@@ -259,7 +259,7 @@ impl ShapePair {
         }
         self.keys.iter_mut().for_each(|k| *k = None);
         for k in &self.scratch.get_mut().kept {
-            self.keys[k.slot] = Some([bi.to_local(k.point.point_a), bj.to_local(k.point.point_b)]);
+            self.keys[k.slot] = Some(key(bi, bj, &k.point));
         }
     }
 
@@ -325,27 +325,33 @@ impl ShapePair {
     }
 }
 
-/// Slots by nearness to the committed `keys` (deepest point first; a point keeps a slot when
-/// either of its two `local` points moved less than `reach` since the commit), then free
-/// slots, then any slot.
+/// Where a slot's point was at the last accepted step: on A and on B (body-local, or the arc
+/// coordinate on a beam face), and the normal in A's frame.
+pub(crate) type SlotKey = [Vector2<f64>; 3];
+
+/// Slots by nearness to the committed `keys` (deepest point first): a point keeps a slot when
+/// either of its two `local` points moved less than `reach` since the commit and its normal
+/// (in A's frame) turned by less than 37° (cos > 0.8, as in [`reduce`]). The normal tells apart
+/// two contacts that share a point, e.g. a block's corner on a floor and on a wall: without it
+/// both would be at distance 0 of both slots and rounding would pick. Then free slots, then any.
 pub(crate) fn assign_slots(
-    keys: &[Option<[Vector2<f64>; 2]>],
+    keys: &[Option<SlotKey>],
     reach: f64,
     kept: &mut [Kept],
     taken: &mut [bool],
-    local: impl Fn(&ShapeContactPoint) -> [Vector2<f64>; 2],
+    local: impl Fn(&ShapeContactPoint) -> SlotKey,
 ) {
     taken.fill(false);
     for k in kept.iter_mut() {
-        let [la, lb] = local(&k.point);
+        let [la, lb, n] = local(&k.point);
         let near = keys
             .iter()
             .enumerate()
             .filter(|(s, _)| !taken[*s])
             .filter_map(|(s, key)| {
-                let [ka, kb] = (*key)?;
+                let [ka, kb, kn] = (*key)?;
                 let d = (la - ka).norm().min((lb - kb).norm());
-                (d <= reach).then_some((s, d))
+                (d <= reach && n.dot(&kn) > 0.8).then_some((s, d))
             });
         let best = near.min_by(|x, y| x.1.total_cmp(&y.1)).map(|(s, _)| s);
         let free = || (0..taken.len()).find(|&s| !taken[s] && keys[s].is_none());
@@ -354,6 +360,12 @@ pub(crate) fn assign_slots(
         k.slot = best.or_else(free).or_else(any).unwrap_or(0);
         taken[k.slot] = true;
     }
+}
+
+/// The slot key of a point: its body-local points and its normal in A's frame.
+fn key(bi: &BodyState, bj: &BodyState, p: &ShapeContactPoint) -> SlotKey {
+    let n = clr_contact::body::rotate(-bi.angle, p.normal);
+    [bi.to_local(p.point_a), bj.to_local(p.point_b), n]
 }
 
 /// (δ̇, v_T) of a point: v = ṙ_B(p_B) − ṙ_A(p_A), δ̇ = −v·n, v_T = v·t (module docs).

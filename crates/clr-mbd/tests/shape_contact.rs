@@ -90,6 +90,12 @@ fn ball_drop_rebounds_follow_restitution() {
         assert!(rel < 3e-3, "bounce {}: {h} vs {expected}", k + 1);
     }
     assert!(res.impacts.len() >= 3);
+    // no impact of zero duration beside the real one (an onset located at a step end used to
+    // read δ ≤ 0 at the next step's start): every impact lasts about the Hertz contact time
+    for imp in &res.impacts {
+        let d = imp.duration.unwrap_or(f64::INFINITY);
+        assert!(d > 1e-5 && imp.peak_force > 1.0, "{imp:?}");
+    }
 }
 
 /// Commit the memory at (q, q̇), evaluate, and compare the analytic Jacobians with the best
@@ -280,4 +286,53 @@ intervals = 30
     );
     assert!((v[last] / expected - 1.0).abs() < 1e-3);
     assert!((f[last] / p - 1.0).abs() < 1e-3);
+}
+
+/// A block sliding on a floor into a wall, floor and wall parts of one compound: its lower
+/// corner is the block-side point of a floor contact and of a wall contact at once. Each point
+/// keeps its own impact memory (the slots are matched by point and normal), so the wall impact
+/// returns c_e = 0.5 of the impact speed exactly (restitution-exact law, no friction: the floor
+/// does not act along x). Tolerance 1e-4 relative: the horizontal velocity after the impact
+/// against −c_e·v₀ (the run's error control, rtol 1e-7). Before the fix the wall took the
+/// floor's δ̇⁻ at random: 0.18 instead of 0.5, and 471 000 steps.
+#[test]
+fn a_corner_on_floor_and_wall_keeps_each_contacts_memory() {
+    let text = r#"
+[model]
+gravity = [0.0, -9.81]
+[[body]]
+name = "block"
+mass = 0.5
+inertia = 8.333e-5
+position = [0.079, 0.0099994]
+velocity = [0.3, 0.0]
+[[shape]]
+name = "housing"
+at = { body = "ground", at = [0.0, 0.0] }
+geometry = { type = "compound", parts = [
+  { at = [0.0, -0.005], geometry = { type = "cuboid", half_extents = [0.11, 0.005] } },
+  { at = [0.105, 0.02], geometry = { type = "cuboid", half_extents = [0.005, 0.03] } } ] }
+[[shape]]
+name = "box"
+at = { body = "block", at = [0.0, 0.0] }
+geometry = { type = "cuboid", half_extents = [0.02, 0.01] }
+[[clearance]]
+name = "c"
+type = "contact"
+shapes = ["housing", "box"]
+normal = { law = "hertz", stiffness = 5e9, damping = "hc-exact", restitution = 0.5 }
+[solver]
+rtol = 1e-7
+atol = 1e-10
+[output]
+t_end = 0.01
+intervals = 100
+"#;
+    let desc = model(text);
+    let mut m = desc.compile().unwrap();
+    let res = m.simulate(&desc.sim_options().unwrap()).unwrap();
+    let vx = res.column("block.vx").unwrap();
+    let ratio = -vx[vx.len() - 1] / 0.3;
+    eprintln!("rebound ratio {ratio}, steps {}", res.stats.accepted);
+    assert!((ratio / 0.5 - 1.0).abs() < 1e-4, "{ratio}");
 }

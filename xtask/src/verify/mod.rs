@@ -12,6 +12,7 @@ pub mod models;
 pub mod models_dual_guide;
 pub mod models_flap_flex;
 pub mod ode;
+mod shapes;
 mod wear;
 
 use std::process::ExitCode;
@@ -54,6 +55,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "contact",
         run: contact_geometry::cases,
+    },
+    Group {
+        name: "contact",
+        run: shapes::cases,
     },
     Group {
         name: "lubrication",

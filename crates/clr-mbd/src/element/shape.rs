@@ -194,6 +194,10 @@ pub(crate) struct PlacedShape {
     pub(crate) arm: Vector2<f64>,
     pub(crate) angle: f64,
     pub(crate) shape: ContactShape,
+    /// The spacing of the shape's own discretization, m: the longest polyline segment, the
+    /// median flank chord of a gear, 0 for exact shapes (the default merge distance is twice
+    /// the larger of a pair's two: one smooth contact drawn as chords is one patch).
+    pub(crate) chord: f64,
 }
 
 /// A compiled `[[shape]]`: rigid, or the face of a flexible beam (with the frame of its beam:
@@ -246,11 +250,13 @@ impl ShapeDesc {
                         item: format!("{name}.geometry"),
                         source,
                     })?;
+                let chord = chord(geometry, shape.desc());
                 Placed::Rigid(PlacedShape {
                     frame,
                     arm,
                     angle: self.angle,
                     shape,
+                    chord,
                 })
             }
         };
@@ -289,5 +295,36 @@ impl ShapeDesc {
                 samples,
             },
         ))
+    }
+}
+
+/// [`PlacedShape::chord`] of a geometry built into `shape`.
+fn chord(geometry: &Geometry, shape: &Shape) -> f64 {
+    let edges = |pts: &[[f64; 2]], closed: bool| -> Vec<f64> {
+        let n = pts.len();
+        let m = if closed { n } else { n - 1 };
+        (0..m)
+            .map(|k| {
+                let (a, b) = (pts[k], pts[(k + 1) % n]);
+                (b[0] - a[0]).hypot(b[1] - a[1])
+            })
+            .collect()
+    };
+    match (geometry, shape) {
+        (Geometry::Polyline { points }, _) => edges(points, false).into_iter().fold(0.0, f64::max),
+        (Geometry::InvoluteGear { .. }, Shape::Compound { parts }) => {
+            // most edges of a tooth polygon are flank chords: their median
+            let mut all: Vec<f64> = parts
+                .iter()
+                .filter_map(|(_, p)| match p {
+                    Shape::ConvexPolygon { points } => Some(edges(points, true)),
+                    _ => None,
+                })
+                .flatten()
+                .collect();
+            all.sort_by(f64::total_cmp);
+            all.get(all.len() / 2).copied().unwrap_or(0.0)
+        }
+        _ => 0.0,
     }
 }

@@ -34,7 +34,8 @@ pub struct ShapeContact {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub prediction: Option<f64>,
     /// Points of one contact patch closer than this are merged into the deepest, m (default:
-    /// twice the longest segment of a polyline in the pair, else 0: only coincident points).
+    /// twice the longest segment of a polyline or the median flank chord of a gear in the
+    /// pair, else 0: only coincident points).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub merge_distance: Option<f64>,
     /// Most contact points at once (default 4; each has its own impact memory).
@@ -74,7 +75,7 @@ impl Element for ShapeContact {
             Placed::Rigid(a) => {
                 c.distinct(name, a.frame, b.frame)?;
                 let size = a.shape.bounding_radius().min(b.shape.bounding_radius());
-                let merge = 2.0 * longest_segment(&a.shape).max(longest_segment(&b.shape));
+                let merge = 2.0 * a.chord.max(b.chord);
                 let pair = ShapePair::new(&a, &b, self.settings(size, merge)?);
                 pair.check_query().map_err(|source| MbdError::Contact {
                     item: name.clone(),
@@ -142,15 +143,4 @@ fn face_step(src: &crate::face_pair::FaceSource) -> f64 {
         .zip(ends)
         .map(|(s0, s1)| (s1 - s0) / src.samples as f64)
         .fold(0.0, f64::max)
-}
-
-/// The longest segment of a polyline shape, m (0 for other kinds).
-fn longest_segment(s: &clr_contact::ContactShape) -> f64 {
-    match s.desc() {
-        clr_contact::Shape::Polyline { points } => points
-            .windows(2)
-            .map(|w| (w[1][0] - w[0][0]).hypot(w[1][1] - w[0][1]))
-            .fold(0.0, f64::max),
-        _ => 0.0,
-    }
 }
