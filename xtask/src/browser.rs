@@ -1,6 +1,7 @@
-//! `cargo xtask report-check`: render the run reports (`report.html`) of three models in
+//! `cargo xtask report-check`: render the run reports (`report.html`) of four models in
 //! headless Chromium and check them as a user would see them: the page draws without script
-//! errors, the mechanism moves (the drawn journal, or a part, is elsewhere at two times), a 10 s
+//! errors, the mechanism moves (the drawn journal, or a part, is elsewhere at two times), the
+//! contact shapes are drawn and a shape contact's force acts along the right normal, a 10 s
 //! run's report stays under 20 MB, and the screenshots go to `docs/figures/` (shown in
 //! docs/cli.md). Installs Debian's `chromium` with apt-get when missing; never part of `cargo
 //! test` (a browser is a large system dependency).
@@ -13,26 +14,41 @@ use serde_json::Value;
 use crate::{target_dir, workspace_root};
 
 const HELP: &str = "usage: cargo xtask report-check
-  Builds clr (release), runs slider_crank, the flap with flexible links and the dual guide,
-  opens each report.html in headless Chromium (apt-get install chromium when missing) at two
-  times, checks for script errors and that the mechanism moved, writes the screenshots to
-  docs/figures/report_<model>_<k>.png, and checks that a 10 s run's report is under 20 MB.";
+  Builds clr (release), runs slider_crank, the flap with flexible links, the dual guide and
+  models/examples/gear_pair_backlash.toml, opens each report.html in headless Chromium (apt-get
+  install chromium when missing) at two times, checks for script errors, that the mechanism
+  moved and (gear pair) that the gears' shapes are drawn with the tooth force along the line of
+  action, writes the screenshots to docs/figures/report_<model>_<k>.png (the gear pair's first
+  to docs/figures/report_shapes.png), and checks that a 10 s run's report is under 20 MB.";
 
 /// The largest report of a 10 s run the issue allows, bytes.
 const MAX_REPORT_BYTES: u64 = 20 * 1024 * 1024;
 
-/// One model to render: its name, `clr run` arguments and the two times of the screenshots.
+/// One model to render: its name, `clr run` arguments (run in the workspace root: a model file
+/// is given relative to it) and the two times of the screenshots.
 struct Case {
     name: &'static str,
     args: &'static [&'static str],
     times: [f64; 2],
+    /// The file stem of the only screenshot kept (at the first time) in place of both
+    /// `report_<name>_<k>`.
+    figure: Option<&'static str>,
+    /// A shape contact in contact at the first time and its expected normal (world, from
+    /// shape A to B): the drawn normal must be within 0.05 (3°) of it.
+    contact: Option<(&'static str, [f64; 2])>,
 }
+
+/// sin and cos of the 20° pressure angle: the line of action of the example gear pair.
+const SIN_20: f64 = 0.3420201433256687;
+const COS_20: f64 = 0.9396926207859084;
 
 const CASES: &[Case] = &[
     Case {
         name: "slider_crank",
         args: &["slider_crank", "--t-end", "0.03"],
         times: [0.004, 0.02],
+        figure: None,
+        contact: None,
     },
     Case {
         name: "flap_flexible",
@@ -46,11 +62,24 @@ const CASES: &[Case] = &[
             "0.1",
         ],
         times: [0.02, 0.09],
+        figure: None,
+        contact: None,
     },
     Case {
         name: "dual_guide",
         args: &["dual_guide", "--t-end", "0.1"],
         times: [0.01, 0.09],
+        figure: None,
+        contact: None,
+    },
+    // the coast-flank impact after the drive reversal (at about 22 ms, impacts.csv of the
+    // example): the tooth force on gear 2 along the line of action, down and to the right
+    Case {
+        name: "gear_pair",
+        args: &["models/examples/gear_pair_backlash.toml"],
+        times: [0.02207, 0.08],
+        figure: Some("report_shapes"),
+        contact: Some(("mesh", [SIN_20, -COS_20])),
     },
 ];
 
@@ -72,12 +101,25 @@ fn run_all() -> Result<(), String> {
             .iter()
             .enumerate()
             .map(|(k, &t)| {
-                let shot = figures.join(format!("report_{}_{}.png", case.name, k + 1));
-                screenshot(&chromium, &page, t, &shot)?;
+                let shot = match (case.figure, k) {
+                    (Some(stem), 0) => Some(format!("{stem}.png")),
+                    (Some(_), _) => None,
+                    (None, _) => Some(format!("report_{}_{}.png", case.name, k + 1)),
+                };
+                if let Some(shot) = shot {
+                    screenshot(&chromium, &page, t, &figures.join(shot))?;
+                }
                 page_state(&chromium, &page, t)
             })
             .collect::<Result<_, String>>()?;
         check_moved(case.name, &states)?;
+        if let Some((name, normal)) = case.contact {
+            check_shapes(case.name, &states, name, normal)?;
+            println!(
+                "report-check: {}: shapes drawn, `{name}` in contact along the expected normal",
+                case.name
+            );
+        }
         println!(
             "report-check: {}: no script errors, the mechanism moved",
             case.name
@@ -147,12 +189,16 @@ fn build_clr() -> Result<PathBuf, String> {
     Ok(target_dir().join("release").join("clr"))
 }
 
+/// `clr run ARGS --out OUT` in the workspace root (a model file is given relative to it, and
+/// the page shows it so).
 fn run_clr(clr: &Path, args: &[&str], out: &Path) -> Result<(), String> {
-    let status = Command::new(clr)
+    let abs = |p: &Path| std::path::absolute(p).map_err(|e| format!("{}: {e}", p.display()));
+    let status = Command::new(abs(clr)?)
+        .current_dir(workspace_root())
         .arg("run")
         .args(args)
         .arg("--out")
-        .arg(out)
+        .arg(abs(out)?)
         .args(["--quiet", "--no-figures"])
         .status()
         .map_err(|e| format!("clr: {e}"))?;
@@ -237,7 +283,7 @@ fn page_state(chromium: &Path, page: &Path, t: f64) -> Result<Value, String> {
 }
 
 /// The journals (or, without revolute clearances, the parts) drawn at the two times are not
-/// in the same place.
+/// in the same place (or, for parts, not at the same angle).
 fn check_moved(name: &str, states: &[Value]) -> Result<(), String> {
     let key = if states[0]["journals"]
         .as_object()
@@ -251,7 +297,8 @@ fn check_moved(name: &str, states: &[Value]) -> Result<(), String> {
     let moved = a.as_object().into_iter().flatten().any(|(k, p)| {
         let q = &b[k];
         let d = |i: usize| p[i].as_f64().unwrap_or(0.0) - q[i].as_f64().unwrap_or(0.0);
-        d(0).hypot(d(1)) > 1e-6
+        // parts: [x, y, θ]; a part turning in place (a gear) moved too
+        d(0).hypot(d(1)) > 1e-6 || d(2).abs() > 1e-6
     });
     if moved {
         Ok(())
@@ -260,4 +307,32 @@ fn check_moved(name: &str, states: &[Value]) -> Result<(), String> {
             "{name}: the drawn {key} did not move between the two times: {a} / {b}"
         ))
     }
+}
+
+/// Every contact shape is drawn (a frame and at least one outline in the page's state) at both
+/// times, and at the first the shape contact `name` is in contact with its drawn normal (unit,
+/// world) within 0.05 of `normal`.
+fn check_shapes(case: &str, states: &[Value], name: &str, normal: [f64; 2]) -> Result<(), String> {
+    for s in states {
+        let shapes = s["shapes"].as_object().filter(|o| !o.is_empty());
+        let shapes = shapes.ok_or_else(|| format!("{case}: no contact shape drawn"))?;
+        for (shape, v) in shapes {
+            if v["outlines"].as_u64().unwrap_or(0) == 0 {
+                return Err(format!("{case}: shape `{shape}` has no outline: {v}"));
+            }
+        }
+    }
+    let c = &states[0]["contacts"][name];
+    let n = [c["n"][0].as_f64(), c["n"][1].as_f64()];
+    let [Some(nx), Some(ny)] = n else {
+        return Err(format!(
+            "{case}: `{name}` is not drawn in contact at the first time: {c}"
+        ));
+    };
+    if (nx - normal[0]).hypot(ny - normal[1]) > 0.05 {
+        return Err(format!(
+            "{case}: the normal drawn for `{name}` is [{nx}, {ny}], expected {normal:?}"
+        ));
+    }
+    Ok(())
 }

@@ -6,7 +6,9 @@
 // Data conventions (src/report/scene.rs, frames.rs): `frames.pose[part]` is [x, y, θ] of the
 // part's centre of mass per frame, flattened; an anchor {part, at} is in the part's body frame
 // (part −1: the world); an anchor {beam, node} is a beam node; `frames.nodes[beam]` holds the
-// node displacements [u, v] (world axes) from the undeformed nodes, frame-major.
+// node displacements [u, v] (world axes) from the undeformed nodes, frame-major. A contact
+// shape {at, angle, outlines} has its outlines in its own frame, whose origin is the anchor
+// `at` and whose x axis is turned by `angle` from its part's.
 //
 // A headless test reads `window.clrReport` ({time, journal(name), errors}) and waits for the
 // title to end with " [ready]"; `#t=<seconds>` in the URL sets the initial time (paused).
@@ -329,6 +331,47 @@
     return { partPoint, nodePoint, anchorPoint, anchorPart, anchorAngle, partAngle, com, isNode };
   }
 
+  /** World geometry of the contact shapes (`scene.shapes`): each moves with the part (or beam
+   * node) it is attached to, by the same transform as the part's own points. */
+  function makeShapes(scene, geo) {
+    const list = scene.shapes || [];
+    /** Origin (world; beam displacements magnified `mag` times) and angle of shape i's frame,
+     * null for a shape without one (a beam face: drawn as its beam). */
+    function frame(st, i, mag) {
+      const sh = list[i];
+      if (!sh || !sh.at) return null;
+      return { o: geo.anchorPoint(st, sh.at, mag), a: geo.anchorAngle(st, sh.at) + num(sh.angle, 0) };
+    }
+    /** The outlines of shape i in the world: [{pts, closed}] (none without a frame). */
+    function world(st, i, mag) {
+      const f = frame(st, i, mag);
+      if (!f) return [];
+      const c = Math.cos(f.a);
+      const s = Math.sin(f.a);
+      return list[i].outlines.map((ol) => ({
+        closed: ol.closed,
+        pts: ol.points.map((q) => [f.o[0] + c * q[0] - s * q[1], f.o[1] + s * q[0] + c * q[1]]),
+      }));
+    }
+    /** Part index shape i moves with (−1: the ground or a ground beam). */
+    const part = (i) => (list[i] && list[i].at ? geo.anchorPart(list[i].at) : -1);
+    // the convex hull of each outline's points (shape frame), at most 96 of them: the bounds
+    const hulls = list.map((sh) => {
+      const hull = convexHull([].concat(...sh.outlines.map((ol) => ol.points)));
+      const step = Math.ceil(hull.length / 96);
+      return step > 1 ? hull.filter((_, k) => k % step === 0) : hull;
+    });
+    /** Points of shape i (world) whose box holds its outline. */
+    function extent(st, i) {
+      const f = frame(st, i, 1);
+      if (!f) return [];
+      const c = Math.cos(f.a);
+      const s = Math.sin(f.a);
+      return hulls[i].map((q) => [f.o[0] + c * q[0] - s * q[1], f.o[1] + s * q[0] + c * q[1]]);
+    }
+    return { list, frame, world, part, extent };
+  }
+
   const rot = (th, v) => {
     const c = Math.cos(th);
     const s = Math.sin(th);
@@ -371,6 +414,7 @@
           beamMax[i] = Math.max(beamMax[i], m);
         }
       });
+      for (let i = 0; i < geo.shapes.list.length; i++) for (const p of geo.shapes.extent(st, i)) add(p);
       for (const it of scene.items) {
         for (const a of Object.values(it.anchors)) add(geo.anchorPoint(st, a, 1));
         const s = sliderCoordinate(it, st, geo);
@@ -422,7 +466,7 @@
     for (const [, cl] of sized) magCMax = Math.max(magCMax, (0.85 * cl.r) / cl.c);
     magC = isFinite(magC) ? Math.max(1, magC) : 1;
 
-    return { bounds, travel, fmax, magD, magC, magCMax, beamMax, moving };
+    return { bounds, travel, fmax, magD, magC, magCMax, beamMax, moving, contact: motion.contact };
   }
 
   /** Radial clearance c and reference radius r of a clearance element (null without one). */
@@ -718,8 +762,15 @@
         if (k >= 0) sliderPart[k] = true;
       }
     }
+    // parts that carry a contact shape: the shape is their drawing (no block of their own)
+    const shapes = geo.shapes;
+    const shaped = parts.map(() => false);
+    shapes.list.forEach((sh, i) => {
+      const k = shapes.part(i);
+      if (k >= 0 && sh.outlines.length) shaped[k] = true;
+    });
     const hulls = parts.map((p) => convexHull(uniquePoints(p.points.concat([p.com]))));
-    const isBlock = (k) => k >= 0 && parts[k].kind === 'rigid' && hulls[k].length === 1 && !sliderPart[k];
+    const isBlock = (k) => k >= 0 && parts[k].kind === 'rigid' && hulls[k].length === 1 && !sliderPart[k] && !shaped[k];
     /** Half sizes (px) of the block drawn for a one-point part. */
     const blockSize = (D, k) => {
       const r = bearingOn[k] > 0 ? Math.max(bearingOn[k] * D.s, MIN_BEARING_PX) : 0;
@@ -733,7 +784,7 @@
       els.push({
         body(D) {
           if (hull.length === 1) {
-            if (sliderPart[k]) return;
+            if (sliderPart[k] || shaped[k]) return;
             const [x, y] = D.S(geo.com(D.st, k));
             const [hx, hy] = blockSize(D, k);
             rectPath(D.ctx, x, y, hx, hy, -geo.partAngle(D.st, k));
@@ -792,6 +843,40 @@
       });
     });
 
+    // ---- contact shapes: their outlines with their part, filled lightly (ground shapes grey
+    // and hatched, under everything), outlined in the contact colour while in contact
+    shapes.list.forEach((sh, i) => {
+      if (!sh.at || !sh.outlines.length) return;
+      const k = shapes.part(i);
+      const c = colourOf(k);
+      const contacts = scene.items.filter((it) => it.section === 'clearance' && (it.shapes || []).includes(i)).map((it) => it.name);
+      // a shape fixed to the ground is filled on the background canvas (under the scale bar)
+      const fixed = k < 0 && !geo.isNode(sh.at);
+      const draw = (D, fill, stroke) => {
+        const outlines = shapes.world(D.st, i, D.magD).map((ol) => ({ closed: ol.closed, pts: ol.pts.map(D.S) }));
+        const on = stroke && contacts.some((name) => {
+          const con = contactOf(D, name);
+          return con && con.on;
+        });
+        shapeOutline(D.ctx, outlines, c, k < 0, on, fill, stroke);
+      };
+      const el = {
+        label(D) {
+          const f = shapes.frame(D.st, i, D.magD);
+          if (!D.names || !f) return;
+          const [x, y] = D.S(f.o);
+          label(D.ctx, sh.name, x + 6, y + 12, c.stroke);
+        },
+      };
+      if (fixed) {
+        el.background = (D) => draw(D, true, false);
+        el.under = (D) => draw(D, false, true);
+      } else {
+        el[k < 0 ? 'under' : 'body'] = (D) => draw(D, true, true);
+      }
+      els.push(el);
+    });
+
     // ground points: drawn over the parts that hinge on them (static, but cheap)
     const ground = uniquePoints(scene.ground);
     els.push({
@@ -804,7 +889,7 @@
     });
 
     for (const it of scene.items) {
-      const el = itemElement(it, geo, info, { colourOf, isBlock, blockSize });
+      const el = itemElement(it, geo, info, { colourOf, isBlock, blockSize, shapes });
       if (el) els.push(el);
     }
     return els;
@@ -975,6 +1060,8 @@
         return A.guide && A.slider ? translationalClearance(it, geo, info, shared) : genericItem(it, geo);
       case 'clearance:slider_on_beam':
         return A.slider && B.beam >= 0 ? sliderOnBeam(it, geo, shared) : genericItem(it, geo);
+      case 'clearance:contact':
+        return (it.shapes || []).length === 2 ? shapeContact(it, info, shared) : null;
       default:
         return firstAnchor ? genericItem(it, geo) : null;
     }
@@ -1299,6 +1386,206 @@
     ctx.stroke();
   }
 
+  /** A contact shape's outlines (screen points): with `fill`, the closed ones filled lightly in
+   * the part's colour as one path (the parts of a compound overlap without darkening), grey
+   * and hatched for the ground; with `stroke`, every outline stroked, in the contact colour
+   * while `on`. */
+  function shapeOutline(ctx, outlines, colour, ground, on, fill, stroke) {
+    const path = (closedOnly) => {
+      ctx.beginPath();
+      for (const ol of outlines) {
+        if (closedOnly && !ol.closed) continue;
+        ol.pts.forEach(([x, y], j) => (j ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+        if (ol.closed) ctx.closePath();
+      }
+    };
+    ctx.lineJoin = 'round';
+    ctx.lineCap = 'round';
+    if (fill && outlines.some((ol) => ol.closed)) {
+      path(true);
+      ctx.save();
+      ctx.globalAlpha = ground ? 0.8 : 0.7;
+      ctx.fillStyle = colour.fill;
+      ctx.fill();
+      ctx.restore();
+      if (ground) {
+        // hatch: lines at 45° every 7 px across the outlines' box, clipped to them
+        let [x0, y0, x1, y1] = [Infinity, Infinity, -Infinity, -Infinity];
+        for (const ol of outlines) {
+          if (!ol.closed) continue;
+          for (const [x, y] of ol.pts) {
+            x0 = Math.min(x0, x);
+            y0 = Math.min(y0, y);
+            x1 = Math.max(x1, x);
+            y1 = Math.max(y1, y);
+          }
+        }
+        // only the part on the canvas (a long floor may reach far beyond it)
+        x0 = Math.max(x0, -10);
+        y0 = Math.max(y0, -10);
+        x1 = Math.min(x1, ctx.canvas.width + 10);
+        y1 = Math.min(y1, ctx.canvas.height + 10);
+        if (x1 > x0 && y1 > y0) {
+          ctx.save();
+          path(true);
+          ctx.clip();
+          ctx.strokeStyle = colour.mid;
+          ctx.lineWidth = 1;
+          ctx.beginPath();
+          for (let d = x0 - (y1 - y0); d < x1; d += 7) {
+            ctx.moveTo(d, y1);
+            ctx.lineTo(d + (y1 - y0), y0);
+          }
+          ctx.stroke();
+          ctx.restore();
+        }
+      }
+    }
+    if (!stroke) return;
+    ctx.strokeStyle = on ? CONTACT : colour.stroke;
+    for (const ol of outlines) {
+      ctx.lineWidth = on ? 1.8 : ol.closed ? 1.3 : 2;
+      ctx.beginPath();
+      ol.pts.forEach(([x, y], j) => (j ? ctx.lineTo(x, y) : ctx.moveTo(x, y)));
+      if (ol.closed) ctx.closePath();
+      ctx.stroke();
+    }
+  }
+
+  /** The edge of `outlines` (world) nearest to p: {d, n, corner, closed} with n the edge's
+   * unit normal to its right (outwards for a counter-clockwise polygon; at a vertex where the
+   * outline turns by less than 25°, a curve drawn by chords, the mean of the two edges'), and
+   * `corner` true when p is at a sharper vertex or an open outline's end. Null without edges. */
+  function nearestEdge(outlines, p) {
+    let best = null;
+    for (const ol of outlines) {
+      const P = ol.pts;
+      const m = P.length;
+      for (let j = 0; j < (ol.closed ? m : m - 1); j++) {
+        const a = P[j];
+        const b = P[(j + 1) % m];
+        const v = [b[0] - a[0], b[1] - a[1]];
+        const vv = v[0] * v[0] + v[1] * v[1];
+        if (!(vv > 0)) continue;
+        const u = clamp(((p[0] - a[0]) * v[0] + (p[1] - a[1]) * v[1]) / vv, 0, 1);
+        const d = Math.hypot(a[0] + u * v[0] - p[0], a[1] + u * v[1] - p[1]);
+        if (!best || d < best.d) best = { d, ol, j, u };
+      }
+    }
+    if (!best) return null;
+    const { ol, j, u } = best;
+    const P = ol.pts;
+    const m = P.length;
+    const normal = (k) => {
+      const a = P[(k + m) % m];
+      const b = P[(k + 1 + m) % m];
+      return unit([b[1] - a[1], a[0] - b[0]]);
+    };
+    const n = normal(j);
+    const out = { d: best.d, n, corner: false, closed: ol.closed };
+    if (u > 1e-4 && u < 1 - 1e-4) return out;
+    // at a vertex: the edge before it (u = 0) or after it (u = 1)
+    const other = u <= 1e-4 ? j - 1 : j + 1;
+    if (!ol.closed && (other < 0 || other > m - 2)) {
+      out.corner = true;
+      return out;
+    }
+    const n2 = normal(other);
+    if (n[0] * n2[0] + n[1] * n2[1] < Math.cos((25 * Math.PI) / 180)) out.corner = true;
+    out.n = unit([n[0] + n2[0], n[1] + n2[1]]);
+    return out;
+  }
+
+  /** Mean of the outlines' points (world), null without any. */
+  function outlineCentre(outlines) {
+    let x = 0;
+    let y = 0;
+    let k = 0;
+    for (const ol of outlines) {
+      for (const q of ol.pts) {
+        x += q[0];
+        y += q[1];
+        k++;
+      }
+    }
+    return k ? [x / k, y / k] : null;
+  }
+
+  /** Unit normal from shape A to shape B at the contact point p on A (world; the normal is not
+   * recorded): the outline normal of A at p, or where p is at a corner of A (or A has no
+   * outline: a beam face) minus the normal of B's nearest edge. Open outlines (polylines) are
+   * two-sided: their normal is turned towards B (from A). Null without outlines. */
+  function contactNormal(wa, wb, p) {
+    const ea = nearestEdge(wa, p);
+    const eb = nearestEdge(wb, p);
+    const towards = (n, from, to) => {
+      if (!from || !to) return n;
+      return (to[0] - from[0]) * n[0] + (to[1] - from[1]) * n[1] < 0 ? [-n[0], -n[1]] : n;
+    };
+    if (ea && (!ea.corner || !eb)) return ea.closed ? ea.n : towards(ea.n, p, outlineCentre(wb));
+    if (eb) {
+      const n = [-eb.n[0], -eb.n[1]];
+      return eb.closed ? n : towards(n, outlineCentre(wa), p);
+    }
+    return null;
+  }
+
+  /** Shape contact (`type = "contact"`, shapes [A, B]): at the deepest point on A (the recorded
+   * ex, ey, world), a dot and the contact force on B, F_N along the normal n from A to B and
+   * F_T along k × n (clr-mbd shape pairs; the normal force summed over the contact points is
+   * drawn at the deepest one). */
+  function shapeContact(it, info, shared) {
+    const [ia, ib] = it.shapes;
+    const shapes = shared.shapes;
+    const raw = info.contact[it.name] || {};
+    /** The contact point in a state, or null: between a frame with contact and one without
+     * (whose ex, ey may be 0, 0: no point within the prediction distance) the frame with. */
+    const point = (st) => {
+      const c = st.contact[it.name];
+      if (!c || !isNum(c.ex) || !isNum(c.ey)) return null;
+      const on = (j) => raw.contact && raw.contact[j] > 0;
+      if (raw.ex && raw.ey && raw.contact) {
+        const i1 = Math.min(st.i + 1, raw.ex.length - 1);
+        if (on(st.i) !== on(i1)) {
+          const j = on(st.i) ? st.i : i1;
+          return [raw.ex[j], raw.ey[j]];
+        }
+      }
+      return [c.ex, c.ey];
+    };
+    /** {p, n} of the contact in a state (world, unmagnified), null when not in contact. */
+    const mark = (st) => {
+      const c = st.contact[it.name];
+      if (!c || !(num(c.contact, 0) > 0 || num(c.normal_force, 0) > 0)) return null;
+      const p = point(st);
+      if (!p) return null;
+      return { p, n: contactNormal(shapes.world(st, ia, 1), shapes.world(st, ib, 1), p) };
+    };
+    contactMarks.set(it.name, mark);
+    return {
+      force(D) {
+        const con = contactOf(D, it.name);
+        const m = con && con.on ? mark(D.st) : null;
+        if (!m) return;
+        const [x, y] = D.S(m.p);
+        if (m.n) forceArrows(D, [x, y], screenDir(m.n), con.fn, screenDir([-m.n[1], m.n[0]]), con.ft);
+        circlePath(D.ctx, x, y, 3);
+        D.ctx.fillStyle = CONTACT;
+        D.ctx.fill();
+      },
+      label(D) {
+        if (!D.names) return;
+        const m = mark(D.st);
+        const f = shapes.frame(D.st, ia, D.magD) || shapes.frame(D.st, ib, D.magD);
+        const p = m ? m.p : f && f.o;
+        if (!p) return;
+        const [x, y] = D.S(p);
+        // above the shapes' names (at their origins, below)
+        label(D.ctx, it.name, x + 8, y - 24, CONTACT);
+      },
+    };
+  }
+
   /** Slider on a flexible beam's face. The slider is drawn where it is, moved with the
    * magnified beam deflection so that it stays on the drawn face. */
   function sliderOnBeam(it, geo, shared) {
@@ -1367,6 +1654,8 @@
 
   // journal centres (unmagnified, world) of the revolute clearances, for window.clrReport
   const journals = new Map();
+  // contact point and normal ({p, n}, world) of the shape contacts in a state, null when apart
+  const contactMarks = new Map();
 
   // ===== the stage: canvas, view, playback ======================================================
 
@@ -1375,6 +1664,7 @@
     const motion = makeMotion(rep);
     const geo = makeGeometry(scene);
     geo.nodesOf = (st, b) => scene.beams[b].nodes.map((_, j) => geo.nodePoint(st, b, j, 1));
+    geo.shapes = makeShapes(scene, geo);
     const info = analyse(scene, motion, geo);
     const els = makeElements(scene, geo, info);
     const isRun = rep.kind !== 'view' && motion.n > 1;
@@ -1447,10 +1737,13 @@
       };
     }
 
-    // ---- background: what does not move (ground beams undeformed, their supports, the scale)
+    // ---- background: what does not move (ground beams undeformed, their supports, the fills
+    // of ground shapes, the scale)
     function drawBackground() {
       const ctx = bg.getContext('2d');
       ctx.clearRect(0, 0, view.w, view.h);
+      const D = drawContext(ctx, motion.at(pb.t));
+      for (const el of els) if (el.background) el.background(D);
       scene.beams.forEach((bm, b) => {
         if (bm.part >= 0) return;
         dashedLine(ctx, bm.nodes.map((q) => S(q)));
@@ -1537,16 +1830,25 @@
     /**
      * The drawn state in the DOM (a JSON script element with the id clr-state), for a headless browser that can
      * only dump the DOM (`chromium --dump-dom`, cargo xtask report-check): time, journal
-     * centres (world, unmagnified), part poses of the nearest frame, script errors.
+     * centres (world, unmagnified), part poses of the nearest frame, the frame of every contact
+     * shape ({origin, angle, outlines}: world, unmagnified, and how many outlines it has), the
+     * point and normal of every shape contact ({p, n}, world; null when apart), script errors.
      */
     function publishState(k) {
-      const state = { time: pb.t, journals: {}, parts: {}, errors: clrReport.errors };
+      const state = { time: pb.t, journals: {}, parts: {}, shapes: {}, contacts: {}, errors: clrReport.errors };
+      const st = motion.at(pb.t);
       for (const it of scene.items) {
         if (it.section === 'clearance' && it.kind === 'revolute') {
           const f = journals.get(it.name);
-          state.journals[it.name] = f ? f(motion.at(pb.t)) : null;
+          state.journals[it.name] = f ? f(st) : null;
         }
+        const mark = contactMarks.get(it.name);
+        if (it.section === 'clearance' && mark) state.contacts[it.name] = mark(st);
       }
+      geo.shapes.list.forEach((sh, i) => {
+        const f = geo.shapes.frame(st, i, 1);
+        if (f) state.shapes[sh.name] = { origin: f.o, angle: f.a, outlines: sh.outlines.length };
+      });
       scene.parts.forEach((p, i) => {
         const pose = rep.frames.pose[i];
         state.parts[p.name] = [pose[3 * k], pose[3 * k + 1], pose[3 * k + 2]];
