@@ -13,6 +13,7 @@ pub mod catalog;
 pub mod common;
 pub mod dual_guide;
 pub mod error;
+pub mod findings;
 pub mod flap;
 pub mod flap_flex;
 pub mod guide;
