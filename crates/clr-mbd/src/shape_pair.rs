@@ -111,6 +111,8 @@ pub(crate) struct ShapePair {
     /// Body-local contact points (on A's frame, on B's frame) of each slot at the last accepted
     /// step, `None` for a free slot.
     keys: Vec<Option<SlotKey>>,
+    /// The last commit found the pair apart (every slot separated, no key).
+    committed_apart: bool,
 }
 
 impl ShapePair {
@@ -125,6 +127,7 @@ impl ShapePair {
                 ..Default::default()
             }),
             keys: vec![None; settings.max_points],
+            committed_apart: false,
         }
     }
 
@@ -242,6 +245,7 @@ impl ShapePair {
         mem: usize,
         memory: &mut ContactMemory,
     ) {
+        self.committed_apart = false;
         {
             // detected with the previous keys, which are replaced below
             let mut s = self.scratch.borrow_mut();
@@ -300,10 +304,15 @@ impl ShapePair {
 
     /// Commit a pair known to be apart (the broad phase): every slot separated.
     pub(crate) fn commit_apart(&mut self, mem: usize, memory: &mut ContactMemory) {
+        // committing (−1, 0) again would change nothing: a pair that stays apart costs nothing
+        if self.committed_apart {
+            return;
+        }
         for (slot, key) in self.keys.iter_mut().enumerate() {
             memory.commit(mem + slot, -1.0, 0.0);
             *key = None;
         }
+        self.committed_apart = true;
     }
 
     /// The report of a pair with no point within the prediction distance.

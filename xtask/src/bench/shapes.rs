@@ -14,6 +14,12 @@
 //! Also measured, per pair and evaluation (the narrow phase the broad phase saves): clr-contact's
 //! `contact_points` for a ball–ball pair 0.5 m apart against the box test that skips it.
 //!
+//! A third model makes every pair touch with the same dynamics: each ball's floor contact split
+//! into 10 pairs against 10 coincident floors with a tenth of the stiffness each (the Hertz
+//! and Lankarani–Nikravesh forces are linear in K, so they add up to the same force). The cost
+//! per step over the first model, per added pair, is the cost of a touching pair, to set
+//! beside that of a pair apart.
+//!
 //! NDF, rtol 1e-7, atol 1e-10, 0.5 s (several bounces per ball), median of `--runs` runs
 //! (default 3). Output: target/bench/shapes.{json,md}.
 
@@ -53,18 +59,28 @@ struct Report<'a> {
     machine: String,
     rows: &'a [Row],
     ratio_per_step: f64,
+    apart_us_per_pair_step: f64,
+    touching_us_per_pair_step: f64,
     narrow_phase_ns: f64,
     box_test_ns: f64,
 }
 
-/// The model text: `BALLS` balls on floors, plus `extra` pairs apart.
-fn model_text(extra: usize) -> String {
+/// The model text: `BALLS` balls on floors, plus `extra` pairs apart. With `split` > 1 each
+/// ball's floor contact is `split` pairs against `split` coincident floors, each with
+/// 1/`split` of the stiffness: forces linear in K add up to the same dynamics, with `split`
+/// times the touching pairs.
+fn model_text(extra: usize, split: usize) -> String {
     let mut s = String::from(
         "[model]\nname = \"balls\"\ngravity = [0.0, -9.81]\n[solver]\nrtol = 1e-7\natol = 1e-10\n\
          [output]\nt_end = 0.5\nintervals = 50\n",
     );
     let law = "{ law = \"hertz\", stiffness = 1.5e10, damping = \"lankarani-nikravesh\", \
                restitution = 0.8 }";
+    let floor_law = format!(
+        "{{ law = \"hertz\", stiffness = {}, damping = \"lankarani-nikravesh\", \
+         restitution = 0.8 }}",
+        1.5e10 / split as f64
+    );
     for k in 0..BALLS {
         let x = 0.5 * k as f64;
         let _ = write!(
@@ -72,14 +88,19 @@ fn model_text(extra: usize) -> String {
             "[[body]]\nname = \"b{k}\"\nmass = 0.0327\ninertia = 1.308e-6\n\
              position = [{x}, {y}]\n\
              [[shape]]\nname = \"s{k}\"\nat = {{ body = \"b{k}\", at = [0.0, 0.0] }}\n\
-             geometry = {{ type = \"ball\", radius = 0.01 }}\n\
-             [[shape]]\nname = \"f{k}\"\nat = {{ body = \"ground\", at = [{x}, -0.05] }}\n\
-             geometry = {{ type = \"cuboid\", half_extents = [0.1, 0.05] }}\n\
-             [[clearance]]\nname = \"c{k}\"\ntype = \"contact\"\nshapes = [\"f{k}\", \"s{k}\"]\n\
-             normal = {law}\n",
+             geometry = {{ type = \"ball\", radius = 0.01 }}\n",
             // staggered heights so the impacts do not coincide
             y = 0.11 + 0.01 * k as f64,
         );
+        for m in 0..split {
+            let _ = write!(
+                s,
+                "[[shape]]\nname = \"f{k}_{m}\"\nat = {{ body = \"ground\", at = [{x}, -0.05] }}\n\
+                 geometry = {{ type = \"cuboid\", half_extents = [0.1, 0.05] }}\n\
+                 [[clearance]]\nname = \"c{k}_{m}\"\ntype = \"contact\"\n\
+                 shapes = [\"f{k}_{m}\", \"s{k}\"]\nnormal = {floor_law}\n"
+            );
+        }
     }
     let mut added = 0;
     'pairs: for i in 0..BALLS {
@@ -113,8 +134,9 @@ fn model_text(extra: usize) -> String {
     s
 }
 
-fn bench_model(name: &str, extra: usize, runs: usize) -> Result<Row, String> {
-    let table: toml::Table = toml::from_str(&model_text(extra)).map_err(|e| e.to_string())?;
+fn bench_model(name: &str, (extra, split): (usize, usize), runs: usize) -> Result<Row, String> {
+    let table: toml::Table =
+        toml::from_str(&model_text(extra, split)).map_err(|e| e.to_string())?;
     let desc = ModelDesc::from_toml_table(table).map_err(|e| e.to_string())?;
     let opts = desc.sim_options().map_err(|e| e.to_string())?;
     let mut walls = Vec::new();
@@ -131,8 +153,8 @@ fn bench_model(name: &str, extra: usize, runs: usize) -> Result<Row, String> {
     let wall_s = walls[walls.len() / 2];
     Ok(Row {
         model: name.to_string(),
-        pairs: BALLS + extra,
-        pairs_touching: BALLS,
+        pairs: BALLS * split + extra,
+        pairs_touching: BALLS * split,
         steps: r.stats.accepted,
         rejected: r.stats.rejected,
         f_evals: r.stats.f_evals,
@@ -181,9 +203,14 @@ pub fn run(args: &[String]) -> ExitCode {
         return ExitCode::from(2);
     };
     let mut rows = Vec::new();
-    for (name, extra) in [("touching pairs only", 0), ("100 pairs", PAIRS - BALLS)] {
+    let split = PAIRS / BALLS;
+    for (name, layout) in [
+        ("touching pairs only", (0, 1)),
+        ("100 pairs, 90 apart", (PAIRS - BALLS, 1)),
+        ("100 pairs, all touching", (0, split)),
+    ] {
         eprintln!("bench shapes: {name}");
-        match bench_model(name, extra, runs) {
+        match bench_model(name, layout, runs) {
             Ok(r) => rows.push(r),
             Err(e) => {
                 eprintln!("bench shapes: {name} failed: {e}");
@@ -193,6 +220,10 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     let (narrow, boxes) = per_pair_costs();
     let ratio = rows[1].us_per_step / rows[0].us_per_step;
+    // the added cost per pair per step: apart (row 1) and touching (row 2) over the base
+    let extra_pairs = (PAIRS - BALLS) as f64;
+    let apart_us = (rows[1].us_per_step - rows[0].us_per_step) / extra_pairs;
+    let touching_us = (rows[2].us_per_step - rows[0].us_per_step) / extra_pairs;
     let mut md = format!(
         "# bench shapes\n\nMachine: {}\n\n| model | pairs | touching | steps | rejected | \
          f evals | onsets | wall (ms) | µs/step |\n|---|---|---|---|---|---|---|---|---|\n",
@@ -215,6 +246,12 @@ pub fn run(args: &[String]) -> ExitCode {
     }
     let _ = writeln!(
         md,
+        "\nAdded cost per pair and step: a pair apart {apart_us:.3} µs, a touching pair \
+         {touching_us:.3} µs (**{:.1}×** a pair apart).",
+        touching_us / apart_us
+    );
+    let _ = writeln!(
+        md,
         "\nCost per step, 100 pairs / touching pairs only: **{ratio:.2}** ({} pairs apart).\n\
          Per pair and evaluation: narrow phase of two balls 0.5 m apart {narrow:.0} ns, the box \
          test that skips it {boxes:.0} ns ({:.1}× cheaper).",
@@ -227,6 +264,8 @@ pub fn run(args: &[String]) -> ExitCode {
         machine: machine(),
         rows: &rows,
         ratio_per_step: ratio,
+        apart_us_per_pair_step: apart_us,
+        touching_us_per_pair_step: touching_us,
         narrow_phase_ns: narrow,
         box_test_ns: boxes,
     };
