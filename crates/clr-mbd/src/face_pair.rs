@@ -20,7 +20,9 @@ use clr_contact::{
 use nalgebra::Vector2;
 
 use crate::clearance::{add_face_load, ContactReport, GuideBeam, GuideRef, Surface};
-use crate::shape_pair::{assign_slots, cross, perp, reduce, Kept, PairSettings, Side, SlotKey};
+use crate::shape_pair::{
+    assign_slots, cross, perp, point_force, reduce, Kept, PairSettings, Side, SlotKey,
+};
 
 /// The runtime form (module docs); B is on the clearance's frame j.
 pub(crate) struct FacePair {
@@ -153,12 +155,12 @@ impl FacePair {
         );
     }
 
-    /// (δ̇, v_T, velocity of the face at the point) of a kept point.
-    fn rates(&self, p: &ShapeContactPoint, bj: &BodyState) -> (f64, f64, Vector2<f64>) {
+    /// (δ̇, v_T) of a kept point, with the face's velocity interpolated along its segment.
+    fn rates(&self, p: &ShapeContactPoint, bj: &BodyState) -> (f64, f64) {
         let k = p.part_a as usize;
         let (va, _) = lerp(&self.vel, k, param(self.pos[k], self.pos[k + 1], p.point_a));
         let v = bj.point_velocity(p.point_b) - va;
-        (-v.dot(&p.normal), v.dot(&perp(p.normal)), va)
+        (-v.dot(&p.normal), v.dot(&perp(p.normal)))
     }
 
     /// Forces at the state of the last [`FacePair::update`]: on B through `add_b(qf, [f_x,
@@ -178,31 +180,17 @@ impl FacePair {
             penetration: -self.settings.prediction,
             ..Default::default()
         };
-        if let Some(k) = self.kept.first() {
-            rep.eccentricity = [k.point.point_a.x, k.point.point_a.y];
-        }
         for k in &self.kept {
             let p = &k.point;
-            let (vn, vt, _) = self.rates(p, bj);
-            if p.depth > rep.penetration {
-                rep.penetration = p.depth;
-                rep.penetration_rate = vn;
-            }
-            if p.depth <= 0.0 {
+            let (vn, vt) = self.rates(p, bj);
+            let laws = (normal, friction);
+            let Some(f) = point_force(k, (vn, vt), laws, (mem, &mut *memory), &mut rep) else {
                 continue;
-            }
-            let vm = memory.impact_velocity(mem + k.slot, p.depth, vn);
-            let f_n = normal.force(p.depth, vn, vm);
-            let f_t = friction.force(vt, f_n);
-            let f = p.normal * f_n + perp(p.normal) * f_t;
+            };
             add_b(qf, [f.x, f.y, cross(p.point_b - bj.position, f)]);
             let arc = arc_of(&self.pos, &self.arcs, p);
             let face = (&self.path, self.face, &self.qfull[..]);
             add_face_load(guide, face, (arc, p.point_a), -f, q, qf);
-            rep.active_points += 1;
-            rep.normal_force += f_n;
-            rep.friction_force += f_t;
-            rep.dissipated_power += (f_n - normal.elastic_force(p.depth)) * vn - f_t * vt;
         }
         rep
     }
@@ -211,7 +199,7 @@ impl FacePair {
     pub(crate) fn commit(&mut self, bj: &BodyState, mem: usize, memory: &mut ContactMemory) {
         self.taken.fill(false);
         for k in &self.kept {
-            let (vn, _, _) = self.rates(&k.point, bj);
+            let (vn, _) = self.rates(&k.point, bj);
             memory.commit(mem + k.slot, k.point.depth, vn);
             self.taken[k.slot] = true;
         }

@@ -208,30 +208,13 @@ impl ShapePair {
         rep.penetration = floor;
         rep.eccentricity = [0.0, 0.0];
         self.with_points(bi, bj, |kept| {
-            // the deepest point within the prediction distance, on A, world frame
-            if let Some(k) = kept.first() {
-                rep.eccentricity = [k.point.point_a.x, k.point.point_a.y];
-            }
             for k in kept {
                 let p = &k.point;
-                let (vn, vt) = rates(p, bi, bj);
-                if p.depth > rep.penetration {
-                    rep.penetration = p.depth;
-                    rep.penetration_rate = vn;
+                let rates = rates(p, bi, bj);
+                if let Some(f) = point_force(k, rates, (normal, friction), (mem, memory), rep) {
+                    add(0, [-f.x, -f.y, cross(p.point_a - bi.position, -f)]);
+                    add(1, [f.x, f.y, cross(p.point_b - bj.position, f)]);
                 }
-                if p.depth <= 0.0 {
-                    continue;
-                }
-                let vm = memory.impact_velocity(mem + k.slot, p.depth, vn);
-                let f_n = normal.force(p.depth, vn, vm);
-                let f_t = friction.force(vt, f_n);
-                let f = p.normal * f_n + perp(p.normal) * f_t;
-                add(0, [-f.x, -f.y, cross(p.point_a - bi.position, -f)]);
-                add(1, [f.x, f.y, cross(p.point_b - bj.position, f)]);
-                rep.active_points += 1;
-                rep.normal_force += f_n;
-                rep.friction_force += f_t;
-                rep.dissipated_power += (f_n - normal.elastic_force(p.depth)) * vn - f_t * vt;
             }
         });
     }
@@ -375,6 +358,35 @@ pub(crate) fn assign_slots(
 fn key(bi: &BodyState, bj: &BodyState, p: &ShapeContactPoint) -> SlotKey {
     let n = clr_contact::body::rotate(-bi.angle, p.normal);
     [bi.to_local(p.point_a), bj.to_local(p.point_b), n]
+}
+
+/// The force f = F_N n + F_T t on B at kept point `k` with rates (δ̇, v_T), `None` when it does
+/// not penetrate; the report takes the deepest point's penetration, rate and position on A (as
+/// `eccentricity`), and the forces and dissipated power of every penetrating point.
+pub(crate) fn point_force(
+    k: &Kept,
+    (vn, vt): (f64, f64),
+    (normal, friction): (&NormalLaw, &FrictionLaw),
+    (mem, memory): (usize, &mut ContactMemory),
+    rep: &mut ContactReport,
+) -> Option<Vector2<f64>> {
+    let p = &k.point;
+    if p.depth > rep.penetration {
+        rep.penetration = p.depth;
+        rep.penetration_rate = vn;
+        rep.eccentricity = [p.point_a.x, p.point_a.y];
+    }
+    if p.depth <= 0.0 {
+        return None;
+    }
+    let vm = memory.impact_velocity(mem + k.slot, p.depth, vn);
+    let f_n = normal.force(p.depth, vn, vm);
+    let f_t = friction.force(vt, f_n);
+    rep.active_points += 1;
+    rep.normal_force += f_n;
+    rep.friction_force += f_t;
+    rep.dissipated_power += (f_n - normal.elastic_force(p.depth)) * vn - f_t * vt;
+    Some(p.normal * f_n + perp(p.normal) * f_t)
 }
 
 /// (δ̇, v_T) of a point: v = ṙ_B(p_B) − ṙ_A(p_A), δ̇ = −v·n, v_T = v·t (module docs).
