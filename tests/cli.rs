@@ -969,3 +969,134 @@ fn animate_exports_the_run_as_a_gif() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("no report.html"), "{}", stderr(&o));
 }
+
+/// A ball (r = 10 mm, centre 15 mm up) dropping 5 mm onto a ground floor block
+/// (x ∈ [−0.5, 0.5] m, y ∈ [−0.1, 0] m); little restitution: it rests on the floor from about
+/// t = 0.06 s.
+const BALL_DROP: &str = r#"
+[model]
+name = "drop"
+gravity = [0.0, -9.81]
+
+[[body]]
+name = "ball"
+mass = 0.0327
+inertia = 1.308e-6
+position = [0.0, 0.015]
+
+[[shape]]
+name = "floor"
+at = { body = "ground", at = [0.0, -0.05] }
+geometry = { type = "cuboid", half_extents = [0.5, 0.05] }
+
+[[shape]]
+name = "sphere"
+at = { body = "ball", at = [0.0, 0.0] }
+geometry = { type = "ball", radius = 0.01 }
+
+[[clearance]]
+name = "drop"
+type = "contact"
+shapes = ["floor", "sphere"]
+normal = { law = "hertz", stiffness = 1.5e10, damping = "hc-exact", restitution = 0.3 }
+
+[output]
+t_end = 0.1
+intervals = 200
+"#;
+
+/// The frames of a GIF as full RGB images (each frame's changed rectangle laid over the
+/// previous image; transparent pixels keep it).
+fn gif_frames(path: &Path) -> (usize, usize, Vec<Vec<[u8; 3]>>) {
+    let mut opts = gif::DecodeOptions::new();
+    opts.set_color_output(gif::ColorOutput::RGBA);
+    let mut dec = opts.read_info(std::fs::File::open(path).unwrap()).unwrap();
+    let (w, h) = (dec.width() as usize, dec.height() as usize);
+    let mut image = vec![[0u8; 3]; w * h];
+    let mut out = Vec::new();
+    while let Some(f) = dec.read_next_frame().unwrap() {
+        let (fl, ft, fw) = (f.left as usize, f.top as usize, f.width as usize);
+        for (k, px) in f.buffer.chunks_exact(4).enumerate() {
+            if px[3] > 0 {
+                let (x, y) = (fl + k % fw, ft + k / fw);
+                image[y * w + x] = [px[0], px[1], px[2]];
+            }
+        }
+        out.push(image.clone());
+    }
+    (w, h, out)
+}
+
+/// `clr animate` draws the contact shapes moved with their parts: the ground floor grey, the
+/// ball in the part colour where the drawing's transform puts them, and both edged red while
+/// the contact element touches (not in the first frame, 5 mm apart; in the last, at rest).
+#[test]
+fn animate_draws_the_contact_shapes() {
+    let out = scratch("animate-shapes");
+    let model = out.join("drop.toml");
+    std::fs::write(&model, BALL_DROP).unwrap();
+    let d = out.join("run");
+    let o = clr(&[
+        "run",
+        model.to_str().unwrap(),
+        "--out",
+        d.to_str().unwrap(),
+        "--quiet",
+        "--no-figures",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let gif = out.join("drop.gif");
+    let o = clr(&[
+        "animate",
+        d.to_str().unwrap(),
+        "--gif",
+        gif.to_str().unwrap(),
+        "--fps",
+        "10",
+        "--duration",
+        "1",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (w, h, frames) = gif_frames(&gif);
+    assert_eq!(frames.len(), 10);
+    // the view: the shapes' outlines over the frames span x ∈ [−0.5, 0.5] m,
+    // y ∈ [−0.1, 0.025] m (the ball's top in the first frame); margin 32 px (4 % of 800);
+    // scale (800 − 2·32) / 1 m = 736 px/m; the drawing 0.125·736 = 92 px high, the image the
+    // least height, 200 px, the drawing centred in it: the bottom y = −0.1 m at 54 px up
+    assert_eq!((w, h), (800, 200));
+    let (scale, bottom) = (736.0, 54.0);
+    let px = |x: f64, y: f64| {
+        let c = 32.0 + (x + 0.5) * scale;
+        let r = h as f64 - (bottom + (y + 0.1) * scale);
+        (c.floor() as usize, r.floor() as usize)
+    };
+    let at = |f: usize, (x, y): (usize, usize)| frames[f][y * w + x];
+    let white = [255u8, 255, 255];
+    // first frame: the floor's centre (0, −0.05) grey (fill or hatch), the ball's centre
+    // (0, 0.015) in the light part colour (blue), above the ball nothing
+    let floor = at(0, px(0.0, -0.05));
+    assert_ne!(floor, white, "no floor at its centre");
+    let grey = |c: [u8; 3]| c.iter().max().unwrap() - c.iter().min().unwrap() < 30;
+    assert!(grey(floor), "floor not grey: {floor:?}");
+    let ball = at(0, px(0.0, 0.015));
+    assert!(
+        ball[2] as i32 > ball[0] as i32 + 30,
+        "ball not in the part colour: {ball:?}"
+    );
+    assert_eq!(at(0, px(0.0, 0.035)), white, "something above the ball");
+    // the floor does not move; the ball has come down 5 mm onto it by the last frame: the gap
+    // between them in the first frame (y = 2 mm, pixel row 70, clear of the ball's edge ending
+    // at 69.5 and the floor's starting at 71.6) is the ball in the last
+    assert_eq!(at(9, px(0.0, -0.05)), floor);
+    assert_eq!(at(0, px(0.0, 0.002)), white, "no gap under the ball");
+    assert_ne!(at(9, px(0.0, 0.002)), white, "no ball at rest on the floor");
+    // edged red (the contact colour) only while in contact
+    let red = |f: usize| {
+        frames[f]
+            .iter()
+            .filter(|c| c[0] > 180 && c[1] < 90 && c[2] < 90)
+            .count()
+    };
+    assert_eq!(red(0), 0, "red edges 5 mm apart");
+    assert!(red(9) > 100, "no red edge in contact: {}", red(9));
+}

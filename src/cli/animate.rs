@@ -8,10 +8,11 @@
 //! attachment points (a rounded bar for two points, the convex hull for more, a block for one),
 //! beams as deformed centrelines (deformation magnification), revolute clearance joints as
 //! bearing and journal circles (clearance magnification), translational clearances as guide
-//! lines and slider, sliders on beams, contact normal-force arrows and the time (a built-in
-//! 5×7 bitmap font: no font dependency). The GIF is encoded by the `gif` crate with a fixed
-//! palette (the drawing's colours and their anti-aliasing tints) and only the changed rectangle
-//! of each frame; the MP4 pipes raw RGBA frames to `ffmpeg`.
+//! lines and slider, sliders on beams, contact shapes (`[[shape]]`: their outlines moved with
+//! their part as on the page, red while in contact), contact normal-force arrows and the time
+//! (a built-in 5×7 bitmap font: no font dependency). The GIF is encoded by the `gif` crate with
+//! a fixed palette (the drawing's colours and their anti-aliasing tints) and only the changed
+//! rectangle of each frame; the MP4 pipes raw RGBA frames to `ffmpeg`.
 //!
 //! Binary-only: the `clr` library does not depend on tiny-skia or gif.
 
@@ -112,6 +113,30 @@ struct Scene {
     beams: Vec<Beam>,
     #[serde(default)]
     items: Vec<Item>,
+    #[serde(default)]
+    shapes: Vec<ContactShape>,
+}
+
+/// A contact shape (`[[shape]]`): outlines in its own frame, whose origin is the anchor `at`
+/// and whose x axis is turned by `angle` from its part's (none for a beam face: drawn as its
+/// beam).
+#[derive(Debug, Deserialize)]
+struct ContactShape {
+    #[serde(default)]
+    at: Option<At>,
+    #[serde(default)]
+    angle: Option<f64>,
+    #[serde(default)]
+    outlines: Vec<Outline>,
+}
+
+/// One line of a shape's outline in the shape frame: a polygon (`closed`) or an open chain.
+#[derive(Debug, Deserialize)]
+struct Outline {
+    #[serde(default)]
+    points: Vec<[f64; 2]>,
+    #[serde(default)]
+    closed: bool,
 }
 
 #[derive(Debug, Deserialize)]
@@ -152,6 +177,9 @@ struct Item {
     bodies: BTreeMap<String, i64>,
     #[serde(default)]
     params: BTreeMap<String, Value>,
+    /// The contact shapes it puts in contact (indices into `Scene::shapes`).
+    #[serde(default)]
+    shapes: Vec<usize>,
 }
 
 impl Item {
@@ -348,10 +376,15 @@ const BEARING: Rgb = [46, 125, 50];
 const JOURNAL_FILL: Rgb = [240, 150, 140];
 const JOURNAL_EDGE: Rgb = [170, 40, 40];
 const ARROW: Rgb = [214, 40, 40];
+/// A contact shape on a part: the part fill at 70 % over the background (the page's light
+/// fill), edged in `PART_EDGE`.
+const SHAPE_FILL: Rgb = [192, 211, 238];
+/// A contact shape on the ground: grey, hatched and edged in `GREY`.
+const GROUND_FILL: Rgb = [206, 212, 218];
 
 /// Every colour drawn; the GIF palette holds them and their blends with the colours they are
 /// drawn over (anti-aliased edges).
-const COLOURS: [Rgb; 13] = [
+const COLOURS: [Rgb; 15] = [
     BACKGROUND,
     INK,
     GREY,
@@ -365,6 +398,8 @@ const COLOURS: [Rgb; 13] = [
     JOURNAL_FILL,
     JOURNAL_EDGE,
     ARROW,
+    SHAPE_FILL,
+    GROUND_FILL,
 ];
 
 fn paint(c: Rgb) -> Paint<'static> {
@@ -446,6 +481,14 @@ enum Shape {
     /// A contact normal force on the guide: from `tail` along the unit `dir`, `force` ∈ (0, 1]
     /// of the largest normal force.
     Arrow { tail: P, dir: P, force: f64 },
+    /// A contact shape's outlines in the world, each with its `closed` flag (polygons filled);
+    /// `ground`: fixed to the ground (grey, hatched), else moving with a part; `on`: in contact
+    /// (edged red).
+    Outline {
+        lines: Vec<(Vec<P>, bool)>,
+        ground: bool,
+        on: bool,
+    },
 }
 
 impl Shape {
@@ -465,6 +508,11 @@ impl Shape {
             Shape::Line { a, b } => out.extend([*a, *b]),
             Shape::Bearing { c, r, .. } => {
                 out.extend([add(*c, [*r, *r]), sub(*c, [*r, *r])]);
+            }
+            Shape::Outline { lines, .. } => {
+                for (pts, _) in lines {
+                    out.extend(pts);
+                }
             }
         }
     }
@@ -489,6 +537,11 @@ struct Animation<'a> {
     outline: Vec<Vec<P>>,
     /// Per part: the largest bearing radius of a revolute clearance on it, m.
     bearing: Vec<f64>,
+    /// Per part: it carries a contact shape with an outline (then the shape is its drawing:
+    /// no block of its own for a one-point part, as on the page).
+    shaped: Vec<bool>,
+    /// Per contact shape: the `contact` elements that list it (indices into the items).
+    shape_contacts: Vec<Vec<usize>>,
     /// Per item: for a translational clearance, the range of the slider along the guide (guide
     /// frame, m) over the frames shown.
     span: Vec<Option<(f64, f64)>>,
@@ -599,6 +652,15 @@ fn pick_frames(t: &[f64], start: Option<f64>, end: Option<f64>, count: usize) ->
     out
 }
 
+/// The part an anchor moves with (a beam node: its beam's body; −1: the ground or a ground
+/// beam).
+fn anchor_part(scene: &Scene, at: &At) -> i64 {
+    match *at {
+        At::Part { part, .. } => part,
+        At::Node { beam, .. } => scene.beams.get(beam).map_or(-1, |b| b.part),
+    }
+}
+
 impl<'a> Animation<'a> {
     /// Choose the frames, the magnifications and the view of a checked page.
     fn new(page: &'a Page, s: &Settings) -> Result<Self, String> {
@@ -642,6 +704,26 @@ impl<'a> Animation<'a> {
                 }
             }
         }
+        let mut shaped = vec![false; scene.parts.len()];
+        for sh in &scene.shapes {
+            if let Some(at) = sh.at.as_ref().filter(|_| !sh.outlines.is_empty()) {
+                let k = anchor_part(scene, at);
+                if k >= 0 {
+                    if let Some(s) = shaped.get_mut(k as usize) {
+                        *s = true;
+                    }
+                }
+            }
+        }
+        let shape_contacts = (0..scene.shapes.len())
+            .map(|i| {
+                (0..scene.items.len())
+                    .filter(|&k| {
+                        scene.items[k].kind == "contact" && scene.items[k].shapes.contains(&i)
+                    })
+                    .collect()
+            })
+            .collect();
         let mut a = Animation {
             scene,
             frames,
@@ -651,6 +733,8 @@ impl<'a> Animation<'a> {
             md: 1.0,
             outline,
             bearing,
+            shaped,
+            shape_contacts,
             span: Vec::new(),
             fmax: 0.0,
             view: View::fit([0.0, 0.0], [1.0, 1.0], s.width),
@@ -805,11 +889,39 @@ impl<'a> Animation<'a> {
 
     /// Rotation of the frame an anchor is given in (a beam node: its body's frame).
     fn anchor_theta(&self, at: &At, f: usize) -> f64 {
-        let part = match *at {
-            At::Part { part, .. } => part,
-            At::Node { beam, .. } => self.scene.beams.get(beam).map_or(-1, |b| b.part),
-        };
-        self.pose(part, f)[2]
+        self.pose(anchor_part(self.scene, at), f)[2]
+    }
+
+    /// The outlines of contact shape `i` in the world in frame `f`, as the page moves them:
+    /// origin at its anchor (a beam node with the magnified displacement), x axis at the
+    /// anchor frame's rotation + the shape's angle; none for a shape without a frame.
+    fn shape_outline(&self, i: usize, f: usize) -> Option<Shape> {
+        let sh = self.scene.shapes.get(i)?;
+        let at = sh.at.as_ref()?;
+        if sh.outlines.is_empty() {
+            return None;
+        }
+        let o = self.anchor(at, f);
+        let th = self.anchor_theta(at, f) + sh.angle.filter(|a| a.is_finite()).unwrap_or(0.0);
+        let lines = sh
+            .outlines
+            .iter()
+            .map(|ol| {
+                let pts = ol.points.iter().map(|q| add(o, rot(*q, th))).collect();
+                (pts, ol.closed)
+            })
+            .collect();
+        // in contact: a `contact` element listing it touches (the page's test: active contact
+        // points or a normal force)
+        let on = self.shape_contacts[i].iter().any(|&k| {
+            let item = &self.scene.items[k];
+            self.contact(item, "contact", f) > 0.0 || self.normal_force(item, f) > 0.0
+        });
+        Some(Shape::Outline {
+            lines,
+            ground: anchor_part(self.scene, at) < 0,
+            on,
+        })
     }
 
     fn contact(&self, item: &Item, column: &str, f: usize) -> f64 {
@@ -830,9 +942,17 @@ impl<'a> Animation<'a> {
         }
     }
 
+    /// The largest normal force of the clearances drawn with force arrows (not the shape
+    /// contacts: no arrow of theirs is drawn).
     fn largest_force(&self, frames: &[usize]) -> f64 {
         let mut m = 0.0f64;
-        for item in self.scene.items.iter().filter(|i| i.section == "clearance") {
+        let arrows = ["revolute", "translational", "slider_on_beam"];
+        for item in self
+            .scene
+            .items
+            .iter()
+            .filter(|i| i.section == "clearance" && arrows.contains(&i.kind.as_str()))
+        {
             for &f in frames {
                 m = m.max(self.normal_force(item, f));
             }
@@ -878,6 +998,11 @@ impl<'a> Animation<'a> {
         let scene = self.scene;
         let mut out = Vec::new();
         let mut arrows = Vec::new();
+        // contact shapes on the ground (or a ground beam) under everything, on parts over them
+        let (ground_shapes, part_shapes): (Vec<Shape>, Vec<Shape>) = (0..scene.shapes.len())
+            .filter_map(|i| self.shape_outline(i, f))
+            .partition(|s| matches!(s, Shape::Outline { ground: true, .. }));
+        out.extend(ground_shapes);
         // rails of ideal translational joints on the ground
         for item in &scene.items {
             if item.section == "joint" && item.kind == "translational" {
@@ -915,7 +1040,10 @@ impl<'a> Animation<'a> {
         }
         out.extend(ground.into_iter().map(Shape::Ground));
         for (i, part) in scene.parts.iter().enumerate() {
-            if part.kind == "flexible" || self.outline[i].is_empty() {
+            if part.kind == "flexible"
+                || self.outline[i].is_empty()
+                || (self.shaped[i] && self.outline[i].len() == 1)
+            {
                 continue;
             }
             out.push(Shape::Body {
@@ -927,6 +1055,7 @@ impl<'a> Animation<'a> {
                 bearing: self.bearing[i],
             });
         }
+        out.extend(part_shapes);
         let mut pins = Vec::new();
         for (k, item) in scene.items.iter().enumerate() {
             match (item.section.as_str(), item.kind.as_str()) {
@@ -1245,6 +1374,36 @@ impl<'a> Animation<'a> {
                     force * self.arrow_length(),
                 );
             }
+            Shape::Outline { lines, ground, on } => {
+                let lines: Vec<(Vec<P>, bool)> = lines
+                    .iter()
+                    .map(|(pts, closed)| (pts.iter().map(|p| v.px(*p)).collect(), *closed))
+                    .collect();
+                let (fill, edge) = if *ground {
+                    (GROUND_FILL, GREY)
+                } else {
+                    (SHAPE_FILL, PART_EDGE)
+                };
+                // the closed outlines filled as one path (the parts of a compound overlap
+                // without a seam), a ground shape hatched at 45° every 7 px inside them
+                if let Some(area) = closed_path(&lines) {
+                    pm.fill_path(&area, &paint(fill), FillRule::Winding, id, None);
+                    if *ground {
+                        hatch(pm, &area, &lines);
+                    }
+                }
+                let edge = if *on { ARROW } else { edge };
+                for (pts, closed) in &lines {
+                    let width = match (*on, *closed) {
+                        (true, _) => 2.2,
+                        (false, true) => 1.5,
+                        (false, false) => 2.0,
+                    };
+                    if let Some(p) = path(pts, *closed && pts.len() >= 3) {
+                        pm.stroke_path(&p, &paint(edge), &stroke(width), id, None);
+                    }
+                }
+            }
         }
     }
 
@@ -1283,6 +1442,66 @@ fn path(pts: &[P], close: bool) -> Option<tiny_skia::Path> {
         pb.close();
     }
     pb.finish()
+}
+
+/// The closed outlines of `lines` (pixels) as one path of polygons; none without one.
+fn closed_path(lines: &[(Vec<P>, bool)]) -> Option<tiny_skia::Path> {
+    let mut pb = PathBuilder::new();
+    for (pts, _) in lines
+        .iter()
+        .filter(|(pts, closed)| *closed && pts.len() >= 3)
+    {
+        if !pts.iter().all(|p| finite(*p)) {
+            continue;
+        }
+        pb.move_to(pts[0][0] as f32, pts[0][1] as f32);
+        for p in &pts[1..] {
+            pb.line_to(p[0] as f32, p[1] as f32);
+        }
+        pb.close();
+    }
+    pb.finish()
+}
+
+/// Hatch the inside of `area` (the closed outlines of `lines`, pixels): grey lines at 45° every
+/// 7 px across their box (only the part on the image).
+fn hatch(pm: &mut Pixmap, area: &tiny_skia::Path, lines: &[(Vec<P>, bool)]) {
+    let (mut x0, mut y0, mut x1, mut y1) = (
+        f64::INFINITY,
+        f64::INFINITY,
+        f64::NEG_INFINITY,
+        f64::NEG_INFINITY,
+    );
+    for (pts, _) in lines.iter().filter(|(_, closed)| *closed) {
+        for p in pts.iter().filter(|p| finite(**p)) {
+            (x0, y0) = (x0.min(p[0]), y0.min(p[1]));
+            (x1, y1) = (x1.max(p[0]), y1.max(p[1]));
+        }
+    }
+    let (x0, y0) = (x0.max(-10.0), y0.max(-10.0));
+    let (x1, y1) = (
+        x1.min(pm.width() as f64 + 10.0),
+        y1.min(pm.height() as f64 + 10.0),
+    );
+    if !(x1 > x0 && y1 > y0) {
+        return;
+    }
+    let Some(mut mask) = tiny_skia::Mask::new(pm.width(), pm.height()) else {
+        return;
+    };
+    mask.fill_path(area, FillRule::Winding, true, Transform::identity());
+    let mut pb = PathBuilder::new();
+    let mut d = x0 - (y1 - y0);
+    while d < x1 {
+        pb.move_to(d as f32, y1 as f32);
+        pb.line_to((d + (y1 - y0)) as f32, y0 as f32);
+        d += 7.0;
+    }
+    if let Some(p) = pb.finish() {
+        let mut st = stroke(1.0);
+        st.line_cap = LineCap::Butt;
+        pm.stroke_path(&p, &paint(GREY), &st, Transform::identity(), Some(&mask));
+    }
 }
 
 fn polyline(pm: &mut Pixmap, pts: &[P], c: Rgb, width: f64) {
@@ -1475,7 +1694,7 @@ fn text(pm: &mut Pixmap, s: &str, x: i64, y: i64, scale: u32, right: bool) {
 // ---------------------------------------------------------------------------------------------
 // GIF
 
-/// A fixed palette: the drawing's 13 colours, two blends of each with the background
+/// A fixed palette: the drawing's 15 colours, two blends of each with the background
 /// (anti-aliased edges) and a transparent entry last. (Blends over the part and beam fills too
 /// made the slider–crank GIF 9 % and the dual guide's 28 % larger for little gain.)
 struct Palette {
@@ -2017,6 +2236,68 @@ mod tests {
         };
         assert!(arrows(0) > 30, "{}", arrows(0));
         assert_eq!(arrows(1), 0);
+    }
+
+    #[test]
+    fn a_shape_moves_with_its_part_and_is_red_in_contact() {
+        // a square on the bar's end, its frame turned by 0.5 rad from the bar's; a contact
+        // element lists it and touches in frame 1 only
+        let mut page = bar_page();
+        page["scene"]["shapes"] = json!([{
+            "name": "tab", "at": {"part": 0, "at": [1.0, 0.0]}, "angle": 0.5, "kind": "cuboid",
+            "outlines": [{"points": [[0.0, 0.0], [0.1, 0.0], [0.1, 0.1], [0.0, 0.1]],
+                          "closed": true}]
+        }]);
+        page["scene"]["items"] = json!([{
+            "section": "clearance", "kind": "contact", "name": "C", "anchors": {},
+            "bodies": {}, "params": {}, "shapes": [0]
+        }]);
+        page["frames"]["contact"] =
+            json!({"C": {"contact": [0.0, 1.0, 0.0], "normal_force": [0.0, 5.0, 0.0]}});
+        let page = parse_page(&html(&page)).unwrap();
+        let anim = Animation::new(&page, &settings(400, 3)).unwrap();
+        // no force arrow is drawn for a shape contact: no arrow scale
+        assert_eq!(anim.fmax, 0.0);
+        for f in 0..3 {
+            let a = std::f64::consts::FRAC_PI_4 * f as f64;
+            let shapes = anim.shapes(f);
+            // the bar (three points) is still drawn
+            assert!(shapes.iter().any(|s| matches!(s, Shape::Body { .. })));
+            let Some(Shape::Outline { lines, ground, on }) =
+                shapes.iter().find(|s| matches!(s, Shape::Outline { .. }))
+            else {
+                panic!("frame {f}: no shape");
+            };
+            assert!(!ground);
+            assert_eq!(*on, f == 1, "frame {f}");
+            assert_eq!(lines.len(), 1);
+            assert!(lines[0].1);
+            // the page's transform: origin at the anchor, x axis at θ + angle
+            let o = [a.cos(), a.sin()];
+            for (p, q) in lines[0]
+                .0
+                .iter()
+                .zip([[0.0, 0.0], [0.1, 0.0], [0.1, 0.1], [0.0, 0.1]])
+            {
+                let (s, c) = (a + 0.5).sin_cos();
+                let w = [o[0] + c * q[0] - s * q[1], o[1] + s * q[0] + c * q[1]];
+                assert!(norm(sub(*p, w)) < 1e-12, "frame {f}: {p:?} vs {w:?}");
+            }
+        }
+        // the view holds the shape: its far corner in frame 0 is drawn
+        let corner = rot([0.1, 0.1], 0.5);
+        let far = anim.view.px(add([1.0, 0.0], mul(corner, 0.9)));
+        assert!(!is_background(&anim.render(0), far));
+        // edged red in contact only
+        let red = |i: usize| {
+            let pm = anim.render(i);
+            pm.pixels()
+                .iter()
+                .filter(|p| [p.red(), p.green(), p.blue()] == ARROW)
+                .count()
+        };
+        assert_eq!(red(0), 0);
+        assert!(red(1) > 20, "{}", red(1));
     }
 
     #[test]
