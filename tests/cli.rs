@@ -1100,3 +1100,25 @@ fn animate_draws_the_contact_shapes() {
     assert_eq!(red(0), 0, "red edges 5 mm apart");
     assert!(red(9) > 100, "no red edge in contact: {}", red(9));
 }
+
+/// The finding-map options of `clr study` are refused, with the reason, for a study that is not
+/// a finding map, and --merge is refused beside --points/--shard (every input used or refused).
+#[test]
+fn study_map_options_are_refused_where_they_do_not_apply() {
+    let o = clr(&["study", "guide_friction", "--points", "3"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("finding maps only"), "{}", stderr(&o));
+    let dir = scratch("map_merge_refused");
+    let o = clr(&[
+        "study",
+        "guide_findings_map",
+        "--points",
+        "4",
+        "--merge",
+        dir.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("without --points"), "{}", stderr(&o));
+}

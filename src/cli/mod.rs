@@ -149,6 +149,16 @@ enum Command {
         /// Output folder (default: clr-study/<name>).
         #[arg(long)]
         out: Option<PathBuf>,
+        /// Finding maps only: evaluate the first N points of the design (default: the study's).
+        #[arg(long, value_name = "N")]
+        points: Option<usize>,
+        /// Finding maps only: this shard I/N of the design (the points k with k mod N = I; a
+        /// Slurm array task id as I), to be joined with --merge.
+        #[arg(long, value_name = "I/N")]
+        shard: Option<String>,
+        /// Finding maps only: merge these shard folders into --out instead of running.
+        #[arg(long, value_name = "DIR", num_args = 1..)]
+        merge: Vec<PathBuf>,
     },
     /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
     Animate(animate::AnimateArgs),
@@ -240,7 +250,13 @@ pub(crate) fn main() -> ExitCode {
             out,
             quiet,
         } => job::view_command(&target, &set, &out, quiet),
-        Command::Study { name, out } => study_command(&name, out),
+        Command::Study {
+            name,
+            out,
+            points,
+            shard,
+            merge,
+        } => study_command(&name, out, (points, shard.as_deref(), &merge)),
         Command::Animate(a) => animate::animate_command(&a),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
         Command::Export {
@@ -293,11 +309,26 @@ fn list() {
     }
 }
 
-fn study_command(name: &str, out: Option<PathBuf>) -> Result<(), CliError> {
+fn study_command(
+    name: &str,
+    out: Option<PathBuf>,
+    (points, shard, merge): (Option<usize>, Option<&str>, &[PathBuf]),
+) -> Result<(), CliError> {
     let study = clr_models::studies::find(name).map_err(CliError::Input)?;
     let dir = out.unwrap_or_else(|| PathBuf::from("clr-study").join(name));
     std::fs::create_dir_all(&dir)
         .map_err(|e| CliError::Input(format!("cannot create {}: {e}", dir.display())))?;
+    let map_options = points.is_some() || shard.is_some() || !merge.is_empty();
+    match (study.map, map_options) {
+        (Some(map), true) => return map_study(name, &dir, map, (points, shard, merge)),
+        (None, true) => {
+            return Err(CliError::Input(format!(
+                "--points, --shard and --merge apply to finding maps only; `{name}` is not one \
+                 (see `clr list`)"
+            )))
+        }
+        _ => {}
+    }
     eprintln!(
         "clr: study {name} ({}) → {}",
         study.description,
@@ -307,6 +338,43 @@ fn study_command(name: &str, out: Option<PathBuf>) -> Result<(), CliError> {
     let runs = (study.run)(&dir).map_err(CliError::Simulation)?;
     eprintln!(
         "clr: study {name}: {runs} runs in {:.1} s; summary.csv and figures in {}",
+        start.elapsed().as_secs_f64(),
+        dir.display()
+    );
+    Ok(())
+}
+
+/// A finding map run in part, as a shard, or merged from shard folders.
+fn map_study(
+    name: &str,
+    dir: &std::path::Path,
+    map: clr_models::studies::MapStudy,
+    (points, shard, merge): (Option<usize>, Option<&str>, &[PathBuf]),
+) -> Result<(), CliError> {
+    let start = std::time::Instant::now();
+    if !merge.is_empty() {
+        if points.is_some() || shard.is_some() {
+            return Err(CliError::Input(
+                "--merge joins finished shards: give it without --points or --shard".into(),
+            ));
+        }
+        let n = (map.merge)(merge, dir).map_err(CliError::Input)?;
+        eprintln!(
+            "clr: study {name}: merged {n} points into {}",
+            dir.display()
+        );
+        return Ok(());
+    }
+    let points = points.unwrap_or(map.default_points);
+    let shard = shard.map(sweep::parse_shard).transpose()?;
+    eprintln!(
+        "clr: study {name}: {points} design points{} → {}",
+        shard.map_or(String::new(), |(i, n)| format!(", shard {i}/{n}")),
+        dir.display()
+    );
+    let n = (map.run)(dir, points, shard).map_err(CliError::Simulation)?;
+    eprintln!(
+        "clr: study {name}: {n} points in {:.1} s; summary and figures in {}",
         start.elapsed().as_secs_f64(),
         dir.display()
     );

@@ -40,7 +40,7 @@ fn parse_vary(text: &str) -> Result<Vary, CliError> {
 }
 
 /// Parse `I/N` with 0 ≤ I < N.
-fn parse_shard(s: &str) -> Result<(usize, usize), CliError> {
+pub(crate) fn parse_shard(s: &str) -> Result<(usize, usize), CliError> {
     let bad = || {
         CliError::Input(format!(
             "--shard {s}: expected I/N with 0 ≤ I < N (e.g. --shard 3/16; I is a Slurm \

@@ -624,6 +624,49 @@ pub fn friction_run(
     }
 }
 
+/// The named runs of a friction study, in series order: `base` in every `(stroke, speed,
+/// clearances)` series at each clearance (m), runs of `duration` s ([`friction_run`], named by
+/// [`friction_run_name`]).
+pub fn friction_runs(
+    base: &GuideParams,
+    series: &[(Stroke, f64, Vec<f64>)],
+    duration: f64,
+) -> Vec<(String, GuideParams)> {
+    series
+        .iter()
+        .flat_map(|(stroke, v, cs)| {
+            cs.iter().map(move |&c| {
+                (
+                    friction_run_name(*stroke, *v, c),
+                    friction_run(base, *stroke, *v, c, duration),
+                )
+            })
+        })
+        .collect()
+}
+
+/// Run named parameter sets in parallel (rayon) and keep only their metrics, in input order;
+/// nothing is written (the runs of one point of a finding map, `crate::guide_map`).
+///
+/// # Errors
+/// The first failing run, its message prefixed with its name.
+pub fn run_metrics(runs: Vec<(String, GuideParams)>) -> Result<Vec<StudyRun>, String> {
+    use rayon::prelude::*;
+    runs.into_par_iter()
+        .map(|(name, params)| {
+            let start = std::time::Instant::now();
+            let o = run("guide", &params, &RunSettings::default())
+                .map_err(|e| format!("{name}: {e}"))?;
+            Ok(StudyRun {
+                name,
+                params,
+                metrics: o.metrics,
+                wall_s: start.elapsed().as_secs_f64(),
+            })
+        })
+        .collect()
+}
+
 /// Friction study (the paper's experiment, reconstructed; docs/models/guide.md): `base` in every
 /// `(stroke, speed, clearances)` series at each clearance (m), runs of `duration` s, under `dir`:
 /// CSV per run, `summary.csv`, the figure `friction` (equivalent friction coefficient against
@@ -637,18 +680,7 @@ pub fn friction_study(
     series: &[(Stroke, f64, Vec<f64>)],
     duration: f64,
 ) -> Result<Vec<StudyRun>, String> {
-    let runs = series
-        .iter()
-        .flat_map(|(stroke, v, cs)| {
-            cs.iter().map(move |&c| {
-                (
-                    friction_run_name(*stroke, *v, c),
-                    friction_run(base, *stroke, *v, c, duration),
-                )
-            })
-        })
-        .collect();
-    let (done, results) = run_all(dir, runs)?;
+    let (done, results) = run_all(dir, friction_runs(base, series, duration))?;
     let mut fig = clr_plot::Figure::new("Equivalent friction coefficient")
         .x_label("clearance (mm)")
         .y_label("mean drive force / lateral load (-)");

@@ -17,6 +17,7 @@ pub mod findings;
 pub mod flap;
 pub mod flap_flex;
 pub mod guide;
+pub mod guide_map;
 pub mod lubrication_wear;
 pub mod manipulator;
 pub mod output;

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use crate::flap::{self, FlapParams};
-use crate::{dual_guide, flap_flex, guide, lubrication_wear, manipulator};
+use crate::{dual_guide, flap_flex, guide, guide_map, lubrication_wear, manipulator};
 
 /// One built-in study.
 #[derive(Debug, Clone, Copy)]
@@ -18,6 +18,23 @@ pub struct Study {
     pub description: &'static str,
     /// Run it, writing into the folder; returns the number of runs.
     pub run: fn(&Path) -> Result<usize, String>,
+    /// A finding map (issue 19): its design can be run in part and sharded, and shards merged.
+    pub map: Option<MapStudy>,
+}
+
+/// A shard `(i, n)` of a design: the points k with k mod n = i.
+pub type Shard = Option<(usize, usize)>;
+
+/// The operations of a finding-map study beyond [`Study::run`].
+#[derive(Debug, Clone, Copy)]
+pub struct MapStudy {
+    /// Points of the whole design by default.
+    pub default_points: usize,
+    /// Run the first `points` points of the design (shard `(i, n)`: the points k with
+    /// k mod n = i), writing into the folder; returns the points evaluated.
+    pub run: fn(&Path, usize, Shard) -> Result<usize, String>,
+    /// Merge shard folders into one map in the folder; returns the points merged.
+    pub merge: fn(&[std::path::PathBuf], &Path) -> Result<usize, String>,
 }
 
 /// Duration of the rigid flap studies, s (ramp 0.25 s + 4 actuator periods).
@@ -52,6 +69,7 @@ pub fn studies() -> Vec<Study> {
             description:
                 "ideal case and cases 1-5 of Kuang, Bai, Wei (2026), 2 s each (6 runs, ~2 s)",
             run: |dir| manipulator::study(dir, None).map(|c| c.len()),
+            map: None,
         },
         Study {
             name: "flap_clearance",
@@ -59,6 +77,7 @@ pub fn studies() -> Vec<Study> {
             description: "rigid flap linkage: clearance size, joint position, number of joints, \
                           reversing load (14 runs of 2.25 s, ~1 min)",
             run: flap_rigid,
+            map: None,
         },
         Study {
             name: "flap_flexible",
@@ -67,12 +86,14 @@ pub fn studies() -> Vec<Study> {
                 "flexible lever arm / aux rod / aux lever arm: number of flexible bodies, \
                           number of joints, 4 joints + 3 flexible, reversing load (24 runs of 1.25 s, ~1.5 min)",
             run: flap_flexible,
+            map: None,
         },
         Study {
             name: "guide_elastic_vs_rigid",
             model: "guide",
             description: "single sliding guide, elastic against rigid guide (2 runs, ~10 s)",
             run: |dir| guide::elastic_vs_rigid(dir).map(|r| r.len()),
+            map: None,
         },
         Study {
             name: "guide_friction",
@@ -88,12 +109,27 @@ pub fn studies() -> Vec<Study> {
                 )
                 .map(|r| r.len())
             },
+            map: None,
+        },
+        Study {
+            name: "guide_findings_map",
+            model: "guide",
+            description: "finding map of the guide's five friction findings (issue 19): 256 \
+                          Sobol points over 8 reconstructed parameters, 8 runs of 0.2 s each \
+                          (2048 runs, hours on 2 cores; docs/models/guide.md#finding-map)",
+            run: guide_map::study,
+            map: Some(MapStudy {
+                default_points: guide_map::DEFAULT_POINTS,
+                run: |dir, points, shard| guide_map::run(dir, points, shard).map(|r| r.points.len()),
+                merge: |dirs, out| guide_map::merge(dirs, out).map(|r| r.points.len()),
+            }),
         },
         Study {
             name: "dual_guide_vs_single",
             model: "dual_guide",
             description: "dual-stage dual guide against the single guide (2 runs, ~5 s)",
             run: |dir| dual_guide::single_vs_dual(dir).map(|r| r.len()),
+            map: None,
         },
         Study {
             name: "dual_guide_spacing",
@@ -101,6 +137,7 @@ pub fn studies() -> Vec<Study> {
             description:
                 "dual-stage dual guide at interguide spacings 50/100/200 mm (3 runs, ~10 s)",
             run: |dir| dual_guide::spacing_study(dir, &DUAL_GUIDE_SPACINGS).map(|r| r.len()),
+            map: None,
         },
         Study {
             name: "flap_lubricated",
@@ -109,6 +146,7 @@ pub fn studies() -> Vec<Study> {
                           (short bearing, 0.04 Pa·s), steady and reversing hinge load: 4 cases + 2 \
                           ideal references (6 runs of 2.25 s, ~15 s)",
             run: |dir| lubrication_wear::flap_lubricated(dir).map(|c| c.len()),
+            map: None,
         },
         Study {
             name: "wan_slider_crank_wear",
@@ -117,6 +155,7 @@ pub fn studies() -> Vec<Study> {
                           N = 360): one steady-state cycle per update extrapolated by <= 1 um \
                           per update up to 1e6 cycles (15 runs of 0.2 s, ~5 s)",
             run: |dir| lubrication_wear::wan_slider_crank_wear(dir).map(|u| u.len()),
+            map: None,
         },
     ]
 }

@@ -11,6 +11,7 @@ mod mbd_tolerance;
 pub mod models;
 pub mod models_dual_guide;
 pub mod models_flap_flex;
+mod models_guide_map;
 pub mod ode;
 mod shapes;
 mod wear;
@@ -95,6 +96,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "models",
         run: models_dual_guide::cases,
+    },
+    Group {
+        name: "models",
+        run: models_guide_map::cases,
     },
     Group {
         name: "wear",

@@ -5,6 +5,8 @@
 
 use std::path::Path;
 
+// relative decrease (x₀ − x_last)/x₀ of a series, shared with the guide's finding map
+use clr_models::guide_map::relative_drop;
 use clr_models::manipulator::{self, CaseResult};
 use clr_models::slider_crank::{self, SliderCrankParams};
 use clr_models::{RunOutput, RunSettings};
@@ -677,11 +679,6 @@ fn guide_support_series() -> Vec<(clr_models::guide::Stroke, f64, Vec<f64>)> {
     ]
 }
 
-/// Relative decrease (x₀ − x_last)/x₀ of a series.
-fn relative_drop(x: &[f64]) -> f64 {
-    (x[0] - x[x.len() - 1]) / x[0]
-}
-
 /// Comma-separated values of a series.
 fn list_values(x: &[f64]) -> String {
     x.iter()
@@ -880,6 +877,8 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
     let ret = series(Stroke::Retraction, 1.0, &GUIDE_CLEARANCES, mu);
     let slow = series(Stroke::Deployment, 0.25, &GUIDE_SLOW_CLEARANCES, mu);
     let drop = relative_drop;
+    // the same threshold as the finding map (clr_models::guide_map)
+    const MIN_DECREASE: f64 = clr_models::guide_map::MIN_RELATIVE_DECREASE;
     out.push(
         Case::new(
             "models.guide.friction.clearance",
@@ -887,7 +886,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             "-",
             exp,
         )
-        .at_least(drop(&dep), 0.01)
+        .at_least(drop(&dep), MIN_DECREASE)
         .note(format!(
             "μ_eq deployment 1 m/s, {cs_text}: {}",
             list(&dep, "")
@@ -901,7 +900,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             "-",
             exp,
         )
-        .at_least(drop(&dep) - drop(&ret), 0.01)
+        .at_least(drop(&dep) - drop(&ret), MIN_DECREASE)
         .note(format!(
             "relative decrease deployment {:.4}, retraction {:.4}; μ_eq retraction: {}",
             drop(&dep),
@@ -918,7 +917,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             "-",
             exp,
         )
-        .at_least(drop(&slow) - drop(&fast), 0.01)
+        .at_least(drop(&slow) - drop(&fast), MIN_DECREASE)
         .note(format!(
             "relative decrease at 0.25 m/s {:.4} (μ_eq {}), at 1 m/s {:.4}",
             drop(&slow),
@@ -938,7 +937,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             "1/mm",
             exp,
         )
-        .at_least(first.min(first - last), 0.01 * dep[0] / 0.25)
+        .at_least(first.min(first - last), MIN_DECREASE * dep[0] / 0.25)
         .note(format!(
             "deployment 1 m/s: {first:.4e} /mm over 0.25–0.5 mm, {last:.4e} /mm over 1–2 mm"
         ))
