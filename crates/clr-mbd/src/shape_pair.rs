@@ -1,6 +1,8 @@
 //! Runtime form of a shape contact pair (`[[clearance]] type = "contact"`): two placed shapes,
-//! a broad phase on their bounding boxes, parry's contact points reduced to one point per
-//! contact patch, and a stable slot per point for the contact memory.
+//! a broad phase on their bounding circles (also tested for every pair at once by the model's
+//! [`BroadPhase`]) and boxes, parry's contact points reduced to one point per contact patch, a
+//! stable slot per point for the contact memory, and the step bound that keeps the shapes from
+//! passing through each other within a step ([`ShapePair::max_step`]).
 //!
 //! * **Reduction.** A smooth body pressed into a fine polyline touches several segments, each
 //!   with its own point; summing a law over them would count one contact several times. Points
@@ -8,8 +10,8 @@
 //!   distance with a normal within 37° (cos > 0.8: the two sides of a corner stay separate).
 //!   Then at most `max_points` points are kept.
 //! * **Slots.** Each kept point gets one of `max_points` memory slots: the slot whose point at
-//!   the last accepted step lies nearest (on either body, within the match distance), else a
-//!   free slot. A contact that slides or rolls keeps its slot and its impact velocity δ̇⁻; the
+//!   the last accepted step lies nearest (on either body, within the match distance) with a
+//!   normal within 37°, else a free slot. A contact that slides or rolls keeps its slot and its impact velocity δ̇⁻; the
 //!   assignment depends only on the committed keys and the state, as the memory rules need.
 //! * **Forces.** At each point with δ > 0: F_N from the normal law with the slot's δ̇⁻, F_T
 //!   from the friction law with the slip v_T; f = F_N n + F_T t on B at its contact point and
