@@ -1121,4 +1121,17 @@ fn study_map_options_are_refused_where_they_do_not_apply() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("without --points"), "{}", stderr(&o));
+    // --resume of a folder holding no map is refused before anything runs
+    let o = clr(&[
+        "study",
+        "dual_guide_findings_map",
+        "--points",
+        "4",
+        "--resume",
+        dir.to_str().unwrap(),
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("to resume from"), "{}", stderr(&o));
 }

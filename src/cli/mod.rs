@@ -159,6 +159,12 @@ enum Command {
         /// Finding maps only: merge these shard folders into --out instead of running.
         #[arg(long, value_name = "DIR", num_args = 1..)]
         merge: Vec<PathBuf>,
+        /// Finding maps only: take the successful points already evaluated in these folders
+        /// (the checkpoint `<name>_points.jsonl` of a stopped run, or a finished map of any
+        /// size of the same map; the --out folder itself is allowed) instead of running them
+        /// again.
+        #[arg(long, value_name = "DIR", num_args = 1..)]
+        resume: Vec<PathBuf>,
     },
     /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
     Animate(animate::AnimateArgs),
@@ -256,7 +262,17 @@ pub(crate) fn main() -> ExitCode {
             points,
             shard,
             merge,
-        } => study_command(&name, out, (points, shard.as_deref(), &merge)),
+            resume,
+        } => study_command(
+            &name,
+            out,
+            &MapOptions {
+                points,
+                shard: shard.as_deref(),
+                merge: &merge,
+                resume: &resume,
+            },
+        ),
         Command::Animate(a) => animate::animate_command(&a),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
         Command::Export {
@@ -309,22 +325,34 @@ fn list() {
     }
 }
 
-fn study_command(
-    name: &str,
-    out: Option<PathBuf>,
-    (points, shard, merge): (Option<usize>, Option<&str>, &[PathBuf]),
-) -> Result<(), CliError> {
+/// The options of `clr study` that apply to finding maps only.
+struct MapOptions<'a> {
+    points: Option<usize>,
+    shard: Option<&'a str>,
+    merge: &'a [PathBuf],
+    resume: &'a [PathBuf],
+}
+
+impl MapOptions<'_> {
+    fn any(&self) -> bool {
+        self.points.is_some()
+            || self.shard.is_some()
+            || !self.merge.is_empty()
+            || !self.resume.is_empty()
+    }
+}
+
+fn study_command(name: &str, out: Option<PathBuf>, opts: &MapOptions) -> Result<(), CliError> {
     let study = clr_models::studies::find(name).map_err(CliError::Input)?;
     let dir = out.unwrap_or_else(|| PathBuf::from("clr-study").join(name));
     std::fs::create_dir_all(&dir)
         .map_err(|e| CliError::Input(format!("cannot create {}: {e}", dir.display())))?;
-    let map_options = points.is_some() || shard.is_some() || !merge.is_empty();
-    match (study.map, map_options) {
-        (Some(map), true) => return map_study(name, &dir, map, (points, shard, merge)),
+    match (study.map, opts.any()) {
+        (Some(map), true) => return map_study(name, &dir, map, opts),
         (None, true) => {
             return Err(CliError::Input(format!(
-                "--points, --shard and --merge apply to finding maps only; `{name}` is not one \
-                 (see `clr list`)"
+                "--points, --shard, --merge and --resume apply to finding maps only; `{name}` \
+                 is not one (see `clr list`)"
             )))
         }
         _ => {}
@@ -344,35 +372,46 @@ fn study_command(
     Ok(())
 }
 
-/// A finding map run in part, as a shard, or merged from shard folders.
+/// A finding map run in part, as a shard, resumed, or merged from shard folders.
 fn map_study(
     name: &str,
     dir: &std::path::Path,
     map: clr_models::studies::MapStudy,
-    (points, shard, merge): (Option<usize>, Option<&str>, &[PathBuf]),
+    opts: &MapOptions,
 ) -> Result<(), CliError> {
     let start = std::time::Instant::now();
-    if !merge.is_empty() {
-        if points.is_some() || shard.is_some() {
+    if !opts.merge.is_empty() {
+        if opts.points.is_some() || opts.shard.is_some() || !opts.resume.is_empty() {
             return Err(CliError::Input(
-                "--merge joins finished shards: give it without --points or --shard".into(),
+                "--merge joins finished shards: give it without --points, --shard or --resume"
+                    .into(),
             ));
         }
-        let n = (map.merge)(merge, dir).map_err(CliError::Input)?;
+        let n = map
+            .merge(opts.merge, dir)
+            .map_err(CliError::Input)?
+            .points
+            .len();
         eprintln!(
             "clr: study {name}: merged {n} points into {}",
             dir.display()
         );
         return Ok(());
     }
-    let points = points.unwrap_or(map.default_points);
-    let shard = shard.map(sweep::parse_shard).transpose()?;
+    let points = opts.points.unwrap_or(map.default_points);
+    let shard = opts.shard.map(sweep::parse_shard).transpose()?;
     eprintln!(
-        "clr: study {name}: {points} design points{} → {}",
+        "clr: study {name}: {points} design points{} → {} (checkpoint {})",
         shard.map_or(String::new(), |(i, n)| format!(", shard {i}/{n}")),
-        dir.display()
+        dir.display(),
+        map.checkpoint_file(dir).display()
     );
-    let n = (map.run)(dir, points, shard).map_err(CliError::Simulation)?;
+    let earlier = map.earlier_points(opts.resume).map_err(CliError::Input)?;
+    let n = map
+        .run(dir, points, shard, &earlier)
+        .map_err(CliError::Simulation)?
+        .points
+        .len();
     eprintln!(
         "clr: study {name}: {n} points in {:.1} s; summary and figures in {}",
         start.elapsed().as_secs_f64(),

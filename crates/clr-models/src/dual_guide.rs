@@ -93,6 +93,17 @@ pub struct DualGuideParams {
     /// Lateral offset of the load point from the carriage centre (+y, towards guide a), m;
     /// with the axial actuator reactions it loads the two guides unequally.
     pub load_lateral_offset: f64,
+    /// Out-of-plane twist φ of the stage-1 carriage about the guide axis, rad; 0 (default) is
+    /// the planar model. A *reduced model* of the asynchronous deformation of two guides side
+    /// by side (issue 19, docs/models/dual_guide.md#twist): a carriage twisted by φ moves the
+    /// roots of the two stage-2 guides it carries, a spacing d apart across the twist axis, by
+    /// ±φ·d/2 in the load direction, so the stage-2 carriage must take up a mismatch φ·d
+    /// between its two sliders. Here the stage-2 guide root of guide a moves by +φ·d/2 and that
+    /// of guide b by −φ·d/2 relative to the stage-1 carriage, faded in over `twist_ramp`.
+    pub carriage1_twist: f64,
+    /// Time over which the twist is faded in from 0 (cubic smooth step), s: the load acts from
+    /// t = 0, the ramp avoids starting with the sliders overlapping their guides.
+    pub twist_ramp: f64,
     /// Stage-1 carriage start position along the stage-1 guides, m.
     pub start1: f64,
     /// Stage-2 carriage start position along the stage-2 guides (from their root), m.
@@ -147,6 +158,8 @@ impl Default for DualGuideParams {
             lateral_load: 50.0,
             load_offset: 0.01,
             load_lateral_offset: 0.02,
+            carriage1_twist: 0.0,
+            twist_ramp: 0.01,
             start1: 0.5,
             start2: 0.3,
             speed1: 0.5,
@@ -198,6 +211,21 @@ impl DualGuideParams {
         }
         common::non_negative("rayleigh_alpha", self.rayleigh_alpha)?;
         common::non_negative("lateral_load", self.lateral_load)?;
+        common::positive("twist_ramp", self.twist_ramp)?;
+        if !self.carriage1_twist.is_finite() || self.carriage1_twist.abs() > 0.1 {
+            return Err(format!(
+                "`carriage1_twist` = {} rad: give a small angle, |φ| ≤ 0.1 rad (the root shift \
+                 ±φ·d/2 is the small-angle form)",
+                self.carriage1_twist
+            ));
+        }
+        if self.carriage1_twist != 0.0 && !self.dual {
+            return Err(
+                "`carriage1_twist` acts on the stage-2 guides: set `dual = true` or \
+                        leave it 0"
+                    .into(),
+            );
+        }
         for (f, n) in [
             ("elements1", self.elements1),
             ("elements2", self.elements2),
@@ -275,6 +303,32 @@ impl DualGuideParams {
         self.carriage1_mass
             + 2.0 * self.density * self.guide_width * self.guide2_depth * self.guide2_length
             + self.carriage2_mass
+    }
+
+    /// The clamp of stage-2 guide `s` (root at carriage-local (0, y)) to the stage-1 carriage:
+    /// a fixed joint, or with a twist a translational joint along the carriage's y plus the
+    /// prescribed root shift ±φ·d/2 (sign of y) as a displacement driver.
+    fn stage2_root(&self, b: &mut ModelBuilder, s: &str, y: f64) {
+        let g = format!("g2{s}");
+        let (root, node) = (("carriage1", [0.0, y]), (g.as_str(), 0usize));
+        if self.carriage1_twist == 0.0 {
+            b.fixed(&format!("root_{s}"), root, node);
+            return;
+        }
+        let shift = 0.5 * self.carriage1_twist * self.spacing * y.signum();
+        b.translational(&format!("root_{s}"), root, node, [0.0, 1.0])
+            .drive_displacement(
+                &format!("twist_{s}"),
+                root,
+                node,
+                [0.0, 1.0],
+                TimeFn::SmoothStep {
+                    from: 0.0,
+                    to: shift,
+                    start: 0.0,
+                    duration: self.twist_ramp,
+                },
+            );
     }
 
     /// A clamped-free straight guide from `a` to `b` of depth `h` and `elements` elements.
@@ -465,12 +519,8 @@ impl DualGuideParams {
                     Reduction::Modal { modes: self.modes2 },
                     [self.start1, y, 0.0],
                     [self.speed1, 0.0, 0.0],
-                )
-                .fixed(
-                    &format!("root_{s}"),
-                    ("carriage1", [0.0, y]),
-                    (g.as_str(), 0usize),
                 );
+                self.stage2_root(&mut b, s, y);
                 pads(&mut b, 2, s, y, self.guide2_depth);
             }
             b.drive_displacement(

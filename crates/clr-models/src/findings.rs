@@ -423,18 +423,39 @@ impl FindingMap {
         E: Fn(&[f64]) -> Result<Vec<f64>, String> + Sync,
         P: Fn(usize, usize) + Sync,
     {
-        let total = self.design.points.len();
-        let done = AtomicUsize::new(0);
-        let points = self
+        self.run_reusing(eval, &[], |_, done, total| progress(done, total))
+    }
+
+    /// [`FindingMap::run`] that takes the outcome of every design point found among `earlier`
+    /// (the successful points of an interrupted run or of a smaller design of the same map, see
+    /// [`FindingMap::reusable`]) instead of evaluating it again, and calls
+    /// `on_point(result, done, to_evaluate)` after each point it evaluates (from worker
+    /// threads, in completion order; a checkpoint writer). Reused points keep their outcome and
+    /// wall time; the result is the same as a fresh run's up to the points' wall times.
+    pub fn run_reusing<E, P>(&self, eval: E, earlier: &[PointResult], on_point: P) -> MapResult
+    where
+        E: Fn(&[f64]) -> Result<Vec<f64>, String> + Sync,
+        P: Fn(&PointResult, usize, usize) + Sync,
+    {
+        let reused = self.reusable(earlier);
+        let todo: Vec<&DesignPoint> = self
             .design
             .points
+            .iter()
+            .filter(|p| !reused.iter().any(|r| r.index == p.index))
+            .collect();
+        let total = todo.len();
+        let done = AtomicUsize::new(0);
+        let mut points: Vec<PointResult> = todo
             .par_iter()
             .map(|p| {
                 let r = self.evaluate(p, &eval);
-                progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
+                on_point(&r, done.fetch_add(1, Ordering::Relaxed) + 1, total);
                 r
             })
             .collect();
+        points.extend(reused);
+        points.sort_by_key(|p| p.index);
         MapResult {
             parameters: self.design.parameters.clone(),
             findings: self.findings.clone(),
@@ -442,6 +463,35 @@ impl FindingMap {
             seed: self.design.seed,
             points,
         }
+    }
+
+    /// The successful points of `earlier` that are points of this design: same index, and the
+    /// same unit coordinates and values within 1e-12 (relative for values; JSON keeps them to
+    /// the last bit, the tolerance only absorbs a foreign writer's rounding). The caller checks
+    /// that `earlier` comes from the same map (parameters, findings and seed, see
+    /// [`MapResult::same_map_as`]); a Sobol design of n points is the first n points of any
+    /// larger design with the same seed, so a 64-point map is reused by a 256-point one.
+    /// Failed points are not reused: they are evaluated again.
+    pub fn reusable(&self, earlier: &[PointResult]) -> Vec<PointResult> {
+        let close = |a: &[f64], b: &[f64]| {
+            a.len() == b.len()
+                && a.iter()
+                    .zip(b)
+                    .all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0))
+        };
+        self.design
+            .points
+            .iter()
+            .filter_map(|p| {
+                earlier.iter().find(|r| {
+                    r.index == p.index
+                        && r.outcome.is_ok()
+                        && close(&r.unit, &p.unit)
+                        && close(&r.values, &p.values)
+                })
+            })
+            .cloned()
+            .collect()
     }
 
     fn evaluate<E>(&self, p: &DesignPoint, eval: &E) -> PointResult
@@ -716,6 +766,47 @@ pub struct Candidate {
     pub margins: Vec<f64>,
 }
 
+impl Summary {
+    /// One line on finding `id` for a verify note: where it holds (count, fraction and 95 %
+    /// Wilson interval) and its deciding parameters, those whose first-order index exceeds 3
+    /// null standard deviations, with their best single split; "none distinguishable" when no
+    /// index does. `None` for an unknown finding id.
+    pub fn finding_line(&self, id: &str) -> Option<String> {
+        let f = self.findings.iter().find(|f| f.finding.id == id)?;
+        let fr = &f.fraction;
+        let deciding: Vec<String> = f
+            .decisive
+            .iter()
+            .filter_map(|d| {
+                let i = d.index?;
+                (i.value > 3.0 * i.null_sd).then(|| {
+                    let split = d.stump.map_or(String::new(), |t| {
+                        format!(
+                            ", {}",
+                            t.describe(&d.parameter, &self.parameters[d.position].unit)
+                        )
+                    });
+                    format!("{} (S₁ = {:.2}{split})", d.parameter, i.value)
+                })
+            })
+            .collect();
+        Some(format!(
+            "holds at {} of {} points of the plausible space ({:.0} %, 95 % CI {:.0}–{:.0} %); \
+             deciding parameters: {}",
+            fr.holds,
+            fr.points,
+            100.0 * fr.estimate,
+            100.0 * fr.lo,
+            100.0 * fr.hi,
+            if deciding.is_empty() {
+                "none distinguishable from inert".to_string()
+            } else {
+                deciding.join("; ")
+            }
+        ))
+    }
+}
+
 /// The result of a finding map (or of one shard of it).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct MapResult {
@@ -761,11 +852,17 @@ impl MapResult {
         Ok(all)
     }
 
-    fn same_map(&self, other: &Self) -> bool {
+    /// Whether `other` is a result of the same map as this one (parameters, findings and seed;
+    /// the design size may differ), so that its points can be reused
+    /// ([`FindingMap::reusable`]).
+    pub fn same_map_as(&self, other: &Self) -> bool {
         self.parameters == other.parameters
             && self.findings == other.findings
-            && self.design_size == other.design_size
             && self.seed == other.seed
+    }
+
+    fn same_map(&self, other: &Self) -> bool {
+        self.same_map_as(other) && self.design_size == other.design_size
     }
 
     /// Whether every point of the design is present.
@@ -1211,6 +1308,25 @@ mod tests {
         }
         let ranked: Vec<String> = r.decisive(0).into_iter().map(|d| d.parameter).collect();
         assert_eq!(ranked, ["x2", "x1", "x3"]);
+    }
+
+    // The verify line of a finding: margin x1 − 0.25 holds on 3/4 of U(0, 1) (exactly 768 of
+    // 1024 net points: each quarter slice holds 256), x1 alone decides it (S₁ = 1 for a margin
+    // that depends on x1 only), and the split is at 0.25 within one point spacing 1/1024.
+    #[test]
+    fn finding_line_states_fraction_and_deciding_parameter() {
+        let r = map(&linear(&["x1", "x2"], 0.0, 1.0), 1024, |x| x[0] - 0.25);
+        let line = r.summary().finding_line("f").unwrap();
+        assert!(
+            line.starts_with("holds at 768 of 1024 points of the plausible space (75 %"),
+            "{line}"
+        );
+        assert!(
+            line.contains("deciding parameters: x1 (S₁ = 1.00, holds when x1 > 0.25"),
+            "{line}"
+        );
+        assert!(!line.contains("x2"), "{line}");
+        assert!(r.summary().finding_line("g").is_none());
     }
 
     /// Xorshift64 numbers in [0, 1): independent-looking points without a dependency.

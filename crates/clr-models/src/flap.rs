@@ -1067,10 +1067,7 @@ pub struct StudyCase {
 impl StudyCase {
     /// A metric by name (NaN when absent).
     pub fn metric(&self, name: &str) -> f64 {
-        self.metrics
-            .iter()
-            .find(|m| m.name == name)
-            .map_or(f64::NAN, |m| m.value)
+        crate::output::metric_value(&self.metrics, name)
     }
 }
 

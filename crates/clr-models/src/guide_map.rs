@@ -25,10 +25,9 @@
 //! first and the last clearance step (widths w₁ = c₁ − c₀, w₃ = c₃ − c₂ in mm). At the verify
 //! point (c = 0.25, 0.5, 1, 2 mm) these are verify's values divided by F̄_0, 1, 1, 1 and μ_0/w₁.
 
-use std::path::{Path, PathBuf};
-
-use crate::findings::{Design, FindingMap, FindingSpec, MapResult, Parameter, Scale};
+use crate::findings::{FindingSpec, Parameter, Scale};
 use crate::guide::{self, GuideParams, Stroke, StudyRun, FRICTION_DURATION};
+use crate::map_study::MapDef;
 
 /// Name of the study (`clr study guide_findings_map`) and of its output files.
 pub const NAME: &str = "guide_findings_map";
@@ -381,97 +380,18 @@ pub fn point_runs(p: &MapPoint) -> Result<PointRuns, String> {
     })
 }
 
-/// The evaluation of the map: the margins of the five findings at a design point's values.
-///
-/// # Errors
-/// A wrong number of values or a failing run.
-pub fn evaluate(x: &[f64]) -> Result<Vec<f64>, String> {
-    point_runs(&MapPoint::from_values(x)?).map(|r| r.margins())
-}
-
-/// The design of the map: `points` points of the scrambled Sobol sequence with seed [`SEED`].
-///
-/// # Errors
-/// An invalid point count.
-pub fn design(points: usize) -> Result<Design, String> {
-    Design::sobol(&parameters(), points, SEED).map_err(|e| e.to_string())
-}
-
-/// File of a map's full result (every point, serde JSON), from which shards are merged.
-pub fn result_file(dir: &Path) -> PathBuf {
-    dir.join(format!("{NAME}_result.json"))
-}
-
-/// Run the map of `points` points (or shard `I/N` of it: the points k with k mod N = I) into
-/// `dir`, printing progress to stderr: the engine's outputs (`guide_findings_map.csv`,
-/// `_summary.json`, `_summary.md`, one figure per finding) and the full result
-/// `guide_findings_map_result.json` for [`merge`]. Points whose runs fail are kept with their
-/// message.
-///
-/// # Errors
-/// An invalid point count or shard, an output error, or every point failing.
-pub fn run(dir: &Path, points: usize, shard: Option<(usize, usize)>) -> Result<MapResult, String> {
-    let mut d = design(points)?;
-    if let Some((i, n)) = shard {
-        d = d.shard(i, n).map_err(|e| e.to_string())?;
-    }
-    let map = FindingMap::new(d, findings()).map_err(|e| e.to_string())?;
-    let start = std::time::Instant::now();
-    let result = map.run_with_progress(evaluate, |done, total| {
-        eprintln!(
-            "{NAME}: {done}/{total} points, {:.0} s",
-            start.elapsed().as_secs_f64()
-        );
-    });
-    write(dir, &result)?;
-    if !result.points.is_empty() && result.failures().len() == result.points.len() {
-        return Err(format!(
-            "every point failed, e.g. {:?}",
-            result.points[0].outcome
-        ));
-    }
-    Ok(result)
-}
-
-/// Write a map's outputs and full result into `dir`.
-///
-/// # Errors
-/// An output error.
-pub fn write(dir: &Path, result: &MapResult) -> Result<(), String> {
-    result.write(dir, NAME).map_err(|e| e.to_string())?;
-    let json = serde_json::to_string(result).map_err(|e| e.to_string())?;
-    let path = result_file(dir);
-    std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))
-}
-
-/// Merge the results of shards run into `shard_dirs` ([`result_file`] of each) and write the
-/// merged map into `out`.
-///
-/// # Errors
-/// A missing or unreadable result, shards of different maps, or an output error.
-pub fn merge(shard_dirs: &[PathBuf], out: &Path) -> Result<MapResult, String> {
-    let parts = shard_dirs
-        .iter()
-        .map(|d| {
-            let path = result_file(d);
-            let text =
-                std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-            serde_json::from_str::<MapResult>(&text).map_err(|e| format!("{}: {e}", path.display()))
-        })
-        .collect::<Result<Vec<_>, String>>()?;
-    let merged = MapResult::merge(parts).map_err(|e| e.to_string())?;
-    write(out, &merged)?;
-    Ok(merged)
-}
-
-/// The study `clr study guide_findings_map`: the whole map of [`DEFAULT_POINTS`] points into
-/// `dir`; returns the number of simulation runs.
-///
-/// # Errors
-/// See [`run`].
-pub fn study(dir: &Path) -> Result<usize, String> {
-    run(dir, DEFAULT_POINTS, None).map(|r| r.points.len() * RUNS_PER_POINT)
-}
+/// The map as a study (`clr study guide_findings_map`): design, checkpoint, resume, shards and
+/// outputs are [`MapDef`]'s.
+pub const MAP: MapDef = MapDef {
+    name: NAME,
+    seed: SEED,
+    default_points: DEFAULT_POINTS,
+    runs_per_point: RUNS_PER_POINT,
+    parameters,
+    findings,
+    // the margins of the five findings at a design point's values
+    evaluate: |x| point_runs(&MapPoint::from_values(x)?).map(|r| r.margins()),
+};
 
 #[cfg(test)]
 mod tests {
@@ -537,7 +457,7 @@ mod tests {
     // Sobol net has exactly 64 points at k = 0 (one point per slice of 1/256).
     #[test]
     fn a_quarter_of_the_design_has_no_second_load_path() {
-        let d = design(DEFAULT_POINTS).unwrap();
+        let d = MAP.design(DEFAULT_POINTS).unwrap();
         let off = d
             .points()
             .iter()

@@ -12,6 +12,7 @@
 pub mod catalog;
 pub mod common;
 pub mod dual_guide;
+pub mod dual_guide_map;
 pub mod error;
 pub mod findings;
 pub mod flap;
@@ -20,6 +21,7 @@ pub mod guide;
 pub mod guide_map;
 pub mod lubrication_wear;
 pub mod manipulator;
+pub mod map_study;
 pub mod output;
 pub mod slider_crank;
 pub mod studies;

@@ -635,10 +635,7 @@ pub struct CaseResult {
 impl CaseResult {
     /// A metric by name (NaN when absent).
     pub fn metric(&self, name: &str) -> f64 {
-        self.metrics
-            .iter()
-            .find(|m| m.name == name)
-            .map_or(f64::NAN, |m| m.value)
+        crate::output::metric_value(&self.metrics, name)
     }
 }
 

@@ -132,3 +132,19 @@ pub struct RunOutput {
     /// The full resolved parameters that produced this run.
     pub parameters: serde_json::Value,
 }
+
+/// The value of the metric `name` among `metrics`, NaN when absent (so that a misspelt name
+/// fails every comparison instead of passing one).
+pub fn metric_value(metrics: &[Metric], name: &str) -> f64 {
+    metrics
+        .iter()
+        .find(|m| m.name == name)
+        .map_or(f64::NAN, |m| m.value)
+}
+
+impl RunOutput {
+    /// The value of the metric `name` ([`metric_value`]).
+    pub fn metric(&self, name: &str) -> f64 {
+        metric_value(&self.metrics, name)
+    }
+}

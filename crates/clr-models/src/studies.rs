@@ -5,7 +5,10 @@
 use std::path::Path;
 
 use crate::flap::{self, FlapParams};
-use crate::{dual_guide, flap_flex, guide, guide_map, lubrication_wear, manipulator};
+use crate::map_study::MapDef;
+use crate::{
+    dual_guide, dual_guide_map, flap_flex, guide, guide_map, lubrication_wear, manipulator,
+};
 
 /// One built-in study.
 #[derive(Debug, Clone, Copy)]
@@ -22,20 +25,9 @@ pub struct Study {
     pub map: Option<MapStudy>,
 }
 
-/// A shard `(i, n)` of a design: the points k with k mod n = i.
-pub type Shard = Option<(usize, usize)>;
-
-/// The operations of a finding-map study beyond [`Study::run`].
-#[derive(Debug, Clone, Copy)]
-pub struct MapStudy {
-    /// Points of the whole design by default.
-    pub default_points: usize,
-    /// Run the first `points` points of the design (shard `(i, n)`: the points k with
-    /// k mod n = i), writing into the folder; returns the points evaluated.
-    pub run: fn(&Path, usize, Shard) -> Result<usize, String>,
-    /// Merge shard folders into one map in the folder; returns the points merged.
-    pub merge: fn(&[std::path::PathBuf], &Path) -> Result<usize, String>,
-}
+/// The operations of a finding-map study beyond [`Study::run`]: its [`MapDef`] (design,
+/// checkpoint and resume, shards, merge).
+pub type MapStudy = &'static MapDef;
 
 /// Duration of the rigid flap studies, s (ramp 0.25 s + 4 actuator periods).
 pub const FLAP_STUDY_DURATION: f64 = 2.25;
@@ -117,12 +109,8 @@ pub fn studies() -> Vec<Study> {
             description: "finding map of the guide's five friction findings (issue 19): 256 \
                           Sobol points over 8 reconstructed parameters, 8 runs of 0.2 s each \
                           (2048 runs, hours on 2 cores; docs/models/guide.md#finding-map)",
-            run: guide_map::study,
-            map: Some(MapStudy {
-                default_points: guide_map::DEFAULT_POINTS,
-                run: |dir, points, shard| guide_map::run(dir, points, shard).map(|r| r.points.len()),
-                merge: |dirs, out| guide_map::merge(dirs, out).map(|r| r.points.len()),
-            }),
+            run: |dir| guide_map::MAP.study(dir),
+            map: Some(&guide_map::MAP),
         },
         Study {
             name: "dual_guide_vs_single",
@@ -138,6 +126,16 @@ pub fn studies() -> Vec<Study> {
                 "dual-stage dual guide at interguide spacings 50/100/200 mm (3 runs, ~10 s)",
             run: |dir| dual_guide::spacing_study(dir, &DUAL_GUIDE_SPACINGS).map(|r| r.len()),
             map: None,
+        },
+        Study {
+            name: "dual_guide_findings_map",
+            model: "dual_guide",
+            description: "finding map of the dual guide's three findings (issue 19): 256 Sobol \
+                          points over spacing, load offset, carriage twist (reduced model, 0 on \
+                          a quarter), clearance and load, 3 runs of 0.1 s each (768 runs, about \
+                          half an hour on 2 cores; docs/models/dual_guide.md#finding-map)",
+            run: |dir| dual_guide_map::MAP.study(dir),
+            map: Some(&dual_guide_map::MAP),
         },
         Study {
             name: "flap_lubricated",

@@ -5,11 +5,13 @@ pub mod contact;
 mod contact_geometry;
 pub mod lubrication;
 mod lubrication_mbd;
+mod maps;
 mod mbd;
 mod mbd_jacobian;
 mod mbd_tolerance;
 pub mod models;
 pub mod models_dual_guide;
+mod models_dual_guide_map;
 pub mod models_flap_flex;
 mod models_guide_map;
 pub mod ode;
@@ -100,6 +102,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "models",
         run: models_guide_map::cases,
+    },
+    Group {
+        name: "models",
+        run: models_dual_guide_map::cases,
     },
     Group {
         name: "wear",

@@ -17,14 +17,19 @@ use crate::report::Case;
 
 /// Where the guide's friction known gaps are explained, and the finding map that says where over
 /// the plausible reconstructions each finding holds (preliminary: 64 of 256 points).
-const GUIDE_FRICTION_GAP: &str = "docs/models/guide.md#friction-findings; finding map \
-    (preliminary, 64 of 256 points): docs/models/guide.md#finding-map";
+/// The known-gap link of guide friction finding `finding` (an id of
+/// `clr_models::guide_map::findings`): the page's analysis and the finding map.
+fn guide_friction_gap(finding: &str) -> String {
+    super::maps::gap(
+        "docs/models/guide.md#friction-findings",
+        &clr_models::guide_map::MAP,
+        "docs/models/guide.md#finding-map",
+        finding,
+    )
+}
 
 fn metric(out: &RunOutput, name: &str) -> f64 {
-    out.metrics
-        .iter()
-        .find(|m| m.name == name)
-        .map_or(f64::NAN, |m| m.value)
+    out.metric(name)
 }
 
 fn slider_crank_cases(filter: &Filter, out: &mut Vec<Case>) {
@@ -866,7 +871,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
         .at_least(step, 0.0)
         .note(format!("{cs_text}: {}", list(&x, unit)));
         out.push(if gap {
-            case.known_gap(GUIDE_FRICTION_GAP)
+            case.known_gap(&guide_friction_gap("clearance_friction"))
         } else {
             case
         });
@@ -878,7 +883,6 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
     let exp = "sliding-guide paper (seed 000, abstract: prototype experiment; paper-systems.md \
                §3.1); model and μ_eq definition reconstructed (docs/models/guide.md)";
     // the finding map says where, over the plausible parameters, each of these holds
-    let gap = GUIDE_FRICTION_GAP;
     let dep = series(Stroke::Deployment, 1.0, &GUIDE_CLEARANCES, mu);
     let ret = series(Stroke::Retraction, 1.0, &GUIDE_CLEARANCES, mu);
     let slow = series(Stroke::Deployment, 0.25, &GUIDE_SLOW_CLEARANCES, mu);
@@ -897,7 +901,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             "μ_eq deployment 1 m/s, {cs_text}: {}",
             list(&dep, "")
         ))
-        .known_gap(gap),
+        .known_gap(&guide_friction_gap("friction_clearance")),
     );
     out.push(
         Case::new(
@@ -913,7 +917,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             drop(&ret),
             list(&ret, "")
         ))
-        .known_gap(gap),
+        .known_gap(&guide_friction_gap("friction_direction")),
     );
     let fast = [dep[0], dep[2]];
     out.push(
@@ -930,7 +934,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
             list(&slow, ""),
             drop(&fast)
         ))
-        .known_gap(gap),
+        .known_gap(&guide_friction_gap("friction_speed")),
     );
     // flattening: the decrease per mm over the last step (1 → 2 mm) is smaller than over the
     // first (0.25 → 0.5 mm), and the first is a decrease at all
@@ -947,7 +951,7 @@ fn guide_friction_cases(src: &str, out: &mut Vec<Case>) {
         .note(format!(
             "deployment 1 m/s: {first:.4e} /mm over 0.25–0.5 mm, {last:.4e} /mm over 1–2 mm"
         ))
-        .known_gap(gap),
+        .known_gap(&guide_friction_gap("friction_flattening")),
     );
     println!(
         "models.guide friction study: {:.1} s wall ({} runs in parallel on the rayon pool)",

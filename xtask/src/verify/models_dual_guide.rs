@@ -103,7 +103,12 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
                          {:.3}, {:.3}, {:.3}; study {wall:.1} s wall (3 runs in parallel)",
                         j[0], j[1], j[2], m[0], m[1], m[2]
                     ))
-                    .known_gap("docs/models/dual_guide.md#results"),
+                    .known_gap(&super::maps::gap(
+                        "docs/models/dual_guide.md#results",
+                        &clr_models::dual_guide_map::MAP,
+                        "docs/models/dual_guide.md#finding-map",
+                        "spacing_jamming",
+                    )),
                 );
                 println!("models.guide.dual spacing study: {wall:.1} s wall (3 runs in parallel)");
             }

@@ -1,0 +1,366 @@
+//! Running a model's finding map as a study (`clr study <model>_findings_map`): the parts every
+//! map shares, so that a model's map module only defines its parameters, findings and
+//! evaluation ([`MapDef`]).
+//!
+//! A map of 256 points takes hours on 2 cores, so a run must survive being stopped: every
+//! evaluated point is appended to a checkpoint, `<name>_points.jsonl` in the output folder (one
+//! JSON line per point after a header line naming the map), as soon as it is done. A later run
+//! given that folder (or a folder holding a finished `<name>_result.json`) with `resume` takes
+//! the successful points it finds there instead of evaluating them again, and says how many.
+//! Shards (`--shard I/N`, points k with k mod N = I) run on several machines are joined with
+//! [`MapDef::merge`].
+
+use std::fs::{File, OpenOptions};
+use std::io::{BufRead, BufReader, Write};
+use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::findings::{Design, FindingMap, FindingSpec, MapResult, Parameter, PointResult};
+
+/// The definition of one model's finding map.
+#[derive(Debug, Clone, Copy)]
+pub struct MapDef {
+    /// Study name (`clr study <name>`) and prefix of every output file.
+    pub name: &'static str,
+    /// Scramble seed of the design (fixed, so every machine of a sharded run draws the same
+    /// points).
+    pub seed: u32,
+    /// Points of the study's design: a power of two (the one-dimensional stratification the
+    /// first-order indices assume).
+    pub default_points: usize,
+    /// Simulation runs per design point (for the run count the study reports).
+    pub runs_per_point: usize,
+    /// The reconstructed parameters with their ranges and reasons.
+    pub parameters: fn() -> Vec<Parameter>,
+    /// The findings, in the order of the margins `evaluate` returns.
+    pub findings: fn() -> Vec<FindingSpec>,
+    /// Margins of the findings (holds when ≥ 0) at a point's physical values.
+    pub evaluate: fn(&[f64]) -> Result<Vec<f64>, String>,
+}
+
+/// First line of a checkpoint: which map its points belong to.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct CheckpointHeader {
+    map: String,
+    parameters: Vec<Parameter>,
+    findings: Vec<FindingSpec>,
+    seed: u32,
+    design_size: usize,
+}
+
+impl MapDef {
+    /// The design of `points` points.
+    ///
+    /// # Errors
+    /// An invalid point count.
+    pub fn design(&self, points: usize) -> Result<Design, String> {
+        Design::sobol(&(self.parameters)(), points, self.seed).map_err(|e| e.to_string())
+    }
+
+    /// File of a map's full result (every point, serde JSON), from which shards are merged.
+    pub fn result_file(&self, dir: &Path) -> PathBuf {
+        dir.join(format!("{}_result.json", self.name))
+    }
+
+    /// File of the checkpoint written while a map runs.
+    pub fn checkpoint_file(&self, dir: &Path) -> PathBuf {
+        dir.join(format!("{}_points.jsonl", self.name))
+    }
+
+    /// The points evaluated earlier in the folders `resume` (each folder's finished result, or
+    /// else its checkpoint), for [`MapDef::run`].
+    ///
+    /// # Errors
+    /// A folder with neither, an unreadable file, or points of another map (parameters,
+    /// findings or seed differ).
+    pub fn earlier_points(&self, resume: &[PathBuf]) -> Result<Vec<PointResult>, String> {
+        let mut earlier = Vec::new();
+        for d in resume {
+            earlier.extend(self.read_points(d)?);
+        }
+        Ok(earlier)
+    }
+
+    /// Run the map of `points` points (or shard `I/N` of it) into `dir`, reusing the successful
+    /// points of `earlier` that belong to this design ([`MapDef::earlier_points`]; points of a
+    /// different design size of this map are reused where they coincide), printing progress to
+    /// stderr and appending every evaluated point to the checkpoint in `dir`. Writes the
+    /// engine's outputs (`<name>.csv`, `_summary.json`, `_summary.md`, one figure per finding)
+    /// and the full result `<name>_result.json`.
+    ///
+    /// # Errors
+    /// An invalid point count or shard, an output error, or every point failing.
+    pub fn run(
+        &self,
+        dir: &Path,
+        points: usize,
+        shard: Option<(usize, usize)>,
+        earlier: &[PointResult],
+    ) -> Result<MapResult, String> {
+        let mut design = self.design(points)?;
+        if let Some((i, n)) = shard {
+            design = design.shard(i, n).map_err(|e| e.to_string())?;
+        }
+        let map = FindingMap::new(design, (self.findings)()).map_err(|e| e.to_string())?;
+        let reused = map.reusable(earlier).len();
+        if !earlier.is_empty() {
+            eprintln!(
+                "{}: resuming: {reused} of the {} points to run taken from {} earlier points \
+                 (failed points and points of other designs are evaluated again)",
+                self.name,
+                map.design().points().len(),
+                earlier.len()
+            );
+        }
+        let checkpoint = self.open_checkpoint(dir, points)?;
+        // The reused points go into the new checkpoint too, so that it alone holds everything
+        // of this run when it is resumed in turn.
+        if let Ok(mut f) = checkpoint.lock() {
+            for p in map.reusable(earlier) {
+                let line = serde_json::to_string(&p).map_err(|e| e.to_string())?;
+                writeln!(f, "{line}").map_err(|e| format!("checkpoint: {e}"))?;
+            }
+        }
+        let start = Instant::now();
+        let result = map.run_reusing(self.evaluate, earlier, |p, done, total| {
+            let line = serde_json::to_string(p).unwrap_or_default();
+            if let Ok(mut f) = checkpoint.lock() {
+                // A failed checkpoint write loses only the resumability of this point.
+                if let Err(e) = writeln!(f, "{line}").and_then(|()| f.flush()) {
+                    eprintln!("{}: checkpoint not written: {e}", self.name);
+                }
+            }
+            let eta = start.elapsed().as_secs_f64() / done as f64 * (total - done) as f64;
+            eprintln!(
+                "{}: {done}/{total} points, {:.0} s, about {eta:.0} s left{}",
+                self.name,
+                start.elapsed().as_secs_f64(),
+                match &p.outcome {
+                    Ok(_) => String::new(),
+                    Err(e) => format!(" (point {} failed: {e})", p.index),
+                }
+            );
+        });
+        self.write(dir, &result)?;
+        if !result.points.is_empty() && result.failures().len() == result.points.len() {
+            return Err(format!(
+                "every point failed, e.g. {:?}",
+                result.points[0].outcome
+            ));
+        }
+        Ok(result)
+    }
+
+    /// Write a map's outputs and full result into `dir`.
+    ///
+    /// # Errors
+    /// An output error.
+    pub fn write(&self, dir: &Path, result: &MapResult) -> Result<(), String> {
+        result.write(dir, self.name).map_err(|e| e.to_string())?;
+        let json = serde_json::to_string(result).map_err(|e| e.to_string())?;
+        let path = self.result_file(dir);
+        std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// Merge the results of shards run into `shard_dirs` and write the merged map into `out`.
+    ///
+    /// # Errors
+    /// A missing or unreadable result, shards of different maps, or an output error.
+    pub fn merge(&self, shard_dirs: &[PathBuf], out: &Path) -> Result<MapResult, String> {
+        let parts = shard_dirs
+            .iter()
+            .map(|d| self.read_result(&self.result_file(d)))
+            .collect::<Result<Vec<_>, String>>()?;
+        let merged = MapResult::merge(parts).map_err(|e| e.to_string())?;
+        self.write(out, &merged)?;
+        Ok(merged)
+    }
+
+    /// The study `clr study <name>`: the whole map of [`MapDef::default_points`] points into
+    /// `dir`; returns the number of simulation runs.
+    ///
+    /// # Errors
+    /// See [`MapDef::run`].
+    pub fn study(&self, dir: &Path) -> Result<usize, String> {
+        self.run(dir, self.default_points, None, &[])
+            .map(|r| r.points.len() * self.runs_per_point)
+    }
+
+    fn header(&self, design_size: usize) -> CheckpointHeader {
+        CheckpointHeader {
+            map: self.name.to_string(),
+            parameters: (self.parameters)(),
+            findings: (self.findings)(),
+            seed: self.seed,
+            design_size,
+        }
+    }
+
+    /// A fresh checkpoint in `dir` (an earlier one is renamed `.previous`: it may be the folder
+    /// being resumed, whose points were read before this is called).
+    fn open_checkpoint(&self, dir: &Path, points: usize) -> Result<Mutex<File>, String> {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let path = self.checkpoint_file(dir);
+        if path.exists() {
+            let old = path.with_extension("jsonl.previous");
+            std::fs::rename(&path, &old).map_err(|e| format!("{}: {e}", path.display()))?;
+        }
+        let mut f = OpenOptions::new()
+            .create(true)
+            .write(true)
+            .truncate(true)
+            .open(&path)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let header = serde_json::to_string(&self.header(points)).map_err(|e| e.to_string())?;
+        writeln!(f, "{header}").map_err(|e| format!("{}: {e}", path.display()))?;
+        Ok(Mutex::new(f))
+    }
+
+    fn read_result(&self, path: &Path) -> Result<MapResult, String> {
+        let text = std::fs::read_to_string(path).map_err(|e| format!("{}: {e}", path.display()))?;
+        serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// The points stored in `dir`: its finished result if there is one, else its checkpoint
+    /// (and the checkpoint it replaced, `.previous`). Refuses results of another map.
+    fn read_points(&self, dir: &Path) -> Result<Vec<PointResult>, String> {
+        let result = self.result_file(dir);
+        let mine = self.header(0);
+        let same = |parameters: &[Parameter], findings: &[FindingSpec], seed: u32| {
+            parameters == mine.parameters.as_slice()
+                && findings == mine.findings.as_slice()
+                && seed == mine.seed
+        };
+        if result.exists() {
+            let r = self.read_result(&result)?;
+            if !same(&r.parameters, &r.findings, r.seed) {
+                return Err(foreign(&result, self.name));
+            }
+            return Ok(r.points);
+        }
+        let mut points = Vec::new();
+        let mut found = false;
+        for path in [
+            self.checkpoint_file(dir),
+            self.checkpoint_file(dir).with_extension("jsonl.previous"),
+        ] {
+            if !path.exists() {
+                continue;
+            }
+            found = true;
+            let lines = BufReader::new(File::open(&path).map_err(|e| format!("{e}"))?).lines();
+            for (k, line) in lines.enumerate() {
+                let line = line.map_err(|e| format!("{}: {e}", path.display()))?;
+                if k == 0 {
+                    let h: CheckpointHeader = serde_json::from_str(&line)
+                        .map_err(|e| format!("{}: header: {e}", path.display()))?;
+                    if !same(&h.parameters, &h.findings, h.seed) {
+                        return Err(foreign(&path, self.name));
+                    }
+                    continue;
+                }
+                match serde_json::from_str::<PointResult>(&line) {
+                    Ok(p) => points.push(p),
+                    // The last line of a run stopped while writing; the point runs again.
+                    Err(e) => eprintln!(
+                        "{}: {} line {}: not a point ({e}); ignored",
+                        self.name,
+                        path.display(),
+                        k + 1
+                    ),
+                }
+            }
+        }
+        if !found {
+            return Err(format!(
+                "{}: neither {} nor {} to resume from",
+                dir.display(),
+                result.display(),
+                self.checkpoint_file(dir).display()
+            ));
+        }
+        Ok(points)
+    }
+}
+
+fn foreign(path: &Path, name: &str) -> String {
+    format!(
+        "{}: points of another map (parameters, findings or seed differ from {name}'s); give a \
+         folder written by this map",
+        path.display()
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::findings::Scale;
+
+    fn params() -> Vec<Parameter> {
+        vec![
+            Parameter::new("a", "-", 0.0, 1.0, Scale::Linear, "test range").unwrap(),
+            Parameter::new("b", "-", 1.0, 10.0, Scale::Log, "test range").unwrap(),
+        ]
+    }
+    fn findings() -> Vec<FindingSpec> {
+        vec![FindingSpec::new("a_large", "a ≥ 0.5")]
+    }
+    // Fails on the points with a < 0.1, so that resuming must evaluate them again.
+    fn eval(x: &[f64]) -> Result<Vec<f64>, String> {
+        if x[0] < 0.1 {
+            Err("small a".into())
+        } else {
+            Ok(vec![x[0] - 0.5])
+        }
+    }
+    const DEF: MapDef = MapDef {
+        name: "test_map",
+        seed: 7,
+        default_points: 16,
+        runs_per_point: 1,
+        parameters: params,
+        findings,
+        evaluate: eval,
+    };
+
+    // A 16-point run resumed from an 8-point run's checkpoint equals a fresh 16-point run
+    // (outcomes; wall times differ), and a checkpoint of another map is refused.
+    #[test]
+    fn resume_from_a_smaller_design_equals_a_fresh_run() {
+        let base = std::env::temp_dir().join(format!("clr-map-study-{}", std::process::id()));
+        let (small, big, fresh) = (base.join("small"), base.join("big"), base.join("fresh"));
+        DEF.run(&small, 8, None, &[]).unwrap();
+        // only the checkpoint: as if the run had been stopped before writing its result
+        std::fs::remove_file(DEF.result_file(&small)).unwrap();
+        let cp = std::fs::read_to_string(DEF.checkpoint_file(&small)).unwrap();
+        assert_eq!(cp.lines().count(), 9);
+        let earlier = DEF.earlier_points(std::slice::from_ref(&small)).unwrap();
+        let resumed = DEF.run(&big, 16, None, &earlier).unwrap();
+        let new = DEF.run(&fresh, 16, None, &[]).unwrap();
+        let outcomes = |r: &MapResult| {
+            r.points
+                .iter()
+                .map(|p| (p.index, p.outcome.clone()))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(outcomes(&resumed), outcomes(&new));
+        // the successful points of the small run were taken, not evaluated again (same wall
+        // time), its failures were evaluated again, and the new checkpoint holds all 16
+        for e in &earlier {
+            let r = &resumed.points[e.index];
+            assert_eq!(r.wall_s == e.wall_s, e.outcome.is_ok(), "point {}", e.index);
+        }
+        let lines = std::fs::read_to_string(DEF.checkpoint_file(&big))
+            .unwrap()
+            .lines()
+            .count();
+        assert_eq!(lines, 17);
+        let other = MapDef { seed: 8, ..DEF };
+        let err = other.earlier_points(&[small]).unwrap_err();
+        assert!(err.contains("another map"), "{err}");
+        let _ = std::fs::remove_dir_all(&base);
+    }
+}
