@@ -7,7 +7,8 @@ use std::path::Path;
 use crate::flap::{self, FlapParams};
 use crate::map_study::MapDef;
 use crate::{
-    dual_guide, dual_guide_map, flap_flex, guide, guide_map, lubrication_wear, manipulator,
+    dual_guide, dual_guide_map, flap_flex, flap_map, guide, guide_map, lubrication_wear,
+    manipulator,
 };
 
 /// One built-in study.
@@ -102,6 +103,16 @@ pub fn studies() -> Vec<Study> {
                 .map(|r| r.len())
             },
             map: None,
+        },
+        Study {
+            name: "flap_findings_map",
+            model: "flap",
+            description: "finding map of the flexible flap's three findings (issue 19): 256 Sobol \
+                          points over hinge moment and stiffness, modal damping, clearance and \
+                          joint order, 5 runs of 1.25 s each at rtol 1e-8 with their ideal \
+                          references (1280 runs; docs/models/flap.md#finding-map)",
+            run: |dir| flap_map::MAP.study(dir),
+            map: Some(&flap_map::MAP),
         },
         Study {
             name: "guide_findings_map",

@@ -19,6 +19,12 @@ pub fn gap(finding_doc: &str, map: &MapDef, map_doc: &str, finding: &str) -> Str
     let path = crate::workspace_root()
         .join(MAPS_DIR)
         .join(format!("{name}_summary.json"));
+    if !path.exists() {
+        return format!(
+            "{finding_doc}; finding map {map_doc}: not run yet (`clr study {name}`, its \
+             summary copied to {MAPS_DIR}/)"
+        );
+    }
     let line = std::fs::read_to_string(&path)
         .map_err(|e| e.to_string())
         .and_then(|t| serde_json::from_str::<Summary>(&t).map_err(|e| e.to_string()))

@@ -13,6 +13,7 @@ pub mod models;
 pub mod models_dual_guide;
 mod models_dual_guide_map;
 pub mod models_flap_flex;
+mod models_flap_map;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
@@ -106,6 +107,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "models",
         run: models_dual_guide_map::cases,
+    },
+    Group {
+        name: "models",
+        run: models_flap_map::cases,
     },
     Group {
         name: "wear",

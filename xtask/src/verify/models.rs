@@ -401,36 +401,7 @@ fn flap_linkage_cases(filter: &Filter, out: &mut Vec<Case>) {
             ),
         );
         match flap::run("flap", &p, &RunSettings::default()) {
-            Ok(o) => {
-                let r = &o.results;
-                let t = r.column("t").unwrap_or_default();
-                let a = r.column("flap.angle").unwrap_or_default();
-                let pen = r
-                    .column("J4.penetration")
-                    .unwrap_or_default()
-                    .into_iter()
-                    .fold(0.0, f64::max);
-                let play = p.clearances[3] + pen;
-                let mut worst = f64::NEG_INFINITY;
-                let mut width = 0.0f64;
-                for k in 0..t.len() {
-                    let x = p.actuator(t[k])[0];
-                    let lo = p.ideal_flap_angle(x, p.aux_rod_length - play);
-                    let hi = p.ideal_flap_angle(x, p.aux_rod_length + play);
-                    let (Some(lo), Some(hi)) = (lo, hi) else {
-                        worst = f64::INFINITY;
-                        continue;
-                    };
-                    let (lo, hi) = (lo.min(hi), lo.max(hi));
-                    width = width.max(hi - lo);
-                    worst = worst.max(lo - a[k]).max(a[k] - hi);
-                }
-                out.push(case.at_most(worst, 1e-9).note(format!(
-                    "excursion {worst:.3e} rad (negative = inside); envelope width up to \
-                     {width:.3e} rad; δ_max = {pen:.3e} m; flap angle error max {:.4e} rad",
-                    metric(&o, "flap_angle_error_max")
-                )));
-            }
+            Ok(o) => out.push(envelope_case(case, &p, &o)),
             Err(e) => out.push(case.failed(0.0, e.to_string())),
         }
     }
@@ -993,4 +964,42 @@ fn guide_figures(dir: &Path) -> Result<(), String> {
         )?;
     }
     Ok(())
+}
+
+/// The rod-length envelope check of a run with J4 the only clearance joint: the flap angle must
+/// lie between the ideal angles for rod lengths l ± (c + δ_max) (closed-form kinematics, δ_max
+/// the largest penetration of J4), within 1e-9 rad.
+pub(super) fn envelope_case(
+    case: crate::report::CaseSpec,
+    p: &clr_models::flap::FlapParams,
+    o: &RunOutput,
+) -> Case {
+    let r = &o.results;
+    let t = r.column("t").unwrap_or_default();
+    let a = r.column("flap.angle").unwrap_or_default();
+    let pen = r
+        .column("J4.penetration")
+        .unwrap_or_default()
+        .into_iter()
+        .fold(0.0, f64::max);
+    let play = p.clearances[3] + pen;
+    let mut worst = f64::NEG_INFINITY;
+    let mut width = 0.0f64;
+    for k in 0..t.len() {
+        let x = p.actuator(t[k])[0];
+        let lo = p.ideal_flap_angle(x, p.aux_rod_length - play);
+        let hi = p.ideal_flap_angle(x, p.aux_rod_length + play);
+        let (Some(lo), Some(hi)) = (lo, hi) else {
+            worst = f64::INFINITY;
+            continue;
+        };
+        let (lo, hi) = (lo.min(hi), lo.max(hi));
+        width = width.max(hi - lo);
+        worst = worst.max(lo - a[k]).max(a[k] - hi);
+    }
+    case.at_most(worst, 1e-9).note(format!(
+        "excursion {worst:.3e} rad (negative = inside); envelope width up to {width:.3e} rad; \
+         δ_max = {pen:.3e} m; flap angle error max {:.4e} rad",
+        metric(o, "flap_angle_error_max")
+    ))
 }

@@ -169,7 +169,14 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
             c.case.metric("flap_acceleration_oscillation_rms")
         })
     };
-    let gap = "docs/models/flap.md#flexible-body-findings";
+    let gap = |finding: &str| {
+        super::maps::gap(
+            "docs/models/flap.md#flexible-body-findings",
+            &clr_models::flap_map::MAP,
+            "docs/models/flap.md#finding-map",
+            finding,
+        )
+    };
     // finding 1: one flexible body lowers the clearance-induced oscillation
     let (r0, r1) = (rms("bodies", 0.0), rms("bodies", 1.0));
     let c = Case::new(
@@ -185,7 +192,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
         "rigid {r0:.4e}, flexible aux rod {r1:.4e} rad/s²; {}",
         summary(&cases, |st| st == "bodies")
     ));
-    out.push(c.known_gap(gap));
+    out.push(c.known_gap(&gap("suspension")));
     // finding 2: the reduction shrinks as clearance joints are added; two series (the paper's
     // order of adding joints is not known)
     for (series, id, what) in [
@@ -221,7 +228,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
                 .join(", "),
             summary(&cases, |st| st == series || st == format!("{series}_rigid"))
         ));
-        out.push(c.known_gap(gap));
+        out.push(c.known_gap(&gap("suspension_weakens")));
     }
     // finding 3: four clearance joints with three flexible bodies are the most irregular
     let spread = |s: &str, x: f64| {
@@ -257,7 +264,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
         "4 joints + 3 flexible: {spread_all:.4e}; largest other: {other:.4e} ({label}); {}",
         summary(&cases, |st| st != "reversing")
     ));
-    out.push(c.known_gap(gap));
+    out.push(c.known_gap(&gap("most_irregular_spread")));
     let (s0, s3) = (spread("reversing", 0.0), spread("reversing", 3.0));
     let c = Case::new(
         "models.flap.flex.study.most_irregular.reversing",
@@ -272,7 +279,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
         "spread rigid {s0:.4e}, 3 flexible {s3:.4e}; {}",
         summary(&cases, |st| st == "reversing")
     ));
-    out.push(c.known_gap(gap));
+    out.push(c.known_gap(&gap("most_irregular_spread")));
     println!(
         "models.flap.flex study: {wall:.1} s wall ({} runs in parallel, 1.25 s simulated each, \
          rtol 1e-8)",
