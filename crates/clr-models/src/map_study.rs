@@ -105,27 +105,28 @@ impl MapDef {
             design = design.shard(i, n).map_err(|e| e.to_string())?;
         }
         let map = FindingMap::new(design, (self.findings)()).map_err(|e| e.to_string())?;
-        let reused = map.reusable(earlier).len();
+        let reused = map.reusable(earlier);
         if !earlier.is_empty() {
             eprintln!(
                 "{}: resuming: {reused} of the {} points to run taken from {} earlier points \
                  (failed points and points of other designs are evaluated again)",
                 self.name,
                 map.design().points().len(),
-                earlier.len()
+                earlier.len(),
+                reused = reused.len()
             );
         }
         let checkpoint = self.open_checkpoint(dir, points)?;
         // The reused points go into the new checkpoint too, so that it alone holds everything
         // of this run when it is resumed in turn.
         if let Ok(mut f) = checkpoint.lock() {
-            for p in map.reusable(earlier) {
-                let line = serde_json::to_string(&p).map_err(|e| e.to_string())?;
+            for p in &reused {
+                let line = serde_json::to_string(p).map_err(|e| e.to_string())?;
                 writeln!(f, "{line}").map_err(|e| format!("checkpoint: {e}"))?;
             }
         }
         let start = Instant::now();
-        let result = map.run_reusing(self.evaluate, earlier, |p, done, total| {
+        let result = map.run_reusing(self.evaluate, &reused, |p, done, total| {
             let line = serde_json::to_string(p).unwrap_or_default();
             if let Ok(mut f) = checkpoint.lock() {
                 // A failed checkpoint write loses only the resumability of this point.
