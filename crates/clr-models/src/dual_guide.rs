@@ -917,4 +917,38 @@ mod tests {
             assert!((f1[k] - e1).abs() < 1e-6 * e1, "act1 {} vs {e1}", f1[k]);
         }
     }
+
+    // The twist is refused where it has no meaning (the single guide has no stage-2 guides) or
+    // leaves the small-angle form, with the field named; with φ = 0 the model keeps the fixed
+    // root joints of the planar model, with φ ≠ 0 it has the translational joints and drivers.
+    #[test]
+    fn twist_is_checked_and_switches_the_root_joints() {
+        let single = DualGuideParams {
+            dual: false,
+            carriage1_twist: 0.01,
+            ..DualGuideParams::default()
+        };
+        assert!(single.validate().unwrap_err().contains("dual = true"));
+        let large = DualGuideParams {
+            carriage1_twist: 0.2,
+            ..DualGuideParams::default()
+        };
+        assert!(large.validate().unwrap_err().contains("carriage1_twist"));
+        let ramp = DualGuideParams {
+            carriage1_twist: 0.01,
+            twist_ramp: 0.0,
+            ..DualGuideParams::default()
+        };
+        assert!(ramp.validate().unwrap_err().contains("twist_ramp"));
+        let names = |p: &DualGuideParams| {
+            let d = p.desc("t").unwrap();
+            (d.joints.len(), d.drivers.len())
+        };
+        let planar = names(&DualGuideParams::default());
+        let twisted = names(&DualGuideParams {
+            carriage1_twist: 0.01,
+            ..DualGuideParams::default()
+        });
+        assert_eq!((twisted.0, twisted.1), (planar.0, planar.1 + 2));
+    }
 }
