@@ -20,28 +20,36 @@
 //! | `suspension` | `.suspension` | 1 − RMS(F1)/RMS(R1) |
 //! | `suspension_weakens` | `.suspension_weakens` (order J4 first), `.j1_first` | r(1) − r(4), r(n) = 1 − RMS(Fn)/RMS(Rn) |
 //! | `most_irregular_spread` | `.most_irregular` (`.reversing` at zero mean moment) | S(A4) / max S(others) − 1 |
+//! | `most_irregular_divergence` | — (the issue's Lyapunov measure) | (λ(A4) − max λ(R4, F4))·T |
 //!
 //! RMS is the time RMS of the clearance-induced flap acceleration oscillation and S the largest
 //! Poincaré-section spread over the clearance joints ([`flap::poincare_spread`]).
 //!
-//! **Not yet a measure of the map: the largest Lyapunov exponent.** [`RunMeasures::lyapunov`]
-//! is Rosenstein's estimate ([`lyapunov`]) from the flap angle error, and it is reported but no
-//! finding uses it. The reason is that the two actuator periods of these runs are too short for
-//! it. Neighbours must lie a period apart, so every pair compares period 1 with period 2, and
-//! the estimate follows the shape of their difference rather than a divergence. At the map's
-//! first point, runs with Poincaré spreads of 1e-4 (periodic) gave λ = 3–7 1/s. A twin-run
-//! (perturbed initial state) or a longer record is needed. The verify point
-//! of `.suspension` uses J4; here the one-joint runs use the point's order, so with "J1 first"
-//! the suspension finding is asked of J1.
+//! λ is the finite-time divergence rate of twin runs ([`lyapunov::twin_divergence_rate`]). Each
+//! four-joint configuration is run a second time with every clearance larger by
+//! [`TWIN_PERTURBATION`] (relative), and λ is the slope of ln of the distance between the two
+//! runs' journal-eccentricity vectors (all four joints, relative to c, sampled every [`TWIN_DT`]
+//! from t = 0) until that distance reaches [`TWIN_SATURATION`]. T is the actuator period, so the
+//! margin is a difference in e-folds per period. The comparison set is the other four-joint
+//! runs: the finding is about flexibility at equal joints.
+//!
+//! Rosenstein's estimate from one record ([`lyapunov::largest_exponent`]) is not used. With two
+//! actuator periods, state neighbours must lie a period apart, so the estimate follows the
+//! difference between the two periods. At the map's first point, runs with Poincaré spreads of
+//! 1e-4 (periodic) gave 3–7 1/s.
+//!
+//! The verify point of `.suspension` uses J4; here the one-joint runs use the point's order, so
+//! with "J1 first" the suspension finding is asked of J1.
 
 use crate::common;
 use crate::findings::{FindingSpec, Parameter, Scale};
 use crate::flap::{self, FlapParams};
 use crate::flap_flex;
-use crate::lyapunov::{self, RosensteinSettings};
+use crate::lyapunov;
 use crate::map_study::MapDef;
 use crate::studies::FLAP_FLEX_STUDY_DURATION;
 use crate::RunSettings;
+use clr_mbd::Results;
 
 /// Name of the study (`clr study flap_findings_map`) and of its output files.
 pub const NAME: &str = "flap_findings_map";
@@ -49,12 +57,18 @@ pub const NAME: &str = "flap_findings_map";
 pub const DEFAULT_POINTS: usize = 256;
 /// Scramble seed of the design (fixed before any run).
 pub const SEED: u32 = 1922;
-/// Runs per point (each with its ideal reference: 10 simulations).
+/// Runs per point (each with its ideal reference, the three four-joint ones with a twin: 13
+/// simulations).
 pub const RUNS_PER_POINT: usize = 5;
-/// Sampling step of the flap angle error for the Lyapunov estimate, s.
-pub const LYAPUNOV_DT: f64 = 1e-3;
+/// Relative perturbation of every clearance in the twin run of a four-joint configuration.
+pub const TWIN_PERTURBATION: f64 = 1e-6;
+/// Sampling step of the twin runs' distance, s.
+pub const TWIN_DT: f64 = 0.01;
+/// Distance (relative to the clearance) at which the twins count as separated: the fit of the
+/// divergence rate stops there.
+pub const TWIN_SATURATION: f64 = 0.1;
 
-/// The three findings, in the order of the margins.
+/// The four findings, in the order of the margins.
 pub fn findings() -> Vec<FindingSpec> {
     let paper = "Wan et al. 2022 (abstract), flexible flap linkage";
     vec![
@@ -80,6 +94,14 @@ pub fn findings() -> Vec<FindingSpec> {
                 "{paper}: several flexible bodies with several clearance joints are the most \
                  irregular (verify .most_irregular: Poincaré spread of A4 ≥ every other case); \
                  margin = S(A4)/max S(R1, F1, R4, F4) − 1"
+            ),
+        ),
+        FindingSpec::new(
+            "most_irregular_divergence",
+            format!(
+                "{paper}: the same, measured by the divergence rate λ of twin runs (a \
+                 finite-time largest Lyapunov exponent) at four clearance joints; margin = \
+                 (λ(A4) − max λ(R4, F4))·T, T the actuator period"
             ),
         ),
     ]
@@ -223,44 +245,70 @@ pub struct RunMeasures {
     pub oscillation_rms: f64,
     /// Largest Poincaré spread over the clearance joints, –.
     pub spread: f64,
-    /// Rosenstein's estimate of the largest Lyapunov exponent of the flap angle error, 1/s;
-    /// not used by the findings (see the module documentation: two periods are too short).
-    pub lyapunov: f64,
+    /// Divergence rate of the twin run, 1/s (four-joint configurations; `None` for the
+    /// one-joint ones, which are not twinned).
+    pub divergence: Option<f64>,
 }
 
-/// The Rosenstein settings for a run of actuator period `period` sampled every
-/// [`LYAPUNOV_DT`]: embedding dimension 3 with a delay of a fiftieth of a period, neighbours at
-/// least one period apart (the forced response repeats each period, so only a return after a
-/// whole period is a state neighbour), followed over a fifth of a period.
-pub fn rosenstein_settings(period: f64) -> RosensteinSettings {
-    let per = (period / LYAPUNOV_DT).round() as usize;
-    RosensteinSettings {
-        dimension: 3,
-        delay: (per / 50).max(1),
-        exclusion: per,
-        steps: (per / 5).max(2),
+/// Journal eccentricity of every clearance joint relative to its clearance at time `t`.
+fn eccentricities(res: &Results, p: &FlapParams, t: f64) -> Vec<f64> {
+    let time = res.column("t").unwrap_or_default();
+    let mut e = Vec::new();
+    for (k, j) in flap::JOINTS.iter().enumerate() {
+        let c = p.clearances[k];
+        if c > 0.0 {
+            for comp in ["ex", "ey"] {
+                let v = res.column(&format!("{j}.{comp}")).unwrap_or_default();
+                e.push(common::interp(&time, &v, t) / c);
+            }
+        }
     }
+    e
 }
 
-/// Run one configuration and measure it.
+/// The twin-run divergence rate of `p` against its run `res` (see the module documentation).
 ///
 /// # Errors
-/// A failing run, or a run too short for the measures.
-pub fn measure(p: &FlapParams) -> Result<RunMeasures, String> {
-    let o = flap::run("flap", p, &RunSettings::default()).map_err(|e| e.to_string())?;
-    let t = o.results.column("t").unwrap_or_default();
-    let e = o.results.column("flap.error").unwrap_or_default();
-    let (t0, t1) = (p.transient, t.last().copied().unwrap_or(0.0));
-    let n = ((t1 - t0) / LYAPUNOV_DT).floor() as usize + 1;
-    let x: Vec<f64> = (0..n)
-        .map(|k| common::interp(&t, &e, t0 + k as f64 * LYAPUNOV_DT))
+/// A failing twin run, or too few samples before the twins separate.
+pub fn divergence_rate(p: &FlapParams, res: &Results) -> Result<f64, String> {
+    let twin_p = FlapParams {
+        clearances: p.clearances.map(|c| c * (1.0 + TWIN_PERTURBATION)),
+        ..p.clone()
+    };
+    let twin = flap::simulate("flap", &twin_p, &RunSettings::default(), false)
+        .map_err(|e| format!("twin run: {e}"))?;
+    let n = (p.duration / TWIN_DT).floor() as usize + 1;
+    let t: Vec<f64> = (0..n).map(|k| k as f64 * TWIN_DT).collect();
+    let d: Vec<f64> = t
+        .iter()
+        .map(|&t| {
+            let (a, b) = (eccentricities(res, p, t), eccentricities(&twin, p, t));
+            a.iter()
+                .zip(&b)
+                .map(|(x, y)| (x - y).powi(2))
+                .sum::<f64>()
+                .sqrt()
+        })
         .collect();
-    let l = lyapunov::largest_exponent(&x, LYAPUNOV_DT, rosenstein_settings(p.period()))
-        .ok_or("series too short for the Lyapunov estimate")?;
+    lyapunov::twin_divergence_rate(&t, &d, TWIN_SATURATION)
+        .ok_or_else(|| "the twin runs separate within 3 samples".into())
+}
+
+/// Run one configuration and measure it, with the twin run when `twin`.
+///
+/// # Errors
+/// A failing run or twin.
+pub fn measure(p: &FlapParams, twin: bool) -> Result<RunMeasures, String> {
+    let o = flap::run("flap", p, &RunSettings::default()).map_err(|e| e.to_string())?;
+    let divergence = if twin {
+        Some(divergence_rate(p, &o.results)?)
+    } else {
+        None
+    };
     Ok(RunMeasures {
         oscillation_rms: o.metric("flap_acceleration_oscillation_rms"),
         spread: o.metric("poincare_spread"),
-        lyapunov: l.exponent,
+        divergence,
     })
 }
 
@@ -284,6 +332,11 @@ impl PointRuns {
             red(f1, r1),
             red(f1, r1) - red(f4, r4),
             a4.spread / max(|m| m.spread) - 1.0,
+            (a4.divergence.unwrap_or(f64::NAN)
+                - r4.divergence
+                    .unwrap_or(f64::NAN)
+                    .max(f4.divergence.unwrap_or(f64::NAN)))
+                * self.period,
         ]
     }
 }
@@ -301,7 +354,8 @@ pub fn point_runs(p: &MapPoint) -> Result<PointRuns, String> {
             clearances,
             ..base.clone()
         };
-        runs.push(measure(&q).map_err(|e| format!("{label}: {e}"))?);
+        let twin = clearances.iter().all(|&c| c > 0.0);
+        runs.push(measure(&q, twin).map_err(|e| format!("{label}: {e}"))?);
     }
     let runs: [RunMeasures; 5] = runs.try_into().map_err(|_| "five runs".to_string())?;
     Ok(PointRuns {
@@ -318,7 +372,7 @@ pub const MAP: MapDef = MapDef {
     runs_per_point: RUNS_PER_POINT,
     parameters,
     findings,
-    // the margins of the three findings at a design point's values
+    // the margins of the four findings at a design point's values
     evaluate: |x| point_runs(&MapPoint::from_values(x)?).map(|r| r.margins()),
 };
 
@@ -357,7 +411,7 @@ mod tests {
         let m = |rms: f64, spread: f64, l: f64| RunMeasures {
             oscillation_rms: rms,
             spread,
-            lyapunov: l,
+            divergence: Some(l),
         };
         let r = PointRuns {
             runs: [
@@ -374,6 +428,7 @@ mod tests {
         let (r1, r4) = (1.0 - 0.01971 / 0.09425, 1.0 - 0.1217 / 0.3231);
         assert!((g[1] - (r1 - r4)).abs() < 1e-12 && g[1] > 0.0, "{g:?}");
         assert!(g[2] < 0.0, "{g:?}");
-        assert_eq!(g.len(), 3);
+        // (λ(A4) − max(λ(R4), λ(F4)))·T = (0.5 − 0.2)·0.5; R1's and F1's do not count
+        assert!((g[3] - 0.15).abs() < 1e-12, "{g:?}");
     }
 }

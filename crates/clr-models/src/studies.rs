@@ -107,10 +107,11 @@ pub fn studies() -> Vec<Study> {
         Study {
             name: "flap_findings_map",
             model: "flap",
-            description: "finding map of the flexible flap's three findings (issue 19): 256 Sobol \
+            description: "finding map of the flexible flap's four findings (issue 19): 256 Sobol \
                           points over hinge moment and stiffness, modal damping, clearance and \
-                          joint order, 5 runs of 1.25 s each at rtol 1e-8 with their ideal \
-                          references (1280 runs; docs/models/flap.md#finding-map)",
+                          joint order, 5 runs of 1.25 s at rtol 1e-8 each with its ideal \
+                          reference, 3 with a twin (3328 simulations, about 1.5 h on 2 cores; \
+                          docs/models/flap.md#finding-map)",
             run: |dir| flap_map::MAP.study(dir),
             map: Some(&flap_map::MAP),
         },
