@@ -76,7 +76,7 @@ pub fn largest_exponent(x: &[f64], dt: f64, s: RosensteinSettings) -> Option<Lya
     }
     let y: Vec<f64> = sum.iter().zip(&count).map(|(s, &c)| s / c as f64).collect();
     Some(LyapunovEstimate {
-        exponent: slope(&y) / dt,
+        exponent: slope(y.iter().enumerate().map(|(k, &v)| (k as f64, v)))? / dt,
         pairs: count[0],
         divergence: y,
     })
@@ -92,40 +92,40 @@ pub fn largest_exponent(x: &[f64], dt: f64, s: RosensteinSettings) -> Option<Lya
 /// fewer than 3 usable samples (positive d before saturation).
 pub fn twin_divergence_rate(t: &[f64], d: &[f64], saturation: f64) -> Option<f64> {
     let end = d.iter().position(|&v| v >= saturation).unwrap_or(d.len());
-    let pts: Vec<(f64, f64)> = t[..end]
+    let pts = t[..end]
         .iter()
         .zip(&d[..end])
         .filter(|(_, &v)| v > 0.0)
-        .map(|(&t, &v)| (t, v.ln()))
-        .collect();
-    if pts.len() < 3 {
+        .map(|(&t, &v)| (t, v.ln()));
+    if pts.clone().count() < 3 {
         return None;
     }
-    let n = pts.len() as f64;
-    let (tb, yb) = pts
-        .iter()
-        .fold((0.0, 0.0), |(a, b), &(t, y)| (a + t / n, b + y / n));
-    let (num, den) = pts.iter().fold((0.0, 0.0), |(a, b), &(t, y)| {
-        (a + (t - tb) * (y - yb), b + (t - tb) * (t - tb))
-    });
-    (den > 0.0).then(|| num / den)
+    slope(pts)
 }
 
-/// Least-squares slope of y over k = 0 … n − 1.
-fn slope(y: &[f64]) -> f64 {
-    let n = y.len() as f64;
-    let kbar = (n - 1.0) / 2.0;
-    let ybar = y.iter().sum::<f64>() / n;
-    let (num, den) = y.iter().enumerate().fold((0.0, 0.0), |(a, b), (k, &v)| {
-        let dk = k as f64 - kbar;
-        (a + dk * (v - ybar), b + dk * dk)
+/// Least-squares slope of the points (x, y); `None` when the x do not vary.
+fn slope(pts: impl Iterator<Item = (f64, f64)> + Clone) -> Option<f64> {
+    let n = pts.clone().count() as f64;
+    let (xb, yb) = pts
+        .clone()
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (num, den) = pts.fold((0.0, 0.0), |(a, b), (x, y)| {
+        (a + (x - xb) * (y - yb), b + (x - xb) * (x - xb))
     });
-    num / den
+    (den > 0.0).then(|| num / den)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Settings for the two maps: m = 2, τ = 1, fit over k = 0..4 (see each test).
+    const MAP_SETTINGS: RosensteinSettings = RosensteinSettings {
+        dimension: 2,
+        delay: 1,
+        exclusion: 1,
+        steps: 4,
+    };
 
     // Logistic map x ↦ 4x(1 − x): λ₁ = ln 2 exactly (it is conjugate to the tent map).
     // 2000 iterates, m = 2, τ = 1, fit over k = 0..4 (the separations saturate at the attractor
@@ -138,13 +138,7 @@ mod tests {
             let v = x[x.len() - 1];
             x.push(4.0 * v * (1.0 - v));
         }
-        let s = RosensteinSettings {
-            dimension: 2,
-            delay: 1,
-            exclusion: 1,
-            steps: 4,
-        };
-        let e = largest_exponent(&x, 1.0, s).unwrap();
+        let e = largest_exponent(&x, 1.0, MAP_SETTINGS).unwrap();
         let ln2 = std::f64::consts::LN_2;
         assert!(
             (e.exponent - ln2).abs() < 0.1 * ln2,
@@ -168,13 +162,7 @@ mod tests {
                 x.push(u);
             }
         }
-        let s = RosensteinSettings {
-            dimension: 2,
-            delay: 1,
-            exclusion: 1,
-            steps: 4,
-        };
-        let e = largest_exponent(&x, 1.0, s).unwrap();
+        let e = largest_exponent(&x, 1.0, MAP_SETTINGS).unwrap();
         assert!(
             (e.exponent - 0.41922).abs() < 0.042,
             "λ = {}, {:?}",
