@@ -15,8 +15,6 @@ use super::Filter;
 use crate::figures::copy_study_figures;
 use crate::report::Case;
 
-/// Where the guide's friction known gaps are explained, and the finding map that says where over
-/// the plausible reconstructions each finding holds (preliminary: 64 of 256 points).
 /// The known-gap link of guide friction finding `finding` (an id of
 /// `clr_models::guide_map::findings`): the page's analysis and the finding map.
 fn guide_friction_gap(finding: &str) -> String {
@@ -24,7 +22,7 @@ fn guide_friction_gap(finding: &str) -> String {
         "docs/models/guide.md#friction-findings",
         &clr_models::guide_map::MAP,
         "docs/models/guide.md#finding-map",
-        finding,
+        &[finding],
     )
 }
 

@@ -107,7 +107,7 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
                         "docs/models/dual_guide.md#results",
                         &clr_models::dual_guide_map::MAP,
                         "docs/models/dual_guide.md#finding-map",
-                        "spacing_jamming",
+                        &["spacing_jamming"],
                     )),
                 );
                 println!("models.guide.dual spacing study: {wall:.1} s wall (3 runs in parallel)");
