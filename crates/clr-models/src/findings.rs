@@ -769,8 +769,9 @@ pub struct Candidate {
 impl Summary {
     /// One line on finding `id` for a verify note: where it holds (count, fraction and 95 %
     /// Wilson interval) and its deciding parameters, those whose first-order index exceeds 3
-    /// null standard deviations, with their best single split; "none distinguishable" when no
-    /// index does. `None` for an unknown finding id.
+    /// null standard deviations, with their best single split when it classifies better than
+    /// the constant guess; "none distinguishable" when no index does. `None` for an unknown
+    /// finding id.
     pub fn finding_line(&self, id: &str) -> Option<String> {
         let f = self.findings.iter().find(|f| f.finding.id == id)?;
         let fr = &f.fraction;
@@ -780,12 +781,16 @@ impl Summary {
             .filter_map(|d| {
                 let i = d.index?;
                 (i.value > 3.0 * i.null_sd).then(|| {
-                    let split = d.stump.map_or(String::new(), |t| {
-                        format!(
+                    let split = match d.stump {
+                        Some(t) if t.accuracy > t.baseline => format!(
                             ", {}",
                             t.describe(&d.parameter, &self.parameters[d.position].unit)
-                        )
-                    });
+                        ),
+                        // a split no better than "always the more frequent class" says
+                        // nothing about where the finding holds
+                        Some(_) => ", no single split predicts it".to_string(),
+                        None => String::new(),
+                    };
                     format!("{} (S₁ = {:.2}{split})", d.parameter, i.value)
                 })
             })
@@ -1327,6 +1332,30 @@ mod tests {
         );
         assert!(!line.contains("x2"), "{line}");
         assert!(r.summary().finding_line("g").is_none());
+    }
+
+    // A finding that holds on a middle band, 0.1 − |x1 − 0.5| ≥ 0: x1 alone decides it
+    // (S₁ = 1), but one threshold cannot cut a band out, so every split does worse than "fails
+    // everywhere" (80 %) and the line names no split. The band [409.6, 614.4]/1024 holds the
+    // one point of each of the 204 slices 410–613 of the net, and perhaps those of the two
+    // slices it cuts: 204–206 points.
+    #[test]
+    fn finding_line_names_no_split_that_loses_to_the_constant_guess() {
+        let r = map(&linear(&["x1", "x2"], 0.0, 1.0), 1024, |x| {
+            0.1 - (x[0] - 0.5).abs()
+        });
+        let line = r.summary().finding_line("f").unwrap();
+        let holds: usize = line["holds at ".len()..]
+            .split(' ')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        assert!((204..=206).contains(&holds), "{line}");
+        assert!(
+            line.contains("x1 (S₁ = 1.00, no single split predicts it)"),
+            "{line}"
+        );
     }
 
     /// Xorshift64 numbers in [0, 1): independent-looking points without a dependency.
