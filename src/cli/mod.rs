@@ -156,7 +156,9 @@ enum Command {
         /// Slurm array task id as I), to be joined with --merge.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
-        /// Finding maps only: merge these shard folders into --out instead of running.
+        /// Finding maps only: merge these shard folders into --out instead of running. A folder
+        /// of a stopped run contributes the points of its checkpoint, so the summary of a map
+        /// still running or stopped says how many of the design's points it has.
         #[arg(long, value_name = "DIR", num_args = 1..)]
         merge: Vec<PathBuf>,
         /// Finding maps only: take the successful points already evaluated in these folders

@@ -427,6 +427,7 @@ impl FindingMap {
     }
 
     /// [`FindingMap::run`] that takes the outcome of every design point found among `earlier`
+    /// (evaluating the others in design order, so that a stopped run has done a prefix)
     /// (the successful points of an interrupted run or of a smaller design of the same map, see
     /// [`FindingMap::reusable`]) instead of evaluating it again, and calls
     /// `on_point(result, done, to_evaluate)` after each point it evaluates (from worker
@@ -446,8 +447,12 @@ impl FindingMap {
             .collect();
         let total = todo.len();
         let done = AtomicUsize::new(0);
+        // Points are handed to the workers in design order (par_bridge pulls them one at a
+        // time), so a run stopped early leaves a prefix of the design, itself a balanced net,
+        // rather than the first parts of as many blocks as there are threads.
         let mut points: Vec<PointResult> = todo
-            .par_iter()
+            .into_iter()
+            .par_bridge()
             .map(|p| {
                 let r = self.evaluate(p, &eval);
                 on_point(&r, done.fetch_add(1, Ordering::Relaxed) + 1, total);
@@ -1288,6 +1293,40 @@ mod tests {
         FindingMap::new(design, one_finding("f"))
             .unwrap()
             .run(|x| Ok(vec![eval(x)]))
+    }
+
+    // Points are evaluated in design order: when the point of index j is the p-th to finish
+    // (from 0), at least j + 1 points have been handed out and at most one per worker is
+    // unfinished, so j ≤ p + workers − 1. Splitting the list into one block per worker, as a
+    // plain parallel iterator does, finishes index 32 of 64 among the first.
+    #[test]
+    fn a_run_evaluates_points_in_design_order() {
+        let workers = 2;
+        let design = Design::sobol(&linear(&["x"], 0.0, 1.0), 64, 7).unwrap();
+        let fm = FindingMap::new(design, one_finding("f")).unwrap();
+        let order = std::sync::Mutex::new(Vec::new());
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(workers)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            fm.run_reusing(
+                // about a millisecond of work per point, so that the second worker joins in
+                // before the first has run through the list
+                |x| {
+                    Ok(vec![
+                        (0..100_000).fold(x[0], |a, k| (a + f64::from(k)).sin())
+                    ])
+                },
+                &[],
+                |p, _, _| order.lock().unwrap().push(p.index),
+            )
+        });
+        let order = order.into_inner().unwrap();
+        assert_eq!(order.len(), 64);
+        for (pos, &j) in order.iter().enumerate() {
+            assert!(j < pos + workers, "point {j} finished {pos}th: {order:?}");
+        }
     }
 
     fn index_values(r: &MapResult) -> Vec<f64> {

@@ -167,13 +167,24 @@ impl MapDef {
     }
 
     /// Merge the results of shards run into `shard_dirs` and write the merged map into `out`.
+    /// A folder without a finished result contributes the points of its checkpoint
+    /// ([`MapDef::stopped_result`]), so the map of a stopped run can be summarized: its
+    /// summary then says how many of the design's points it has.
     ///
     /// # Errors
-    /// A missing or unreadable result, shards of different maps, or an output error.
+    /// A folder with neither a result nor a checkpoint, an unreadable file, shards of
+    /// different maps, or an output error.
     pub fn merge(&self, shard_dirs: &[PathBuf], out: &Path) -> Result<MapResult, String> {
         let parts = shard_dirs
             .iter()
-            .map(|d| self.read_result(&self.result_file(d)))
+            .map(|d| {
+                let result = self.result_file(d);
+                if result.exists() {
+                    self.read_result(&result)
+                } else {
+                    self.stopped_result(d)
+                }
+            })
             .collect::<Result<Vec<_>, String>>()?;
         let merged = MapResult::merge(parts).map_err(|e| e.to_string())?;
         self.write(out, &merged)?;
@@ -188,6 +199,37 @@ impl MapDef {
     pub fn study(&self, dir: &Path) -> Result<usize, String> {
         self.run(dir, self.default_points, None, &[])
             .map(|r| r.points.len() * self.runs_per_point)
+    }
+
+    /// The result of a run stopped before it finished: the points of the checkpoint in `dir`
+    /// (and of the one it replaced), each index once (its successful outcome if it has one),
+    /// in design order, for the design size named in the checkpoint's header.
+    ///
+    /// # Errors
+    /// No checkpoint, an unreadable one, or one of another map.
+    pub fn stopped_result(&self, dir: &Path) -> Result<MapResult, String> {
+        let path = self.checkpoint_file(dir);
+        let first =
+            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+        let header: CheckpointHeader = serde_json::from_str(first.lines().next().unwrap_or(""))
+            .map_err(|e| format!("{}: header: {e}", path.display()))?;
+        let mut points: Vec<PointResult> = Vec::new();
+        for p in self.read_points(dir)? {
+            match points.iter_mut().find(|q| q.index == p.index) {
+                Some(q) if q.outcome.is_err() && p.outcome.is_ok() => *q = p,
+                Some(_) => {}
+                None => points.push(p),
+            }
+        }
+        points.retain(|p| p.index < header.design_size);
+        points.sort_by_key(|p| p.index);
+        Ok(MapResult {
+            parameters: header.parameters,
+            findings: header.findings,
+            design_size: header.design_size,
+            seed: header.seed,
+            points,
+        })
     }
 
     fn header(&self, design_size: usize) -> CheckpointHeader {
@@ -359,6 +401,18 @@ mod tests {
             .lines()
             .count();
         assert_eq!(lines, 17);
+        // the stopped 8-point run, merged from its checkpoint alone, is the 8-point map
+        let stopped = DEF
+            .merge(std::slice::from_ref(&small), &base.join("m"))
+            .unwrap();
+        assert_eq!(stopped.design_size, 8);
+        assert_eq!(outcomes(&stopped), outcomes(&new)[..8].to_vec());
+        // resumed into its own folder, the 16-point run's points stand in the new checkpoint
+        // and in the `.previous` one; the stopped result counts each once
+        let own = DEF.earlier_points(std::slice::from_ref(&big)).unwrap();
+        DEF.run(&big, 16, None, &own).unwrap();
+        let twice = DEF.stopped_result(&big).unwrap();
+        assert_eq!(outcomes(&twice), outcomes(&new));
         let other = MapDef { seed: 8, ..DEF };
         let err = other.earlier_points(&[small]).unwrap_err();
         assert!(err.contains("another map"), "{err}");
