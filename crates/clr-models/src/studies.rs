@@ -110,7 +110,7 @@ pub fn studies() -> Vec<Study> {
             description: "finding map of the flexible flap's four findings (issue 19): 256 Sobol \
                           points over hinge moment and stiffness, modal damping, clearance and \
                           joint order, 5 runs of 1.25 s at rtol 1e-8 each with its ideal \
-                          reference, 3 with a twin (3328 simulations, about 2 h on 2 cores; \
+                          reference, 3 with a twin (3328 simulations, about 4 h on 2 cores; \
                           docs/models/flap.md#finding-map)",
             run: |dir| flap_map::MAP.study(dir),
             map: Some(&flap_map::MAP),
