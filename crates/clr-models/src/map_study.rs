@@ -209,10 +209,12 @@ impl MapDef {
     /// No checkpoint, an unreadable one, or one of another map.
     pub fn stopped_result(&self, dir: &Path) -> Result<MapResult, String> {
         let path = self.checkpoint_file(dir);
-        let first =
-            std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-        let header: CheckpointHeader = serde_json::from_str(first.lines().next().unwrap_or(""))
-            .map_err(|e| format!("{}: header: {e}", path.display()))?;
+        let mut first = String::new();
+        File::open(&path)
+            .and_then(|f| BufReader::new(f).read_line(&mut first))
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let header: CheckpointHeader =
+            serde_json::from_str(&first).map_err(|e| format!("{}: header: {e}", path.display()))?;
         let mut points: Vec<PointResult> = Vec::new();
         for p in self.read_points(dir)? {
             match points.iter_mut().find(|q| q.index == p.index) {
