@@ -13,7 +13,8 @@ pub const MAPS_DIR: &str = "docs/models/maps";
 
 /// The known-gap link of a finding: the model page's section on the finding, then the map's
 /// section and the one-line statement of each of `findings` (`clr_models::findings::Summary::
-/// finding_line`, joined by "; "), or why there is none. A finding measured two ways (the
+/// finding_line`, joined by "; ", each led by its id when there are several), or why there is
+/// none. A finding measured two ways (the
 /// flap's irregularity: Poincaré spread and divergence rate) quotes both.
 pub fn gap(finding_doc: &str, map: &MapDef, map_doc: &str, findings: &[&str]) -> String {
     let (name, size) = (map.name, map.default_points);
@@ -33,8 +34,15 @@ pub fn gap(finding_doc: &str, map: &MapDef, map_doc: &str, findings: &[&str]) ->
             let lines = findings
                 .iter()
                 .map(|f| {
-                    s.finding_line(f)
-                        .ok_or_else(|| format!("no finding `{f}` in it"))
+                    let line = s
+                        .finding_line(f)
+                        .ok_or_else(|| format!("no finding `{f}` in it"))?;
+                    // with several, each line says which finding it is about
+                    Ok::<_, String>(if findings.len() > 1 {
+                        format!("`{f}` {line}")
+                    } else {
+                        line
+                    })
                 })
                 .collect::<Result<Vec<_>, _>>()?
                 .join("; ");
@@ -88,6 +96,7 @@ mod tests {
         let ok = gap("doc", m, "map", &["spacing_jamming", "more_impacts"]);
         assert!(ok.contains("of 256") && !ok.contains("preliminary"), "{ok}");
         assert_eq!(ok.matches("holds at").count(), 2, "{ok}");
+        assert!(ok.contains("`more_impacts` holds at"), "{ok}");
         let bad = gap("doc", m, "map", &["no_such_finding"]);
         assert!(bad.contains("no finding `no_such_finding`"), "{bad}");
     }
