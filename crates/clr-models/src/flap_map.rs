@@ -250,20 +250,28 @@ pub struct RunMeasures {
     pub divergence: Option<f64>,
 }
 
-/// Journal eccentricity of every clearance joint relative to its clearance at time `t`.
-fn eccentricities(res: &Results, p: &FlapParams, t: f64) -> Vec<f64> {
+/// Journal eccentricity of every clearance joint relative to its clearance at each of the
+/// times `t` (one vector per time). Each column is taken from `res` once: a flexible run has
+/// about 10⁵ recorded rows.
+fn eccentricities(res: &Results, p: &FlapParams, t: &[f64]) -> Vec<Vec<f64>> {
     let time = res.column("t").unwrap_or_default();
-    let mut e = Vec::new();
+    let mut columns = Vec::new();
     for (k, j) in flap::JOINTS.iter().enumerate() {
         let c = p.clearances[k];
         if c > 0.0 {
             for comp in ["ex", "ey"] {
-                let v = res.column(&format!("{j}.{comp}")).unwrap_or_default();
-                e.push(common::interp(&time, &v, t) / c);
+                columns.push((res.column(&format!("{j}.{comp}")).unwrap_or_default(), c));
             }
         }
     }
-    e
+    t.iter()
+        .map(|&t| {
+            columns
+                .iter()
+                .map(|(v, c)| common::interp(&time, v, t) / c)
+                .collect()
+        })
+        .collect()
 }
 
 /// The twin-run divergence rate of `p` against its run `res` (see the module documentation).
@@ -279,12 +287,13 @@ pub fn divergence_rate(p: &FlapParams, res: &Results) -> Result<f64, String> {
         .map_err(|e| format!("twin run: {e}"))?;
     let n = (p.duration / TWIN_DT).floor() as usize + 1;
     let t: Vec<f64> = (0..n).map(|k| k as f64 * TWIN_DT).collect();
-    let d: Vec<f64> = t
+    let (ea, eb) = (eccentricities(res, p, &t), eccentricities(&twin, p, &t));
+    let d: Vec<f64> = ea
         .iter()
-        .map(|&t| {
-            let (a, b) = (eccentricities(res, p, t), eccentricities(&twin, p, t));
+        .zip(&eb)
+        .map(|(a, b)| {
             a.iter()
-                .zip(&b)
+                .zip(b)
                 .map(|(x, y)| (x - y).powi(2))
                 .sum::<f64>()
                 .sqrt()
