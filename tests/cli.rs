@@ -1102,7 +1102,8 @@ fn animate_draws_the_contact_shapes() {
 }
 
 /// The finding-map options of `clr study` are refused, with the reason, for a study that is not
-/// a finding map, and --merge is refused beside --points/--shard (every input used or refused).
+/// a finding map, --merge is refused beside --points/--shard, and --retry-failed without --resume
+/// (every input used or refused).
 #[test]
 fn study_map_options_are_refused_where_they_do_not_apply() {
     let o = clr(&["study", "guide_friction", "--points", "3"]);
@@ -1134,4 +1135,8 @@ fn study_map_options_are_refused_where_they_do_not_apply() {
     ]);
     assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
     assert!(stderr(&o).contains("to resume from"), "{}", stderr(&o));
+    // --retry-failed means nothing without --resume
+    let o = clr(&["study", "flap_findings_map", "--retry-failed"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--resume"), "{}", stderr(&o));
 }

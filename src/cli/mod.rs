@@ -161,12 +161,16 @@ enum Command {
         /// still running or stopped says how many of the design's points it has.
         #[arg(long, value_name = "DIR", num_args = 1..)]
         merge: Vec<PathBuf>,
-        /// Finding maps only: take the successful points already evaluated in these folders
-        /// (the checkpoint `<name>_points.jsonl` of a stopped run, or a finished map of any
-        /// size of the same map; the --out folder itself is allowed) instead of running them
-        /// again.
+        /// Finding maps only: take the points already evaluated in these folders (the
+        /// checkpoint `<name>_points.jsonl` of a stopped run, or a finished map of any size of
+        /// the same map; the --out folder itself is allowed) instead of running them again.
+        /// Failed points are taken as failed: a point's evaluation is deterministic.
         #[arg(long, value_name = "DIR", num_args = 1..)]
         resume: Vec<PathBuf>,
+        /// Finding maps, with --resume: evaluate the failed points again (after a change to
+        /// what a point does, e.g. a larger step budget), instead of taking them as failed.
+        #[arg(long, requires = "resume")]
+        retry_failed: bool,
     },
     /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
     Animate(animate::AnimateArgs),
@@ -265,6 +269,7 @@ pub(crate) fn main() -> ExitCode {
             shard,
             merge,
             resume,
+            retry_failed,
         } => study_command(
             &name,
             out,
@@ -273,6 +278,7 @@ pub(crate) fn main() -> ExitCode {
                 shard: shard.as_deref(),
                 merge: &merge,
                 resume: &resume,
+                retry_failed,
             },
         ),
         Command::Animate(a) => animate::animate_command(&a),
@@ -333,6 +339,7 @@ struct MapOptions<'a> {
     shard: Option<&'a str>,
     merge: &'a [PathBuf],
     resume: &'a [PathBuf],
+    retry_failed: bool,
 }
 
 impl MapOptions<'_> {
@@ -408,7 +415,9 @@ fn map_study(
         dir.display(),
         map.checkpoint_file(dir).display()
     );
-    let earlier = map.earlier_points(opts.resume).map_err(CliError::Input)?;
+    let earlier = map
+        .earlier_points(opts.resume, opts.retry_failed)
+        .map_err(CliError::Input)?;
     let n = map
         .run(dir, points, shard, &earlier)
         .map_err(CliError::Simulation)?

@@ -428,7 +428,7 @@ impl FindingMap {
 
     /// [`FindingMap::run`] that takes the outcome of every design point found among `earlier`
     /// (evaluating the others in design order, so that a stopped run has done a prefix)
-    /// (the successful points of an interrupted run or of a smaller design of the same map, see
+    /// (the points of an interrupted run or of a smaller design of the same map, see
     /// [`FindingMap::reusable`]) instead of evaluating it again, and calls
     /// `on_point(result, done, to_evaluate)` after each point it evaluates (from worker
     /// threads, in completion order; a checkpoint writer). Reused points keep their outcome and
@@ -470,13 +470,18 @@ impl FindingMap {
         }
     }
 
-    /// The successful points of `earlier` that are points of this design: same index, and the
-    /// same unit coordinates and values within 1e-12 (relative for values; JSON keeps them to
-    /// the last bit, the tolerance only absorbs a foreign writer's rounding). The caller checks
-    /// that `earlier` comes from the same map (parameters, findings and seed, see
+    /// The points of `earlier` that are points of this design: same index, and the same unit
+    /// coordinates and values within 1e-12 (relative for values; JSON keeps them to the last
+    /// bit, the tolerance only absorbs a foreign writer's rounding). The caller checks that
+    /// `earlier` comes from the same map (parameters, findings and seed, see
     /// [`MapResult::same_map_as`]); a Sobol design of n points is the first n points of any
     /// larger design with the same seed, so a 64-point map is reused by a 256-point one.
-    /// Failed points are not reused: they are evaluated again.
+    ///
+    /// Failed points are reused as failures: a point's evaluation is deterministic (the flap
+    /// map's 8 failed points evaluated again failed at the same time t to the last digit), so
+    /// evaluating it again only costs time. A caller that changed what a point does removes
+    /// the failures from `earlier` first (`clr study --retry-failed`). Where a point stands in
+    /// `earlier` twice, a successful outcome is preferred.
     pub fn reusable(&self, earlier: &[PointResult]) -> Vec<PointResult> {
         let close = |a: &[f64], b: &[f64]| {
             a.len() == b.len()
@@ -488,11 +493,14 @@ impl FindingMap {
             .points
             .iter()
             .filter_map(|p| {
-                earlier.iter().find(|r| {
-                    r.index == p.index
-                        && r.outcome.is_ok()
-                        && close(&r.unit, &p.unit)
-                        && close(&r.values, &p.values)
+                let mut same = earlier.iter().filter(|r| {
+                    r.index == p.index && close(&r.unit, &p.unit) && close(&r.values, &p.values)
+                });
+                let first = same.next()?;
+                Some(if first.outcome.is_ok() {
+                    first
+                } else {
+                    same.find(|r| r.outcome.is_ok()).unwrap_or(first)
                 })
             })
             .cloned()
@@ -1327,6 +1335,24 @@ mod tests {
         for (pos, &j) in order.iter().enumerate() {
             assert!(j < pos + workers, "point {j} finished {pos}th: {order:?}");
         }
+    }
+
+    // A failed point is reused as failed; a point standing twice (a failed and a successful
+    // outcome, as after a retried run) is reused with its successful outcome.
+    #[test]
+    fn failed_points_are_reused_and_a_success_wins() {
+        let design = Design::sobol(&linear(&["x"], 0.0, 1.0), 4, 7).unwrap();
+        let fm = FindingMap::new(design, one_finding("f")).unwrap();
+        let fresh = fm.run(|x| Ok(vec![x[0]]));
+        let failed = |i: usize| PointResult {
+            outcome: Err("budget".into()),
+            ..fresh.points[i].clone()
+        };
+        let earlier = [failed(0), fresh.points[0].clone(), failed(1)];
+        let reused = fm.reusable(&earlier);
+        assert_eq!(reused.len(), 2);
+        assert_eq!(reused[0].outcome, fresh.points[0].outcome);
+        assert_eq!(reused[1].outcome, Err("budget".into()));
     }
 
     fn index_values(r: &MapResult) -> Vec<f64> {

@@ -6,7 +6,8 @@
 //! evaluated point is appended to a checkpoint, `<name>_points.jsonl` in the output folder (one
 //! JSON line per point after a header line naming the map), as soon as it is done. A later run
 //! given that folder (or a folder holding a finished `<name>_result.json`) with `resume` takes
-//! the successful points it finds there instead of evaluating them again, and says how many.
+//! the points it finds there instead of evaluating them again, and says how many; failed points
+//! are taken as failed unless the caller asks to retry them (`clr study --retry-failed`).
 //! Shards (`--shard I/N`, points k with k mod N = I) run on several machines are joined with
 //! [`MapDef::merge`].
 
@@ -71,21 +72,30 @@ impl MapDef {
     }
 
     /// The points evaluated earlier in the folders `resume` (each folder's finished result, or
-    /// else its checkpoint), for [`MapDef::run`].
+    /// else its checkpoint), for [`MapDef::run`]; without the failed ones if `retry_failed`
+    /// (when what a point does has changed since, e.g. a larger step budget), so that the run
+    /// evaluates them again.
     ///
     /// # Errors
     /// A folder with neither, an unreadable file, or points of another map (parameters,
     /// findings or seed differ).
-    pub fn earlier_points(&self, resume: &[PathBuf]) -> Result<Vec<PointResult>, String> {
+    pub fn earlier_points(
+        &self,
+        resume: &[PathBuf],
+        retry_failed: bool,
+    ) -> Result<Vec<PointResult>, String> {
         let mut earlier = Vec::new();
         for d in resume {
             earlier.extend(self.read_points(d)?);
         }
+        if retry_failed {
+            earlier.retain(|p| p.outcome.is_ok());
+        }
         Ok(earlier)
     }
 
-    /// Run the map of `points` points (or shard `I/N` of it) into `dir`, reusing the successful
-    /// points of `earlier` that belong to this design ([`MapDef::earlier_points`]; points of a
+    /// Run the map of `points` points (or shard `I/N` of it) into `dir`, reusing the points of
+    /// `earlier` (failed ones as failed) that belong to this design ([`MapDef::earlier_points`]; points of a
     /// different design size of this map are reused where they coincide), printing progress to
     /// stderr and appending every evaluated point to the checkpoint in `dir`. Writes the
     /// engine's outputs (`<name>.csv`, `_summary.json`, `_summary.md`, one figure per finding)
@@ -107,9 +117,11 @@ impl MapDef {
         let map = FindingMap::new(design, (self.findings)()).map_err(|e| e.to_string())?;
         let reused = map.reusable(earlier);
         if !earlier.is_empty() {
+            let failed = reused.iter().filter(|p| p.outcome.is_err()).count();
             eprintln!(
-                "{}: resuming: {reused} of the {} points to run taken from {} earlier points \
-                 (failed points and points of other designs are evaluated again)",
+                "{}: resuming: {reused} of the {} points to run taken from {} earlier points, \
+                 {failed} of them failed and taken as failed (--retry-failed evaluates them \
+                 again; points of other designs are evaluated)",
                 self.name,
                 map.design().points().len(),
                 earlier.len(),
@@ -353,7 +365,7 @@ mod tests {
     fn findings() -> Vec<FindingSpec> {
         vec![FindingSpec::new("a_large", "a ≥ 0.5")]
     }
-    // Fails on the points with a < 0.1, so that resuming must evaluate them again.
+    // Fails on the points with a < 0.1, so that a resumed run has failures to take or retry.
     fn eval(x: &[f64]) -> Result<Vec<f64>, String> {
         if x[0] < 0.1 {
             Err("small a".into())
@@ -382,7 +394,13 @@ mod tests {
         std::fs::remove_file(DEF.result_file(&small)).unwrap();
         let cp = std::fs::read_to_string(DEF.checkpoint_file(&small)).unwrap();
         assert_eq!(cp.lines().count(), 9);
-        let earlier = DEF.earlier_points(std::slice::from_ref(&small)).unwrap();
+        let earlier = DEF
+            .earlier_points(std::slice::from_ref(&small), false)
+            .unwrap();
+        assert!(
+            earlier.iter().any(|p| p.outcome.is_err()),
+            "no failure to reuse"
+        );
         let resumed = DEF.run(&big, 16, None, &earlier).unwrap();
         let new = DEF.run(&fresh, 16, None, &[]).unwrap();
         let outcomes = |r: &MapResult| {
@@ -392,10 +410,23 @@ mod tests {
                 .collect::<Vec<_>>()
         };
         assert_eq!(outcomes(&resumed), outcomes(&new));
-        // the successful points of the small run were taken, not evaluated again (same wall
-        // time), its failures were evaluated again, and the new checkpoint holds all 16
+        // every point of the small run, failed or not, was taken, not evaluated again (same
+        // wall time), and the new checkpoint holds all 16
         for e in &earlier {
-            let r = &resumed.points[e.index];
+            assert_eq!(
+                resumed.points[e.index].wall_s, e.wall_s,
+                "point {}",
+                e.index
+            );
+        }
+        // asked to retry, the failures are evaluated again (a new wall time), the rest reused
+        let retried = DEF
+            .earlier_points(std::slice::from_ref(&small), true)
+            .unwrap();
+        let again = DEF.run(&base.join("again"), 16, None, &retried).unwrap();
+        assert_eq!(outcomes(&again), outcomes(&new));
+        for e in &earlier {
+            let r = &again.points[e.index];
             assert_eq!(r.wall_s == e.wall_s, e.outcome.is_ok(), "point {}", e.index);
         }
         let lines = std::fs::read_to_string(DEF.checkpoint_file(&big))
@@ -411,12 +442,14 @@ mod tests {
         assert_eq!(outcomes(&stopped), outcomes(&new)[..8].to_vec());
         // resumed into its own folder, the 16-point run's points stand in the new checkpoint
         // and in the `.previous` one; the stopped result counts each once
-        let own = DEF.earlier_points(std::slice::from_ref(&big)).unwrap();
+        let own = DEF
+            .earlier_points(std::slice::from_ref(&big), false)
+            .unwrap();
         DEF.run(&big, 16, None, &own).unwrap();
         let twice = DEF.stopped_result(&big).unwrap();
         assert_eq!(outcomes(&twice), outcomes(&new));
         let other = MapDef { seed: 8, ..DEF };
-        let err = other.earlier_points(&[small]).unwrap_err();
+        let err = other.earlier_points(&[small], false).unwrap_err();
         assert!(err.contains("another map"), "{err}");
         let _ = std::fs::remove_dir_all(&base);
     }
