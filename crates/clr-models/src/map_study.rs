@@ -95,8 +95,9 @@ impl MapDef {
     }
 
     /// Run the map of `points` points (or shard `I/N` of it) into `dir`, reusing the points of
-    /// `earlier` (failed ones as failed) that belong to this design ([`MapDef::earlier_points`]; points of a
-    /// different design size of this map are reused where they coincide), printing progress to
+    /// `earlier` (failed ones as failed) that belong to this design
+    /// ([`MapDef::earlier_points`]; points of a different design size of this map are reused
+    /// where they coincide), printing progress to
     /// stderr and appending every evaluated point to the checkpoint in `dir`. Writes the
     /// engine's outputs (`<name>.csv`, `_summary.json`, `_summary.md`, one figure per finding)
     /// and the full result `<name>_result.json`.
