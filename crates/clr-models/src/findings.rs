@@ -489,22 +489,12 @@ impl FindingMap {
                     .zip(b)
                     .all(|(x, y)| (x - y).abs() <= 1e-12 * x.abs().max(y.abs()).max(1.0))
         };
-        self.design
-            .points
-            .iter()
-            .filter_map(|p| {
-                let mut same = earlier.iter().filter(|r| {
-                    r.index == p.index && close(&r.unit, &p.unit) && close(&r.values, &p.values)
-                });
-                let first = same.next()?;
-                Some(if first.outcome.is_ok() {
-                    first
-                } else {
-                    same.find(|r| r.outcome.is_ok()).unwrap_or(first)
-                })
+        let in_design = |r: &&PointResult| {
+            self.design.points.iter().any(|p| {
+                r.index == p.index && close(&r.unit, &p.unit) && close(&r.values, &p.values)
             })
-            .cloned()
-            .collect()
+        };
+        one_per_index(earlier.iter().filter(in_design).cloned())
     }
 
     fn evaluate<E>(&self, p: &DesignPoint, eval: &E) -> PointResult
@@ -524,6 +514,21 @@ impl FindingMap {
             wall_s: start.elapsed().as_secs_f64(),
         }
     }
+}
+
+/// Each index of `points` once, in index order: its successful outcome if it has one (a point
+/// that failed in one run and succeeded in another, retried, run), else the first.
+pub fn one_per_index(points: impl IntoIterator<Item = PointResult>) -> Vec<PointResult> {
+    let mut kept: Vec<PointResult> = Vec::new();
+    for p in points {
+        match kept.iter_mut().find(|q| q.index == p.index) {
+            Some(q) if q.outcome.is_err() && p.outcome.is_ok() => *q = p,
+            Some(_) => {}
+            None => kept.push(p),
+        }
+    }
+    kept.sort_by_key(|p| p.index);
+    kept
 }
 
 fn panic_text(payload: &Box<dyn std::any::Any + Send>) -> String {

@@ -19,7 +19,9 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::findings::{Design, FindingMap, FindingSpec, MapResult, Parameter, PointResult};
+use crate::findings::{
+    one_per_index, Design, FindingMap, FindingSpec, MapResult, Parameter, PointResult,
+};
 
 /// The definition of one model's finding map.
 #[derive(Debug, Clone, Copy)]
@@ -97,10 +99,9 @@ impl MapDef {
     /// Run the map of `points` points (or shard `I/N` of it) into `dir`, reusing the points of
     /// `earlier` (failed ones as failed) that belong to this design
     /// ([`MapDef::earlier_points`]; points of a different design size of this map are reused
-    /// where they coincide), printing progress to
-    /// stderr and appending every evaluated point to the checkpoint in `dir`. Writes the
-    /// engine's outputs (`<name>.csv`, `_summary.json`, `_summary.md`, one figure per finding)
-    /// and the full result `<name>_result.json`.
+    /// where they coincide), printing progress to stderr and appending every evaluated point to
+    /// the checkpoint in `dir`. Writes the engine's outputs (`<name>.csv`, `_summary.json`,
+    /// `_summary.md`, one figure per finding) and the full result `<name>_result.json`.
     ///
     /// # Errors
     /// An invalid point count or shard, an output error, or every point failing.
@@ -228,16 +229,8 @@ impl MapDef {
             .map_err(|e| format!("{}: {e}", path.display()))?;
         let header: CheckpointHeader =
             serde_json::from_str(&first).map_err(|e| format!("{}: header: {e}", path.display()))?;
-        let mut points: Vec<PointResult> = Vec::new();
-        for p in self.read_points(dir)? {
-            match points.iter_mut().find(|q| q.index == p.index) {
-                Some(q) if q.outcome.is_err() && p.outcome.is_ok() => *q = p,
-                Some(_) => {}
-                None => points.push(p),
-            }
-        }
+        let mut points = one_per_index(self.read_points(dir)?);
         points.retain(|p| p.index < header.design_size);
-        points.sort_by_key(|p| p.index);
         Ok(MapResult {
             parameters: header.parameters,
             findings: header.findings,

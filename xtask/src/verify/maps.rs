@@ -14,8 +14,8 @@ pub const MAPS_DIR: &str = "docs/models/maps";
 /// The known-gap link of a finding: the model page's section on the finding, then the map's
 /// section and the one-line statement of each of `findings` (`clr_models::findings::Summary::
 /// finding_line`, joined by "; ", each led by its id when there are several), or why there is
-/// none. A finding measured two ways (the
-/// flap's irregularity: Poincaré spread and divergence rate) quotes both.
+/// none. A finding measured two ways (the flap's irregularity: Poincaré spread and divergence
+/// rate) quotes both.
 pub fn gap(finding_doc: &str, map: &MapDef, map_doc: &str, findings: &[&str]) -> String {
     let (name, size) = (map.name, map.default_points);
     let path = crate::workspace_root()
