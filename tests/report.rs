@@ -205,6 +205,9 @@ name = "ball"
 mass = 0.0327
 inertia = 1.308e-6
 position = [0.0, 0.015]
+angle = 0.0
+velocity = [0.0, 0.0]
+angular_velocity = 0.0
 
 [[body]]
 name = "bracket"

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import json
 import os
+import warnings as _warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native, contact, errors, shapes
@@ -22,6 +23,7 @@ from .errors import (
     FieldError,
     ModelError,
     OverrideError,
+    PlausibilityWarning,
     SimulationError,
     UnknownModelError,
 )
@@ -94,6 +96,7 @@ def simulate(
     rtol: Optional[float] = None,
     set: Optional[Mapping[str, Any]] = None,
     check: bool = True,
+    strict: bool = False,
 ) -> Result:
     """Run ``model`` as ``clr run`` does (without writing files; the GIL is released).
 
@@ -106,8 +109,15 @@ def simulate(
     cannot run (with the field to change), and, when ``check`` is true,
     :class:`SimulationError` when the integration fails (its ``result`` keeps the rows up to
     the failure); with ``check=False`` such a result is returned with ``error`` set.
+
+    The plausibility checks' findings are in ``result.warnings`` and are issued as
+    :class:`PlausibilityWarning`; ``strict=True`` (``clr run --strict``) refuses them: before
+    integrating as a :class:`ModelError`, after the run as a :class:`SimulationError` whose
+    ``result`` is complete.
     """
-    result = Result(dict(_job(model, set, t_end, rtol).run()))
+    result = Result(dict(_job(model, set, t_end, rtol).run(strict)))
+    for w in result.warnings:
+        _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     if check and result.error is not None:
         raise SimulationError(result.error, result)
     return result

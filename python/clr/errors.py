@@ -17,7 +17,14 @@ __all__ = [
     "UnknownModelError",
     "ContactError",
     "SimulationError",
+    "PlausibilityWarning",
 ]
+
+
+class PlausibilityWarning(UserWarning):
+    """A finding of clr's plausibility checks (an initial penetration, units that look wrong,
+    energy created by the run); the same findings are in ``Result.warnings``. Turn them into
+    errors with ``clr.simulate(..., strict=True)`` (or Python's ``warnings.simplefilter``)."""
 
 
 class ClrError(Exception):

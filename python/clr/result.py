@@ -16,6 +16,7 @@ _META = (
     "metric_units",
     "impacts",
     "notes",
+    "warnings",
     "initial_conditions",
     "parameters",
     "model",
@@ -43,6 +44,9 @@ class Result:
     - ``metrics`` (name → float) with ``metric_units``;
     - ``impacts``: the located impacts (list of dicts with the columns of impacts.csv:
       ``joint``, ``onset_s``, ``impact_velocity_m_per_s``, ``peak_force_N``, ...);
+    - ``warnings``: the plausibility checks' findings (dicts of ``field`` and ``message``: an
+      initial penetration, units that look wrong, energy created; also issued through Python's
+      :mod:`warnings` as :class:`clr.PlausibilityWarning`);
     - ``notes``: what the run changed or chose on its own; ``initial_conditions``: the
       assembly report (dict, as in summary.json); ``parameters``: the resolved parameters;
     - ``error``: ``None``, or the solver's message when the results stop early;
@@ -56,6 +60,7 @@ class Result:
         self.metric_units: Dict[str, str] = dict(raw.pop("metric_units"))
         self.impacts: List[Dict[str, Any]] = list(raw.pop("impacts"))
         self.notes: List[str] = list(raw.pop("notes"))
+        self.warnings: List[Dict[str, str]] = [dict(w) for w in raw.pop("warnings", [])]
         self.initial_conditions: Any = json.loads(raw.pop("initial_conditions"))
         self.parameters: Any = json.loads(raw.pop("parameters"))
         self.model: str = raw.pop("model")

@@ -28,6 +28,7 @@ pub(crate) fn list_models() -> Vec<(&'static str, &'static str)> {
 /// The outcome as a dict: `time` and every other column as float64 arrays, `units` (column →
 /// unit, `time` → `s`), `metrics` (name → value), `metric_units`, `impacts` (list of dicts,
 /// [`impacts_list`]), `notes` (what the run changed or chose for the user, one sentence each),
+/// `warnings` (the plausibility checks' findings, dicts of `field` and `message`),
 /// `initial_conditions` (JSON text: per body and coordinate fixed/solved/corrected with the given
 /// and assembled values, as in summary.json), `parameters` (JSON text), `model`, `source` and `error` (`None`, or the solver's message when the results are partial).
 pub(crate) fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'py, PyDict>> {
@@ -53,6 +54,14 @@ pub(crate) fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'
     d.set_item("metric_units", metric_units)?;
     d.set_item("impacts", impacts_list(py, &o.results.impacts)?)?;
     d.set_item("notes", o.notes.clone())?;
+    let warnings = PyList::empty(py);
+    for w in &o.results.warnings {
+        let item = PyDict::new(py);
+        item.set_item("field", &w.field)?;
+        item.set_item("message", &w.message)?;
+        warnings.append(item)?;
+    }
+    d.set_item("warnings", warnings)?;
     d.set_item(
         "initial_conditions",
         clr::spec::run::initial_conditions_json(o.results.initial_conditions.as_ref()).to_string(),
@@ -222,12 +231,18 @@ impl JobCore {
         }
     }
 
-    /// Run it (without the GIL) as `clr run` does; the outcome dict of [`outcome_dict`] with
-    /// `wall_s`, the wall time (s).
-    fn run<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+    /// Run it (without the GIL) as `clr run` does (`strict`: as `clr run --strict`); the
+    /// outcome dict of [`outcome_dict`] with `wall_s`, the wall time (s).
+    #[pyo3(signature = (strict = false))]
+    fn run<'py>(&self, py: Python<'py>, strict: bool) -> PyResult<Bound<'py, PyDict>> {
         let start = Instant::now();
+        let job = if strict {
+            self.job.clone().strict()
+        } else {
+            self.job.clone()
+        };
         let outcome = py
-            .detach(|| run::execute(&self.job, self.t_end, self.rtol, None))
+            .detach(|| run::execute(&job, self.t_end, self.rtol, None))
             .map_err(|e| run_error(py, &e))?;
         let d = outcome_dict(py, outcome)?;
         d.set_item("wall_s", start.elapsed().as_secs_f64())?;

@@ -224,3 +224,32 @@ def test_left_out_velocity_is_solved_and_reported(tmp_path):
     assert omega["status"] == "solved"
     expect = -5000.0 * 2.0 * math.pi / 60.0 * 0.05 / 0.3
     assert abs(omega["assembled"] - expect) <= 1e-9 * abs(expect)
+
+
+def test_plausibility_warnings_and_strict(tmp_path):
+    """Issue 29: radii written in mm run with a warning naming the field (in
+    `Result.warnings` and as a `clr.PlausibilityWarning`); `strict=True` refuses the run."""
+    import warnings
+
+    import clr
+
+    repo = pathlib.Path(__file__).resolve().parents[2]
+    text = (repo / "models" / "slider_crank.toml").read_text()
+    for old, new in (
+        ("\nbearing_radius = 0.01\n", "\nbearing_radius = 10.0\n"),
+        ("\njournal_radius = 0.0095\n", "\njournal_radius = 9.5\n"),
+    ):
+        assert old in text
+        text = text.replace(old, new, 1)
+    f = tmp_path / "mm.toml"
+    f.write_text(text)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        r = clr.simulate(str(f), t_end=0.0005)
+    fields = [w["field"] for w in r.warnings]
+    assert "B.bearing_radius" in fields, r.warnings
+    assert any(issubclass(w.category, clr.PlausibilityWarning) for w in caught)
+    with pytest.raises(clr.ClrError, match="strict"):
+        clr.simulate(str(f), t_end=0.0005, strict=True)
+    # the shipped file itself gives no warning
+    assert clr.simulate(str(repo / "models" / "slider_crank.toml"), t_end=0.0005).warnings == []

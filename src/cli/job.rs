@@ -60,6 +60,9 @@ pub(crate) fn run_command(args: &RunArgs, out: &Path) -> Result<(), CliError> {
     for n in &rec.notes {
         eprintln!("clr: note: {n}");
     }
+    for w in &rec.results.warnings {
+        eprintln!("clr: warning: {w}");
+    }
     output::write_run(out, &rec, args, (!args.no_report).then_some(&job))?;
     if !args.quiet {
         eprintln!(

@@ -54,6 +54,10 @@ pub(crate) struct RunArgs {
     /// structures).
     #[arg(long)]
     pub scale_velocity_error: bool,
+    /// Refuse the run when the plausibility checks warn (an initial penetration, units that
+    /// look wrong, energy created, ...); the results of a finished run are still written.
+    #[arg(long)]
+    pub strict: bool,
     /// No progress bar.
     #[arg(long, short)]
     pub quiet: bool,
@@ -86,6 +90,7 @@ impl RunArgs {
             }),
             scale_velocity_error: self.scale_velocity_error,
             atol: self.atol,
+            strict: self.strict,
         }
     }
 }

@@ -138,6 +138,7 @@ pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> se
         "status": if rec.error.is_some() { "failed" } else { "ok" },
         "error": rec.error,
         "notes": rec.notes,
+        "warnings": rec.results.warnings,
         "t_end_requested": t_end,
         "rtol_requested": rtol,
         "t_last": t_last,

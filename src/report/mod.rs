@@ -197,12 +197,14 @@ fn html_escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// The initial state of `desc` at its `t0` as a one-row result (for `clr view`), with the
-/// compiled model's notes.
+/// The initial state of `desc` at its `t0` (assembled with its `[solver]` settings) as a
+/// one-row result (for `clr view`), with the compiled model's notes.
 ///
 /// # Errors
-/// The model's compile or assembly error, as text.
+/// The model's compile, settings or assembly error, as text.
 pub fn initial_state(desc: &ModelDesc, t0: f64) -> Result<Results, String> {
     let mut model: Model = desc.compile().map_err(|e| e.to_string())?;
-    model.initial_results(t0).map_err(|e| e.to_string())
+    let mut opts = desc.sim_options().map_err(|e| e.to_string())?;
+    opts.t0 = t0;
+    model.initial_results(&opts).map_err(|e| e.to_string())
 }

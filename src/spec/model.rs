@@ -166,6 +166,12 @@ impl ModelSpec {
         Ok(())
     }
 
+    /// Refuse plausibility warnings (`[solver] strict = true`).
+    pub fn set_strict(&mut self) {
+        self.desc.solver.strict = true;
+        self.options.strict = true;
+    }
+
     /// Write the integrator knobs that are set into the description's `[solver]` (they were
     /// asked for on the command line: no note) and check them with the method.
     ///
@@ -250,7 +256,9 @@ impl ModelSpec {
             | E::Contact { item, .. }
             | E::Beam { item, .. } => self.desc_path(item),
             E::DuplicateName { name, .. } => self.desc_path(name),
-            E::InconsistentInitialConditions { field, .. } => self.desc_path(field),
+            E::InconsistentInitialConditions { field, .. }
+            | E::UndeterminedCoordinates { field, .. } => self.desc_path(field),
+            E::InitialPenetration { element, .. } => self.desc_path(element),
             // labels are `item (equation)`: place the error at the first item named
             E::RedundantConstraints {
                 involved: label, ..

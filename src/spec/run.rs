@@ -232,6 +232,15 @@ pub fn builtin_file_text(name: &str, parameters: &serde_json::Value) -> Result<S
 }
 
 impl Job {
+    /// This job refusing plausibility warnings (`clr run --strict`, Python `strict=True`).
+    pub fn strict(mut self) -> Job {
+        match &mut self {
+            Job::Builtin { knobs, .. } => knobs.strict = true,
+            Job::Generic(s) => s.set_strict(),
+        }
+        self
+    }
+
     /// This job with the integrator knobs of `clr run` (`--max-steps`, `--max-order`,
     /// `--jacobian`, `--scale-velocity-error`): written into a model file's `[solver]`, kept for
     /// a built-in model's run.
@@ -500,6 +509,16 @@ pub fn execute(
                     let metrics = generic_metrics(&partial, s);
                     Ok(Outcome::from_results(s, *partial, metrics, Some(msg)))
                 }
+                Err(
+                    e @ clr_mbd::MbdError::Implausible {
+                        partial: Some(_), ..
+                    },
+                ) => {
+                    let msg = e.to_string();
+                    let partial = e.into_partial().unwrap_or_default();
+                    let metrics = generic_metrics(&partial, s);
+                    Ok(Outcome::from_results(s, partial, metrics, Some(msg)))
+                }
                 Err(e) => Err(s.model_error(&e).into()),
             }
         }
@@ -638,11 +657,40 @@ pub fn initial_conditions_json(ic: Option<&clr_mbd::InitialConditions>) -> serde
             (b.body.clone(), serde_json::Value::Object(coords))
         })
         .collect();
+    let solved: Vec<serde_json::Value> = ic
+        .solved_coordinates
+        .iter()
+        .map(|c| {
+            serde_json::json!({
+                "coordinate": format!("{}.{}", c.body, c.coordinate),
+                "value": c.value,
+                "unit": clr_mbd::initial::unit_of(c.coordinate),
+                "from": c.from,
+                "undetermined": c.undetermined,
+            })
+        })
+        .collect();
+    let counterparts: Vec<serde_json::Value> = ic
+        .counterparts
+        .iter()
+        .map(|c| {
+            serde_json::json!({
+                "element": c.element,
+                "positions": c.positions,
+                "velocities": c.velocities,
+                "offset": c.offset,
+                "offset_unit": "m",
+                "dropped_rows": c.dropped,
+            })
+        })
+        .collect();
     serde_json::json!({
         "position_newton_iterations": ic.newton_iterations,
         "solved": ic.solved().len(),
         "corrected": ic.corrected().len(),
         "bodies": bodies,
+        "solved_coordinates": solved,
+        "ideal_counterparts": counterparts,
     })
 }
 

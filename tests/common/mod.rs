@@ -42,3 +42,17 @@ pub fn run_quietly(target: &str, t_end: &str, out: &Path) -> Output {
     assert!(o.status.success(), "clr run {target}: {}", stderr(&o));
     o
 }
+
+/// `clr run FILE --out DIR/out --no-figures EXTRA…`: (exit code, stderr, summary.json when
+/// written).
+pub fn run_in(dir: &Path, file: &str, extra: &[&str]) -> (i32, String, Option<serde_json::Value>) {
+    let out = dir.join("out");
+    let _ = std::fs::remove_dir_all(&out);
+    let mut args = vec!["run", file, "--out", out.to_str().unwrap(), "--no-figures"];
+    args.extend_from_slice(extra);
+    let o = clr(&args);
+    let summary = std::fs::read_to_string(out.join("summary.json"))
+        .ok()
+        .map(|t| serde_json::from_str(&t).unwrap());
+    (o.status.code().unwrap_or(-1), stderr(&o), summary)
+}

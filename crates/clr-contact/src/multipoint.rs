@@ -241,6 +241,16 @@ impl SliderShape {
         self.height
     }
 
+    /// Centre of the slider in the frame of its body, m.
+    pub fn centre(&self) -> Vector2<f64> {
+        self.centre
+    }
+
+    /// Angle of the slider's x axis from its body's x axis, rad.
+    pub fn angle(&self) -> f64 {
+        self.angle
+    }
+
     /// Corner k (0..4, counter-clockwise from (−L/2, −h/2)) in the frame of the slider's body
     /// (centre + A(angle)·corner), m.
     pub fn body_corner(&self, k: usize) -> Vector2<f64> {

@@ -122,6 +122,46 @@ pub enum MbdError {
         /// The most violated equation.
         worst: String,
     },
+    /// Coordinates left out of the description that no joint, driver or ideal counterpart of a
+    /// clearance joint determines: the assembly would have kept them at 0 in silence.
+    #[error(
+        "initial conditions: {coordinates} left out of the model and determined by no joint, \
+         driver or ideal counterpart of a clearance joint; give them (a body at rest: velocity \
+         = [0.0, 0.0], angular_velocity = 0.0), or name the bodies deliberately left free in \
+         [solver] free_bodies = [{bodies}]"
+    )]
+    UndeterminedCoordinates {
+        /// The coordinates as `body.coordinate` items (x, y, theta, vx, vy, omega).
+        coordinates: String,
+        /// The bodies they belong to, quoted and comma-separated (for the hint).
+        bodies: String,
+        /// The description field of the first one (`rod.angular_velocity`).
+        field: String,
+    },
+    /// A contact element penetrates far beyond its clearance at t0: the initial state is
+    /// wrong (an angle in degrees, a position in mm, a journal in the wrong place), and the
+    /// run would start with an enormous force.
+    #[error(
+        "{element}: the initial state puts the {what} {penetration:.3e} m into contact at \
+         t0 = {t}, {ratio:.3e} times the clearance {clearance:.3e} m; check the initial angles \
+         (radians, not degrees) and positions (metres) of the bodies it joins{hint}"
+    )]
+    InitialPenetration {
+        /// The contact element.
+        element: String,
+        /// What penetrates (`journal into the bearing`, `slider into the guide`).
+        what: &'static str,
+        /// t0, s.
+        t: f64,
+        /// Penetration, m.
+        penetration: f64,
+        /// Its clearance (radial, or total across a guide), m.
+        clearance: f64,
+        /// penetration / clearance.
+        ratio: f64,
+        /// More on where the assembly moved things (may be empty).
+        hint: String,
+    },
     /// `initial_conditions = "exact"` and the given initial state does not satisfy the
     /// constraints: the assembly would have changed given coordinates.
     #[error(
@@ -159,6 +199,21 @@ pub enum MbdError {
         source: OdeError,
         /// The results recorded up to the failure.
         partial: Box<Results>,
+    },
+    /// `strict` and the plausibility checks found something ([`crate::plausible`]): refused
+    /// before integrating (`partial` is `None`) or after the run (`partial` holds the whole
+    /// result, whose `warnings` list the findings).
+    #[error(
+        "strict: {count} plausibility warning(s), refused: {warnings}. Fix the inputs, or run \
+         without --strict (strict=False) to get the result with the warnings"
+    )]
+    Implausible {
+        /// The findings, `field: message` joined by `; `.
+        warnings: String,
+        /// Number of findings.
+        count: usize,
+        /// The finished run's results (`None` when refused before integrating).
+        partial: Option<Box<Results>>,
     },
     /// Writing output failed.
     #[error("writing output: {0}")]
@@ -221,6 +276,9 @@ impl MbdError {
     pub fn partial(&self) -> Option<&Results> {
         match self {
             MbdError::Failed { partial, .. } => Some(partial),
+            MbdError::Implausible {
+                partial: Some(p), ..
+            } => Some(p),
             _ => None,
         }
     }
@@ -229,6 +287,9 @@ impl MbdError {
     pub fn into_partial(self) -> Option<Results> {
         match self {
             MbdError::Failed { partial, .. } => Some(*partial),
+            MbdError::Implausible {
+                partial: Some(p), ..
+            } => Some(*p),
             _ => None,
         }
     }

@@ -62,6 +62,11 @@ pub(crate) struct FaceSource {
 }
 
 impl FacePair {
+    /// Bounding radius of the rigid shape B, m (the scale of its penetration).
+    pub(crate) fn shape_radius(&self) -> f64 {
+        self.b.radius
+    }
+
     pub(crate) fn new(src: FaceSource, b: Side, settings: PairSettings) -> Self {
         // `samples` equal arc steps in every element, then the path's end
         let starts = src.path.element_starts();

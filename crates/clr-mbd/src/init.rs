@@ -15,7 +15,7 @@ use crate::system::Model;
 
 /// Relative tolerance of the rank test: a row whose Gram–Schmidt residual is below this
 /// fraction of its norm is a combination of the rows before it.
-const RANK_TOL: f64 = 1e-9;
+pub(crate) const RANK_TOL: f64 = 1e-9;
 /// Largest number of Newton iterations of the position assembly.
 const MAX_NEWTON: usize = 50;
 /// Weight of a solved (not given) coordinate relative to a fixed one in the assembly metric:
@@ -28,7 +28,7 @@ pub const CORRECTION_TOL: f64 = 1e-9;
 
 /// Which of q (positions) or q̇ (velocities) an assembly step corrects.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Phase {
+pub(crate) enum Phase {
     /// Positions and angles (Φ = 0).
     Position,
     /// Velocities (Φ̇ = 0).
@@ -37,7 +37,7 @@ enum Phase {
 
 /// How the assembly weighs the coordinates.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum Metric {
+pub(crate) enum Metric {
     /// The kinetic metric W = M⁻¹ for every coordinate (drift projection during a run).
     Kinetic,
     /// W = M⁻¹ for fixed coordinates and [`SOLVED_WEIGHT`]·M⁻¹ for solved ones (initial
@@ -67,12 +67,41 @@ impl Model {
     /// # Errors
     /// [`MbdError::RedundantConstraints`] with the equations involved.
     pub fn check_rank(&mut self, t: f64, q: &[f64]) -> Result<(), MbdError> {
+        let dependent = self.dependent_rows(t, q);
+        if dependent.is_empty() {
+            return Ok(());
+        }
+        let labels = self.row_labels();
+        let text: Vec<String> = dependent
+            .iter()
+            .map(|(r, used)| {
+                let others: Vec<&str> = used.iter().map(|&k| labels[k].as_str()).collect();
+                format!(
+                    "{} depends on [{}]",
+                    labels[*r],
+                    if others.is_empty() {
+                        "nothing: the equation is empty".to_string()
+                    } else {
+                        others.join(", ")
+                    }
+                )
+            })
+            .collect();
+        Err(MbdError::RedundantConstraints {
+            rank: self.m - dependent.len(),
+            rows: self.m,
+            involved: text.join("; "),
+        })
+    }
+
+    /// The rows of Φ_q(q, t) that are combinations of the rows before them, each with the
+    /// earlier rows it involves (modified Gram–Schmidt on the rows of Φ_q W^{1/2}).
+    pub(crate) fn dependent_rows(&mut self, t: f64, q: &[f64]) -> Vec<(usize, Vec<usize>)> {
         let (n, m) = (self.n, self.m);
         let zeros = vec![0.0; n];
         self.eval_constraints(t, q, &zeros);
         let mut basis: Vec<Vec<f64>> = Vec::new();
         let mut basis_row: Vec<usize> = Vec::new();
-        let labels = self.row_labels();
         let mut dependent = Vec::new();
         for r in 0..m {
             let mut v: Vec<f64> = (0..n)
@@ -91,31 +120,14 @@ impl Model {
             }
             let norm = v.iter().map(|x| x * x).sum::<f64>().sqrt();
             if norm <= RANK_TOL * norm0.max(f64::MIN_POSITIVE) {
-                let others: Vec<&str> = used.iter().map(|&k| labels[k].as_str()).collect();
-                dependent.push(format!(
-                    "{} depends on [{}]",
-                    labels[r],
-                    if others.is_empty() {
-                        "nothing: the equation is empty".to_string()
-                    } else {
-                        others.join(", ")
-                    }
-                ));
+                dependent.push((r, used));
             } else {
                 v.iter_mut().for_each(|x| *x /= norm);
                 basis.push(v);
                 basis_row.push(r);
             }
         }
-        if dependent.is_empty() {
-            Ok(())
-        } else {
-            Err(MbdError::RedundantConstraints {
-                rank: basis.len(),
-                rows: m,
-                involved: dependent.join("; "),
-            })
-        }
+        dependent
     }
 
     /// The square root of the assembly weight W_cc of coordinate c in `phase` under `metric`.
@@ -176,18 +188,36 @@ impl Model {
         self.project_in(t, y, tol, Metric::Kinetic)
     }
 
-    fn project_in(
+    pub(crate) fn project_in(
         &mut self,
         t: f64,
         y: &mut [f64],
         tol: f64,
         metric: Metric,
     ) -> Result<usize, MbdError> {
+        if self.m == 0 {
+            return Ok(0);
+        }
+        let mut lu = DenseLu::default();
+        let it = self.newton_positions(t, y, tol, metric, &mut lu)?;
+        self.project_velocities(t, y, metric, &mut lu)?;
+        Ok(it)
+    }
+
+    /// Newton's iteration on Φ(q, t) = 0 for the positions of y, in `metric`; returns the
+    /// number of iterations.
+    pub(crate) fn newton_positions(
+        &mut self,
+        t: f64,
+        y: &mut [f64],
+        tol: f64,
+        metric: Metric,
+        lu: &mut DenseLu,
+    ) -> Result<usize, MbdError> {
         let (n, m) = (self.n, self.m);
         if m == 0 {
             return Ok(0);
         }
-        let mut lu = DenseLu::default();
         let zeros = vec![0.0; n];
         let mut r = vec![0.0; m];
         let mut it = 0;
@@ -202,7 +232,7 @@ impl Model {
             if it >= MAX_NEWTON || !res.is_finite() {
                 return Err(self.assembly_error(t, res, it));
             }
-            if !self.factor_s(&mut lu, pos.0, pos.1) {
+            if !self.factor_s(lu, pos.0, pos.1) {
                 self.check_rank(t, &y[..n])?;
                 return Err(MbdError::Assembly {
                     t,
@@ -212,17 +242,16 @@ impl Model {
                 });
             }
             r.copy_from_slice(&self.phi);
-            self.correct(&mut lu, &mut r, q, pos);
+            self.correct(lu, &mut r, q, pos);
             it += 1;
         }
-        self.project_velocities(t, y, metric, &mut lu)?;
         Ok(it)
     }
 
     /// Φ̇(q, q̇) = Φ_q q̇ + Φ_t is affine in q̇, so one correction is exact up to rounding; with
     /// the fixed-first metric (weights 1e8 apart, S less well conditioned) a second one removes
     /// that rounding.
-    fn project_velocities(
+    pub(crate) fn project_velocities(
         &mut self,
         t: f64,
         y: &mut [f64],
@@ -230,6 +259,9 @@ impl Model {
         lu: &mut DenseLu,
     ) -> Result<(), MbdError> {
         let n = self.n;
+        if self.m == 0 {
+            return Ok(());
+        }
         let mut r = vec![0.0; self.m];
         let passes = if metric == Metric::Kinetic { 1 } else { 2 };
         let (q, rest) = y.split_at_mut(n);
@@ -292,50 +324,11 @@ impl Model {
         &mut self,
         t0: f64,
     ) -> Result<(Vec<f64>, InitialConditions), MbdError> {
-        let given = self.given_state();
-        let mut y = given.clone();
-        let n = self.n;
-        self.check_rank(t0, &y[..n])?;
-        // everything given: the kinetic metric (the same correction, one velocity pass)
-        let metric = if self.fixed.iter().flatten().all(|&f| f) {
-            Metric::Kinetic
-        } else {
-            Metric::FixedFirst
-        };
-        let iterations = self.project_in(t0, &mut y, 1e-12, metric)?;
-        if metric == Metric::FixedFirst {
-            // the weights leave about 1e-8 of the correction on fixed coordinates even where the
-            // solved ones suffice: put the fixed ones back and project again, which shrinks that
-            // share by 1e-8 per pass (and repeats the same change where it is needed)
-            for _ in 0..2 {
-                self.restore_fixed(&given, &mut y);
-                self.project_in(t0, &mut y, 1e-12, metric)?;
-            }
-        }
-        let report = InitialConditions {
-            newton_iterations: iterations,
-            bodies: self.body_corrections(&given, &y),
-        };
-        Ok((y, report))
-    }
-
-    /// Set the fixed coordinates of y back to their given values.
-    fn restore_fixed(&self, given: &[f64], y: &mut [f64]) {
-        let n = self.n;
-        for (k, fixed) in self.fixed.iter().enumerate() {
-            for (slot, _) in fixed.iter().enumerate().filter(|(_, f)| **f) {
-                let i = if slot < 3 {
-                    3 * k + slot
-                } else {
-                    n + 3 * k + slot - 3
-                };
-                y[i] = given[i];
-            }
-        }
+        self.assemble_initial_state_with(t0, &crate::initial::InitialSetup::default())
     }
 
     /// The given and assembled coordinates of every rigid body.
-    fn body_corrections(&self, given: &[f64], y: &[f64]) -> Vec<BodyInitialState> {
+    pub(crate) fn body_corrections(&self, given: &[f64], y: &[f64]) -> Vec<BodyInitialState> {
         let n = self.n;
         (0..self.bodies.len())
             .map(|k| {
@@ -415,6 +408,12 @@ pub struct InitialConditions {
     pub newton_iterations: usize,
     /// Every rigid body, in definition order.
     pub bodies: Vec<BodyInitialState>,
+    /// The ideal counterparts of clearance joints the assembly used (empty when every
+    /// coordinate was given, or under `initial_state = "as_given"`).
+    pub counterparts: Vec<crate::initial::IdealCounterpart>,
+    /// Every coordinate left out of the description, with its assembled value and the items
+    /// that determined it (positions first, then velocities).
+    pub solved_coordinates: Vec<crate::initial::SolvedCoordinate>,
 }
 
 impl InitialConditions {
@@ -445,31 +444,79 @@ impl InitialConditions {
         })
     }
 
-    /// The report in words, one sentence for the solved coordinates that moved off 0 and one for
-    /// the corrected ones (empty when the given state was consistent and what was left out
-    /// stayed 0).
+    /// The report in words: one sentence for the ideal counterparts used, one listing every
+    /// coordinate left out with its value (zeros included) and the items it was solved from, one
+    /// for coordinates nothing determined (free bodies), and one for the corrected ones (empty
+    /// when every coordinate was given and consistent).
     pub fn notes(&self) -> Vec<String> {
-        let unit = |name: &str| {
-            COORDINATE_NAMES
-                .iter()
-                .position(|n| *n == name)
-                .map_or("", |k| COORDINATE_UNITS[k])
-        };
+        let unit = crate::initial::unit_of;
         let mut notes = Vec::new();
-        // a coordinate left out that stays at the 0 it started from needs no sentence (a body
-        // released from rest); it is still listed as solved in the report
-        let solved: Vec<_> = self
-            .solved()
-            .into_iter()
-            .filter(|(_, _, v)| v.abs() > CORRECTION_TOL)
-            .collect();
+        if !self.counterparts.is_empty() {
+            let list: Vec<String> = self
+                .counterparts
+                .iter()
+                .map(|c| {
+                    let phases = match (c.positions, c.velocities) {
+                        (true, true) => "positions and velocities",
+                        (true, false) => "positions",
+                        _ => "velocities",
+                    };
+                    let dropped = if c.dropped.is_empty() {
+                        String::new()
+                    } else {
+                        format!("; redundant rows left out: {}", c.dropped.join(", "))
+                    };
+                    format!(
+                        "{} ({phases}, offset [{:.3e}, {:.3e}] m{dropped})",
+                        c.element, c.offset[0], c.offset[1]
+                    )
+                })
+                .collect();
+            notes.push(format!(
+                "initial conditions: clearance joints closed as their ideal joints while solving \
+                 (initial_state = \"ideal\"), then released: {}",
+                list.join(", ")
+            ));
+        }
+        let (solved, free): (Vec<_>, Vec<_>) = self
+            .solved_coordinates
+            .iter()
+            .partition(|c| !c.undetermined);
         if !solved.is_empty() {
             let list: Vec<String> = solved
                 .iter()
-                .map(|(b, c, v)| format!("{b}.{c} = {v:.6e} {}", unit(c)))
+                .map(|c| {
+                    format!(
+                        "{}.{} = {:.6e} {} [from {}]",
+                        c.body,
+                        c.coordinate,
+                        c.value,
+                        unit(c.coordinate),
+                        c.from.join(", ")
+                    )
+                })
                 .collect();
             notes.push(format!(
                 "initial conditions: not given in the model, solved from the constraints: {}",
+                list.join(", ")
+            ));
+        }
+        if !free.is_empty() {
+            let list: Vec<String> = free
+                .iter()
+                .map(|c| {
+                    format!(
+                        "{}.{} = {:.6e} {}",
+                        c.body,
+                        c.coordinate,
+                        c.value,
+                        unit(c.coordinate)
+                    )
+                })
+                .collect();
+            notes.push(format!(
+                "initial conditions: determined by nothing, kept at their start values (bodies in \
+                 [solver] free_bodies): {}",
                 list.join(", ")
             ));
         }

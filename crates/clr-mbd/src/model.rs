@@ -509,6 +509,7 @@ impl ModelBuilder {
                 force_application: None,
                 bearing_wear: None,
                 lubrication: None,
+                initial_eccentricity: None,
             }
             .into(),
         );
@@ -537,6 +538,7 @@ impl ModelBuilder {
                 slider_angle: spec.slider_angle,
                 normal: spec.normal,
                 friction: spec.friction,
+                initial_offset: None,
             }
             .into(),
         );

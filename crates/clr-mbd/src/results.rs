@@ -53,6 +53,9 @@ pub struct Results {
     /// [`Model::simulate_from`](crate::Model::simulate_from), which starts from the state it is
     /// given).
     pub initial_conditions: Option<crate::InitialConditions>,
+    /// Findings of the plausibility checks before and after the run ([`crate::plausible`];
+    /// set by [`Model::simulate`](crate::Model::simulate)).
+    pub warnings: Vec<crate::plausible::Warning>,
 }
 
 impl Results {

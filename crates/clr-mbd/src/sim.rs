@@ -92,6 +92,13 @@ pub struct SimOptions {
     /// Given initial coordinates that violate the constraints: assembled and reported
     /// (default) or refused.
     pub initial_conditions: InitialConditionsMode,
+    /// How the assembly of initial conditions treats clearance joints and which bodies are
+    /// deliberately left free (default: ideal counterparts, none free; see
+    /// [`crate::initial`]).
+    pub initial_setup: crate::initial::InitialSetup,
+    /// Turn the findings of the plausibility checks into [`MbdError::Implausible`] (default
+    /// false: they are listed in [`Results::warnings`]).
+    pub strict: bool,
 }
 
 impl Default for SimOptions {
@@ -114,6 +121,8 @@ impl Default for SimOptions {
             scale_velocity_error: false,
             newton_rate_reuse: false,
             initial_conditions: InitialConditionsMode::Assemble,
+            initial_setup: Default::default(),
+            strict: false,
         }
     }
 }
@@ -251,13 +260,15 @@ impl Model {
         notes
     }
 
-    /// The assembled initial state at `t0` as a one-row [`Results`] (the columns of a run,
-    /// `initial_conditions` set), without integrating: what `clr view` draws.
+    /// The assembled initial state at `opts.t0` (with `opts.initial_setup`) as a one-row
+    /// [`Results`] (the columns of a run, `initial_conditions` set), without integrating: what
+    /// `clr view` draws.
     ///
     /// # Errors
-    /// As [`Model::assemble_initial_state`].
-    pub fn initial_results(&mut self, t0: f64) -> Result<Results, MbdError> {
-        let (y, ic) = self.assemble_initial_state(t0)?;
+    /// As [`Model::assemble_initial_state_with`].
+    pub fn initial_results(&mut self, opts: &SimOptions) -> Result<Results, MbdError> {
+        let t0 = opts.t0;
+        let (y, ic) = self.assemble_initial_state_with(t0, &opts.initial_setup)?;
         let mut data = Vec::new();
         self.record(t0, &y, &mut data);
         Ok(Results {
@@ -358,22 +369,36 @@ impl Model {
         opts: &SimOptions,
         progress: &dyn Fn(f64),
     ) -> Result<Results, MbdError> {
-        let (y0, ic) = self.assemble_initial_state(opts.t0)?;
+        let (y0, ic) = self.assemble_initial_state_with(opts.t0, &opts.initial_setup)?;
         let corrected = ic.corrected();
         if opts.initial_conditions == InitialConditionsMode::Exact && !corrected.is_empty() {
             return Err(inconsistent(&corrected));
         }
-        let with_report = |mut r: Results| {
+        let start = self.check_start(opts.t0, &y0, &ic)?;
+        if opts.strict && !start.is_empty() {
+            return Err(implausible(&start, None));
+        }
+        let size = self.scales(&y0[..self.n]).size;
+        let with_report = |model: &Model, mut r: Results| {
             let mut notes = ic.notes();
             notes.append(&mut r.notes);
             r.notes = notes;
             r.initial_conditions = Some(ic.clone());
+            r.warnings = start.clone();
+            r.warnings.extend(model.check_end(&r, size));
             r
         };
         match self.simulate_from_with(opts, &y0, progress) {
-            Ok(r) => Ok(with_report(r)),
+            Ok(r) => {
+                let r = with_report(self, r);
+                if opts.strict && !r.warnings.is_empty() {
+                    let w = r.warnings.clone();
+                    return Err(implausible(&w, Some(r)));
+                }
+                Ok(r)
+            }
             Err(MbdError::Failed { partial, source }) => Err(MbdError::Failed {
-                partial: Box::new(with_report(*partial)),
+                partial: Box::new(with_report(self, *partial)),
                 source,
             }),
             Err(e) => Err(e),
@@ -586,6 +611,19 @@ impl Model {
     }
 }
 
+/// The error of `strict` runs with plausibility findings.
+fn implausible(w: &[crate::plausible::Warning], partial: Option<Results>) -> MbdError {
+    MbdError::Implausible {
+        warnings: w
+            .iter()
+            .map(|w| w.to_string())
+            .collect::<Vec<_>>()
+            .join("; "),
+        count: w.len(),
+        partial: partial.map(Box::new),
+    }
+}
+
 /// The error of `exact` initial conditions for the given changes (body, coordinate, given,
 /// assembled).
 fn inconsistent(corrected: &[(&str, &'static str, f64, f64)]) -> MbdError {
@@ -635,6 +673,7 @@ impl Run {
             notes: Vec::new(),
             impacts: self.impacts.into_impacts(),
             initial_conditions: None,
+            warnings: Vec::new(),
         }
     }
 }

@@ -92,6 +92,13 @@ pub struct Model {
     pub(crate) motions: Vec<TimeFn>,
     pub(crate) forces: Vec<ForceEl>,
     pub(crate) clearances: Vec<Clearance>,
+    /// Initial offsets of contact elements given in the description, by element name: the
+    /// revolute journal centre from the bearing centre in the bearing body's frame, or the
+    /// translational slider centre across the guide (y), m ([`crate::ideal`]).
+    pub(crate) initial_offsets: std::collections::HashMap<String, Vector2<f64>>,
+    /// Findings of the plausibility checks of the description's values (materials, laws),
+    /// reported by every run ([`crate::plausible`]).
+    pub(crate) input_warnings: Vec<crate::plausible::Warning>,
     pub(crate) gravity: Vector2<f64>,
     pub(crate) memory: ContactMemory,
     pub(crate) alpha: f64,

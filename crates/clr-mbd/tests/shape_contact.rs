@@ -22,6 +22,9 @@ name = "ball"
 mass = 0.0327
 inertia = 1.308e-6
 position = [0.0, {y0}]
+angle = 0.0
+velocity = [0.0, 0.0]
+angular_velocity = 0.0
 
 [[shape]]
 name = "floor"
@@ -243,6 +246,9 @@ name = "ball"
 mass = {m}
 inertia = 3.2e-4
 position = [{a}, {y0}]
+angle = 0.0
+velocity = [0.0, 0.0]
+angular_velocity = 0.0
 [[shape]]
 name = "face"
 geometry = {{ type = "beam_face", beam = "cant", face = "upper" }}
@@ -306,6 +312,8 @@ mass = 0.5
 inertia = 8.333e-5
 position = [0.079, 0.0099994]
 velocity = [0.3, 0.0]
+angle = 0.0
+angular_velocity = 0.0
 [[shape]]
 name = "housing"
 at = { body = "ground", at = [0.0, 0.0] }

@@ -30,6 +30,9 @@ pub struct SolverKnobs {
     /// Absolute tolerance in the units of q and q̇ (`clr run --atol`); `None` keeps the rule
     /// atol = 1e-3·rtol (or the model file's own `atol` when `--rtol` is not given).
     pub atol: Option<f64>,
+    /// Turn plausibility warnings into errors (`clr run --strict`, Python `strict=True`;
+    /// `clr_mbd::SimOptions::strict`).
+    pub strict: bool,
 }
 
 impl SolverKnobs {
@@ -89,6 +92,9 @@ impl SolverKnobs {
         }
         if let Some(a) = self.atol {
             solver.atol = Some(a);
+        }
+        if self.strict {
+            solver.strict = true;
         }
     }
 }

@@ -67,6 +67,19 @@ pub struct SolverSettings {
     /// and every change reported) or `exact` (refused; see [`InitialConditionsMode`]).
     #[serde(skip_serializing_if = "is_default")]
     pub initial_conditions: InitialConditionsMode,
+    /// How the assembly treats clearance joints while it solves the coordinates left out:
+    /// `ideal` (default: as their ideal joints, journal centred or at its
+    /// `initial_eccentricity`, then released) or `as_given` (they play no part).
+    #[serde(skip_serializing_if = "is_default")]
+    pub initial_state: crate::initial::InitialState,
+    /// Rigid bodies deliberately left free: coordinates of theirs that are left out and that
+    /// nothing determines keep their start values (0) and are recorded, instead of refused.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub free_bodies: Vec<String>,
+    /// Refuse the run when the plausibility checks find anything (default false: the
+    /// findings are warnings; `clr run --strict` sets it).
+    #[serde(skip_serializing_if = "is_default")]
+    pub strict: bool,
 }
 
 impl Default for SolverSettings {
@@ -87,6 +100,9 @@ impl Default for SolverSettings {
             scale_velocity_error: false,
             newton_rate_reuse: false,
             initial_conditions: InitialConditionsMode::Assemble,
+            initial_state: Default::default(),
+            free_bodies: Vec::new(),
+            strict: false,
         }
     }
 }
@@ -272,5 +288,10 @@ pub(crate) fn sim_options(
     options.scale_velocity_error = s.scale_velocity_error;
     options.newton_rate_reuse = s.newton_rate_reuse;
     options.initial_conditions = s.initial_conditions;
+    options.strict = s.strict;
+    options.initial_setup = crate::initial::InitialSetup {
+        state: s.initial_state,
+        free_bodies: s.free_bodies.clone(),
+    };
     Ok(options)
 }

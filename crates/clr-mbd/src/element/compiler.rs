@@ -47,6 +47,9 @@ pub(crate) struct Compiler {
     pub(crate) force_application: ForceApplication,
     /// `[[shape]]` items by name.
     pub(crate) shapes: HashMap<String, crate::element::shape::Placed>,
+    /// Initial offsets of contact elements given in the description, by element name (see
+    /// [`crate::ideal`]).
+    pub(crate) initial_offsets: HashMap<String, Vector2<f64>>,
 }
 
 /// What the compiler needs of a description before its element sections: `[model]`, bodies,
@@ -92,6 +95,7 @@ impl Compiler {
             forces: Vec::new(),
             clearances: Vec::new(),
             shapes: HashMap::new(),
+            initial_offsets: HashMap::new(),
             force_application: match desc.model.clearance_force_application {
                 Some(ForceApplicationDesc::ContactPoints) => ForceApplication::ContactPoints,
                 _ => ForceApplication::CommonPoint,
@@ -320,6 +324,7 @@ impl Compiler {
             motions,
             forces,
             mut clearances,
+            initial_offsets,
             ..
         } = self;
         let mut m = 0;
@@ -377,6 +382,8 @@ impl Compiler {
             motions,
             forces,
             clearances,
+            initial_offsets,
+            input_warnings: Vec::new(),
             gravity,
             memory,
             alpha: DEFAULT_BAUMGARTE_ALPHA,

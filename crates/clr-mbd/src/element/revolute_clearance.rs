@@ -51,6 +51,40 @@ pub struct RevoluteClearance {
     /// and the dry `normal`/`friction` laws add to it once the surfaces touch. Absent: dry.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub lubrication: Option<LubricationDesc>,
+    /// Where the journal centre starts relative to the bearing centre, in the bearing body's
+    /// frame: `[e_x, e_y]` (m) or `{ magnitude = e (m), angle = φ (rad, counter-clockwise from
+    /// the bearing body's x axis) }`, with e at most the radial clearance. Absent: centred
+    /// wherever the assembly solves the journal's place (`[solver] initial_state = "ideal"`,
+    /// the default), else where the given coordinates put it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_eccentricity: Option<Eccentricity>,
+}
+
+/// An initial eccentricity of a revolute clearance joint (in the bearing body's frame).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Eccentricity {
+    /// `[e_x, e_y]`, m.
+    Vector([f64; 2]),
+    /// `{ magnitude, angle }`: e (m, ≥ 0) at φ (rad) from the bearing body's x axis.
+    Polar {
+        /// e, m (≥ 0).
+        magnitude: f64,
+        /// φ, rad.
+        angle: f64,
+    },
+}
+
+impl Eccentricity {
+    /// The vector (e_x, e_y) in the bearing body's frame, m.
+    pub fn vector(&self) -> [f64; 2] {
+        match *self {
+            Eccentricity::Vector(v) => v,
+            Eccentricity::Polar { magnitude, angle } => {
+                [magnitude * angle.cos(), magnitude * angle.sin()]
+            }
+        }
+    }
 }
 
 /// `lubrication = { model, viscosity, length, film_threshold, dry_threshold }` of a revolute
@@ -134,6 +168,22 @@ impl Element for RevoluteClearance {
                     rb - rj
                 ),
             });
+        }
+        if let Some(e) = &self.initial_eccentricity {
+            let v = e.vector();
+            let size = v[0].hypot(v[1]);
+            if !size.is_finite() || size > rb - rj {
+                return Err(MbdError::Invalid {
+                    path: format!("{name}.initial_eccentricity"),
+                    message: format!(
+                        "the initial eccentricity {size:e} m must be finite and at most the                          radial clearance bearing_radius − journal_radius = {:e} m (the journal \
+                         would start inside the bearing wall); it is a length in m",
+                        rb - rj
+                    ),
+                });
+            }
+            c.initial_offsets
+                .insert(name.clone(), nalgebra::Vector2::new(v[0], v[1]));
         }
         let mut geometry = Geometry::new(rb, rj, si, sj).map_err(|source| MbdError::Contact {
             item: name.clone(),

@@ -38,6 +38,12 @@ pub struct TranslationalClearance {
     /// per corner) to the model state.
     #[serde(default)]
     pub friction: FrictionSpec,
+    /// Where the slider centre starts across the guide, m: its distance from the guide's centre
+    /// line towards the guide frame's +y surface, at most (W − h)/2 in magnitude. Absent:
+    /// centred wherever the assembly solves the slider's place (`[solver] initial_state =
+    /// "ideal"`, the default), else where the given coordinates put it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub initial_offset: Option<f64>,
 }
 
 impl Element for TranslationalClearance {
@@ -52,6 +58,20 @@ impl Element for TranslationalClearance {
             ("slider_height", self.slider_height),
         ] {
             positive_length(name, field, v)?;
+        }
+        if let Some(e) = self.initial_offset {
+            let half = 0.5 * (self.guide_width - self.slider_height);
+            if !(e.is_finite() && e.abs() <= half) {
+                return Err(MbdError::Invalid {
+                    path: format!("{name}.initial_offset"),
+                    message: format!(
+                        "the initial offset {e:e} m must be finite and at most half the clearance \
+                         (guide_width − slider_height)/2 = {half:e} m in magnitude"
+                    ),
+                });
+            }
+            c.initial_offsets
+                .insert(name.clone(), nalgebra::Vector2::new(0.0, e));
         }
         if self.slider_height >= self.guide_width {
             return Err(MbdError::Invalid {
