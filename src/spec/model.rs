@@ -251,6 +251,7 @@ impl ModelSpec {
             | E::Beam { item, .. } => self.desc_path(item),
             E::DuplicateName { name, .. } => self.desc_path(name),
             E::InconsistentInitialConditions { field, .. } => self.desc_path(field),
+            E::FlexibleBodyDeformed { body, .. } => self.desc_path(&format!("{body}.pose")),
             // labels are `item (equation)`: place the error at the first item named
             E::RedundantConstraints {
                 involved: label, ..

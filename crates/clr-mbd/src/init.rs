@@ -21,7 +21,7 @@ const MAX_NEWTON: usize = 50;
 /// Weight of a solved (not given) coordinate relative to a fixed one in the assembly metric:
 /// the correction goes to the solved coordinates whenever they can satisfy the constraints,
 /// and a fixed one moves by about 1e-8 of the correction only where they cannot.
-const SOLVED_WEIGHT: f64 = 1e8;
+pub(crate) const SOLVED_WEIGHT: f64 = 1e8;
 /// Relative size, against max(1, |value|), of a change of a fixed coordinate that the
 /// initial-conditions report counts as a correction (and `exact` mode refuses).
 pub const CORRECTION_TOL: f64 = 1e-9;
@@ -40,8 +40,11 @@ enum Phase {
 enum Metric {
     /// The kinetic metric W = M⁻¹ for every coordinate (drift projection during a run).
     Kinetic,
+    /// Initial conditions with every coordinate given: W = M⁻¹, except that floating flexible
+    /// bodies weigh as [`Model::flexible_weight_sqrt`] says (elastic coordinates held).
+    Given,
     /// W = M⁻¹ for fixed coordinates and [`SOLVED_WEIGHT`]·M⁻¹ for solved ones (initial
-    /// conditions).
+    /// conditions; floating flexible bodies as [`Model::flexible_weight_sqrt`] says).
     FixedFirst,
 }
 
@@ -120,9 +123,16 @@ impl Model {
 
     /// The square root of the assembly weight W_cc of coordinate c in `phase` under `metric`.
     fn weight_sqrt(&self, c: usize, phase: Phase, metric: Metric) -> f64 {
+        if metric == Metric::Kinetic {
+            return self.w_sqrt(c);
+        }
+        let fixed_first = metric == Metric::FixedFirst;
+        if let Some(w) = self.flexible_weight_sqrt(c, phase == Phase::Velocity, fixed_first) {
+            return w;
+        }
         let w = self.w_sqrt(c);
         let k = c / 3;
-        if metric == Metric::Kinetic || k >= self.fixed.len() {
+        if !fixed_first || k >= self.fixed.len() {
             return w;
         }
         let slot = c % 3 + if phase == Phase::Velocity { 3 } else { 0 };
@@ -231,12 +241,21 @@ impl Model {
     ) -> Result<(), MbdError> {
         let n = self.n;
         let mut r = vec![0.0; self.m];
-        let passes = if metric == Metric::Kinetic { 1 } else { 2 };
+        let passes = if metric == Metric::FixedFirst { 2 } else { 1 };
         let (q, rest) = y.split_at_mut(n);
         let qd = &mut rest[..n];
         self.eval_constraints(t, q, qd);
         if !self.factor_s(lu, Phase::Velocity, metric) {
             self.check_rank(t, q)?;
+            if metric != Metric::Kinetic && !self.floating.is_empty() {
+                // singular only with the elastic rates held: the caller names the body
+                return Err(MbdError::Assembly {
+                    t,
+                    residual: self.phid.iter().fold(0.0f64, |a, v| a.max(v.abs())),
+                    iterations: 0,
+                    worst: "singular velocity constraints with the elastic rates held".into(),
+                });
+            }
         }
         for _ in 0..passes {
             r.copy_from_slice(&self.phid);
@@ -297,24 +316,29 @@ impl Model {
         let n = self.n;
         self.check_rank(t0, &y[..n])?;
         // everything given: the kinetic metric (the same correction, one velocity pass)
-        let metric = if self.fixed.iter().flatten().all(|&f| f) {
-            Metric::Kinetic
+        let metric = if self.fixed.iter().flatten().all(|&f| f) && self.flexible_all_fixed() {
+            Metric::Given
         } else {
             Metric::FixedFirst
         };
-        let iterations = self.project_in(t0, &mut y, 1e-12, metric)?;
+        let iterations = match self.project_in(t0, &mut y, 1e-12, metric) {
+            Ok(it) => it,
+            Err(e) => return Err(self.flexible_assembly_error(t0, &given, e)),
+        };
         if metric == Metric::FixedFirst {
             // the weights leave about 1e-8 of the correction on fixed coordinates even where the
             // solved ones suffice: put the fixed ones back and project again, which shrinks that
             // share by 1e-8 per pass (and repeats the same change where it is needed)
             for _ in 0..2 {
                 self.restore_fixed(&given, &mut y);
+                self.restore_flexible(&given, &mut y);
                 self.project_in(t0, &mut y, 1e-12, metric)?;
             }
         }
         let report = InitialConditions {
             newton_iterations: iterations,
             bodies: self.body_corrections(&given, &y),
+            flexible: self.flexible_corrections(&given, &y),
         };
         Ok((y, report))
     }
@@ -415,6 +439,10 @@ pub struct InitialConditions {
     pub newton_iterations: usize,
     /// Every rigid body, in definition order.
     pub bodies: Vec<BodyInitialState>,
+    /// Every floating flexible body, in definition order: the coordinates of its frame origin
+    /// (x, y, θ and rates; not its centre of mass). Its elastic coordinates are not listed:
+    /// the assembly never moves them (they start undeformed and at rest).
+    pub flexible: Vec<BodyInitialState>,
 }
 
 impl InitialConditions {
@@ -437,7 +465,7 @@ impl InitialConditions {
     }
 
     fn each(&self) -> impl Iterator<Item = (&str, &'static str, &CoordinateInitialState)> {
-        self.bodies.iter().flat_map(|b| {
+        self.bodies.iter().chain(&self.flexible).flat_map(|b| {
             b.coordinates
                 .iter()
                 .zip(COORDINATE_NAMES)

@@ -60,6 +60,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     let mut model = c.finish(Vector2::new(g[0], g[1]))?;
     model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
     model.set_contact_events(desc.solver.contact_events);
+    model.set_output_nodes(&desc.output.nodes)?;
     Ok(model)
 }
 
