@@ -356,5 +356,27 @@ mod tests {
             }
             other => panic!("expected FlexibleBodyDeformed, got {:?}", other.map(|_| ())),
         }
+        // at its own length, 1 m apart, the joints hold the frame twice (Φ_q is of full rank
+        // only through the tip's axial DOF) but are consistent: the arm starts undeformed and
+        // at rest
+        let (mesh, _, _) = crate::floating::tests::arm(2e11);
+        let red = Reduction::CraigBampton {
+            interface_nodes: vec![4],
+            modes: 1,
+        };
+        let mut b = ModelBuilder::new();
+        b.floating_beam("arm", mesh, red, [0.0; 3], [0.0; 3])
+            .revolute("p", ("ground", [0.0, 0.0]), ("arm", 0usize))
+            .revolute("q", ("ground", [1.0, 0.0]), ("arm", 4usize));
+        let mut model = b.build().unwrap();
+        let (u, y, _) = assembled(&mut model);
+        assert_eq!(u, 0.0);
+        let n = model.n_coordinates();
+        assert!(
+            y[..3].iter().all(|v| v.abs() < 1e-12),
+            "frame {:?}",
+            &y[..3]
+        );
+        assert!(y[n..2 * n].iter().all(|v| v.abs() < 1e-12), "at rest");
     }
 }
