@@ -329,11 +329,10 @@ mod tests {
         ));
     }
 
-    /// The 1 m steel arm of the floating-body tests (clamped at node 0), pinned to the ground
-    /// at both ends 1.01 m apart: only stretching it closes the joints, which the assembly
-    /// refuses, naming the arm.
-    #[test]
-    fn joints_that_need_deformation_are_refused_naming_the_body() {
+    /// The 1 m steel arm of the floating-body tests (clamped at node 0; Craig–Bampton with
+    /// the tip node 4 as interface and one mode), pinned to the ground at node 0 (the origin)
+    /// and at its tip to the ground point (`distance`, 0).
+    fn pinned_twice(distance: f64) -> Model {
         let (mesh, _, _) = crate::floating::tests::arm(2e11);
         let red = Reduction::CraigBampton {
             interface_nodes: vec![4],
@@ -342,8 +341,16 @@ mod tests {
         let mut b = ModelBuilder::new();
         b.floating_beam("arm", mesh, red, [0.0; 3], [0.0; 3])
             .revolute("p", ("ground", [0.0, 0.0]), ("arm", 0usize))
-            .revolute("q", ("ground", [1.01, 0.0]), ("arm", 4usize));
-        let mut model = b.build().unwrap();
+            .revolute("q", ("ground", [distance, 0.0]), ("arm", 4usize));
+        b.build().unwrap()
+    }
+
+    /// The arm pinned at both ends 1.01 m apart: only stretching it closes the joints, which
+    /// the assembly refuses, naming the arm; 1 m apart they are consistent and it starts
+    /// undeformed and at rest.
+    #[test]
+    fn joints_that_need_deformation_are_refused_naming_the_body() {
+        let mut model = pinned_twice(1.01);
         match model.assemble_initial_state(0.0) {
             Err(MbdError::FlexibleBodyDeformed {
                 body,
@@ -356,19 +363,8 @@ mod tests {
             }
             other => panic!("expected FlexibleBodyDeformed, got {:?}", other.map(|_| ())),
         }
-        // at its own length, 1 m apart, the joints hold the frame twice (Φ_q is of full rank
-        // only through the tip's axial DOF) but are consistent: the arm starts undeformed and
-        // at rest
-        let (mesh, _, _) = crate::floating::tests::arm(2e11);
-        let red = Reduction::CraigBampton {
-            interface_nodes: vec![4],
-            modes: 1,
-        };
-        let mut b = ModelBuilder::new();
-        b.floating_beam("arm", mesh, red, [0.0; 3], [0.0; 3])
-            .revolute("p", ("ground", [0.0, 0.0]), ("arm", 0usize))
-            .revolute("q", ("ground", [1.0, 0.0]), ("arm", 4usize));
-        let mut model = b.build().unwrap();
+        // the joints hold the frame twice (Φ_q has full rank only through the tip's axial DOF)
+        let mut model = pinned_twice(1.0);
         let (u, y, _) = assembled(&mut model);
         assert_eq!(u, 0.0);
         let n = model.n_coordinates();
