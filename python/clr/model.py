@@ -267,9 +267,12 @@ class Model:
         t_start: Optional[float] = None,
         intervals: Optional[int] = None,
         every_step: Optional[bool] = None,
+        nodes: Optional[Table] = None,
     ) -> "Model":
         """``[output]``: the span [``t_start``, ``t_end``] (s), recorded at ``intervals`` equal
-        intervals and/or after ``every_step`` accepted step."""
+        intervals and/or after ``every_step`` accepted step; ``nodes`` (``[output.nodes]``)
+        records nodes of flexible bodies and beams, ``{"rod": [4, 8], "cant": "all"}``
+        (columns ``rod.node4.ux``, ``.uy`` m, ``.rz`` rad, ``.x``, ``.y`` m)."""
         return self._set_table("output", **{k: v for k, v in locals().items() if k != "self"})
 
     # ----- bodies, points, beams ---------------------------------------------------------
@@ -336,7 +339,8 @@ class Model:
     ) -> "Model":
         """``[[flexible_body]]``: a floating-frame flexible body: its ``beam`` mesh (as
         :meth:`beam` without name), the modal ``reduction``, the frame ``pose`` [x, y, θ] (m,
-        rad) and ``velocity`` [vx, vy, ω] (m/s, rad/s)."""
+        rad) and ``velocity`` [vx, vy, ω] (m/s, rad/s); left at ``None`` they are solved by the
+        assembly (the elastic coordinates always start undeformed and at rest)."""
         return self._add(
             "flexible_body", None, **{k: v for k, v in locals().items() if k != "self"}
         )

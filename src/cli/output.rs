@@ -163,6 +163,7 @@ pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> se
             rec.results.initial_conditions.as_ref()
         ),
         "impacts": impacts_summary(&rec.results.impacts),
+        "flexible_bodies": clr::spec::run::flexible_json(&rec.flexible),
         "parameters": rec.parameters,
     })
 }

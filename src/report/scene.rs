@@ -209,7 +209,7 @@ impl Scene {
                 name: f.name.clone(),
                 kind: "flexible",
                 com: [0.0, 0.0],
-                pose0: f.pose,
+                pose0: f.pose.unwrap_or_default(),
                 points: Vec::new(),
             });
             s.beams.push(Beam {

@@ -259,6 +259,7 @@ impl ModelSpec {
             E::InconsistentInitialConditions { field, .. }
             | E::UndeterminedCoordinates { field, .. } => self.desc_path(field),
             E::InitialPenetration { element, .. } => self.desc_path(element),
+            E::FlexibleBodyDeformed { body, .. } => self.desc_path(&format!("{body}.pose")),
             // labels are `item (equation)`: place the error at the first item named
             E::RedundantConstraints {
                 involved: label, ..

@@ -60,6 +60,9 @@ pub struct Outcome {
     /// What reading the model changed on its own (an older file format upgraded, `atol` set
     /// with `--rtol`), one sentence each.
     pub notes: Vec<String>,
+    /// The meaning, unit and mode frequencies of the elastic coordinates of every flexible
+    /// body and beam of a model file (empty for built-in models).
+    pub flexible: Vec<clr_mbd::node_output::FlexibleCoordinates>,
 }
 
 /// Load a model with `load` (from a file or text, with the given overrides); a generic model
@@ -391,6 +394,7 @@ impl Outcome {
             error,
             no_orbit: Vec::new(),
             notes,
+            flexible: Vec::new(),
         }
     }
 
@@ -422,7 +426,22 @@ impl Outcome {
                 .map(|(n, _)| n.clone())
                 .collect(),
             notes,
+            flexible: Vec::new(),
         }
+    }
+
+    /// This outcome with the elastic coordinates of its model: their units replace the
+    /// name-based ones of their columns (a Craig–Bampton boundary coordinate is in m or rad).
+    fn with_flexible(mut self, flexible: Vec<clr_mbd::node_output::FlexibleCoordinates>) -> Self {
+        for c in flexible.iter().flat_map(|f| &f.coordinates) {
+            if let Some(k) = self.results.index(&c.column) {
+                if let Some(u) = self.units.get_mut(k) {
+                    *u = c.unit.to_string();
+                }
+            }
+        }
+        self.flexible = flexible;
+        self
     }
 
     fn empty(model: &str, parameters: serde_json::Value, error: String) -> Self {
@@ -440,6 +459,7 @@ impl Outcome {
             error: Some(error),
             no_orbit: Vec::new(),
             notes: Vec::new(),
+            flexible: Vec::new(),
         }
     }
 }
@@ -491,6 +511,7 @@ pub fn execute(
         Job::Generic(s) => {
             let built = s.build()?;
             let mut model = built.model;
+            let flexible = model.flexible_coordinates();
             let hook = |t: f64| {
                 if let Some(p) = &progress {
                     p(t);
@@ -499,7 +520,7 @@ pub fn execute(
             match model.simulate_with(&built.options, &hook) {
                 Ok(res) => {
                     let metrics = generic_metrics(&res, s);
-                    Ok(Outcome::from_results(s, res, metrics, None))
+                    Ok(Outcome::from_results(s, res, metrics, None).with_flexible(flexible))
                 }
                 Err(clr_mbd::MbdError::Failed { source, partial }) => {
                     let msg = format!(
@@ -507,7 +528,8 @@ pub fn execute(
                          method)"
                     );
                     let metrics = generic_metrics(&partial, s);
-                    Ok(Outcome::from_results(s, *partial, metrics, Some(msg)))
+                    Ok(Outcome::from_results(s, *partial, metrics, Some(msg))
+                        .with_flexible(flexible))
                 }
                 Err(
                     e @ clr_mbd::MbdError::Implausible {
@@ -517,7 +539,8 @@ pub fn execute(
                     let msg = e.to_string();
                     let partial = e.into_partial().unwrap_or_default();
                     let metrics = generic_metrics(&partial, s);
-                    Ok(Outcome::from_results(s, partial, metrics, Some(msg)))
+                    Ok(Outcome::from_results(s, partial, metrics, Some(msg))
+                        .with_flexible(flexible))
                 }
                 Err(e) => Err(s.model_error(&e).into()),
             }
@@ -625,38 +648,40 @@ fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
 }
 
 /// The initial-conditions report as JSON (the `initial_conditions` of summary.json): per body and coordinate whether it was fixed (given)
-/// or solved, the given and assembled values and the correction, in the units named.
+/// or solved, the given and assembled values and the correction, in the units named; the
+/// frames of floating flexible bodies likewise under `flexible_bodies`.
 pub fn initial_conditions_json(ic: Option<&clr_mbd::InitialConditions>) -> serde_json::Value {
     let Some(ic) = ic else {
         return serde_json::Value::Null;
     };
-    let bodies: serde_json::Map<String, serde_json::Value> = ic
-        .bodies
-        .iter()
-        .map(|b| {
-            let coords: serde_json::Map<String, serde_json::Value> = b
-                .coordinates
-                .iter()
-                .zip(
-                    clr_mbd::COORDINATE_NAMES
+    let states =
+        |list: &[clr_mbd::BodyInitialState]| -> serde_json::Map<String, serde_json::Value> {
+            list.iter()
+                .map(|b| {
+                    let coords: serde_json::Map<String, serde_json::Value> = b
+                        .coordinates
                         .iter()
-                        .zip(clr_mbd::COORDINATE_UNITS),
-                )
-                .map(|(c, (name, unit))| {
-                    let v = serde_json::json!({
-                        "status": if !c.fixed { "solved" } else if c.is_corrected() {
-                            "corrected" } else { "given" },
-                        "given": c.given,
-                        "assembled": c.assembled,
-                        "correction": c.correction(),
-                        "unit": unit,
-                    });
-                    (name.to_string(), v)
+                        .zip(
+                            clr_mbd::COORDINATE_NAMES
+                                .iter()
+                                .zip(clr_mbd::COORDINATE_UNITS),
+                        )
+                        .map(|(c, (name, unit))| {
+                            let v = serde_json::json!({
+                                "status": if !c.fixed { "solved" } else if c.is_corrected() {
+                                    "corrected" } else { "given" },
+                                "given": c.given,
+                                "assembled": c.assembled,
+                                "correction": c.correction(),
+                                "unit": unit,
+                            });
+                            (name.to_string(), v)
+                        })
+                        .collect();
+                    (b.body.clone(), serde_json::Value::Object(coords))
                 })
-                .collect();
-            (b.body.clone(), serde_json::Value::Object(coords))
-        })
-        .collect();
+                .collect()
+        };
     let solved: Vec<serde_json::Value> = ic
         .solved_coordinates
         .iter()
@@ -684,14 +709,47 @@ pub fn initial_conditions_json(ic: Option<&clr_mbd::InitialConditions>) -> serde
             })
         })
         .collect();
-    serde_json::json!({
+    let mut json = serde_json::json!({
         "position_newton_iterations": ic.newton_iterations,
         "solved": ic.solved().len(),
         "corrected": ic.corrected().len(),
-        "bodies": bodies,
+        "bodies": states(&ic.bodies),
         "solved_coordinates": solved,
         "ideal_counterparts": counterparts,
-    })
+    });
+    // the frame origins of floating flexible bodies (their elastic coordinates are never moved)
+    if !ic.flexible.is_empty() {
+        json["flexible_bodies"] = serde_json::Value::Object(states(&ic.flexible));
+    }
+    json
+}
+
+/// The elastic coordinates of the flexible bodies and beams as JSON (the `flexible_bodies` of
+/// summary.json): per body its kind, reduction, the column, meaning and unit of every elastic
+/// coordinate and the frequencies (Hz) of the kept modes.
+pub fn flexible_json(flexible: &[clr_mbd::node_output::FlexibleCoordinates]) -> serde_json::Value {
+    let bodies: serde_json::Map<String, serde_json::Value> = flexible
+        .iter()
+        .map(|f| {
+            let coordinates: Vec<serde_json::Value> = f
+                .coordinates
+                .iter()
+                .map(|c| {
+                    serde_json::json!({
+                        "column": c.column, "meaning": c.meaning, "unit": c.unit,
+                    })
+                })
+                .collect();
+            let v = serde_json::json!({
+                "kind": f.kind,
+                "reduction": f.reduction,
+                "coordinates": coordinates,
+                "mode_frequencies_hz": f.mode_frequencies_hz,
+            });
+            (f.body.clone(), v)
+        })
+        .collect();
+    serde_json::Value::Object(bodies)
 }
 
 /// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`): `s`, `m`,
@@ -710,8 +768,9 @@ pub fn unit_of(column: &str) -> &'static str {
         return "J";
     }
     match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "u" | "v" | "penetration" | "ex" | "ey" | "lugre_z" | "film_thickness" => "m",
-        "theta" => "rad",
+        "x" | "y" | "u" | "v" | "ux" | "uy" | "penetration" | "ex" | "ey" | "lugre_z"
+        | "film_thickness" => "m",
+        "theta" | "rz" => "rad",
         "vx" | "vy" | "rate" => "m/s",
         "omega" => "rad/s",
         "ax" | "ay" => "m/s^2",

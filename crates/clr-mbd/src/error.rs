@@ -176,6 +176,21 @@ pub enum MbdError {
         /// The description field of the first change (`rod.angular_velocity`).
         field: String,
     },
+    /// The joints of a floating flexible body cannot be closed at t0 without deforming it: the
+    /// assembly of initial conditions keeps elastic coordinates undeformed and at rest
+    /// ([`crate::init_flex`]).
+    #[error(
+        "flexible body `{body}`: its joints cannot be closed at t0 without deforming it \
+         (closing them elastically would store {strain_energy:.3e} J at the start; the assembly \
+         keeps elastic coordinates undeformed and at rest). Give the flexible body a pose, \
+         velocity and beam geometry (length, joint nodes) its joints fit undeformed"
+    )]
+    FlexibleBodyDeformed {
+        /// The flexible body.
+        body: String,
+        /// Strain energy ½q_fᵀK q_f (J) of the elastic closure of the joints.
+        strain_energy: f64,
+    },
     /// A field of the description is invalid (the path names it, e.g. `driver[0].motion.rate`
     /// or `crank_drive.motion.rate` for an element's field).
     #[error("field `{path}`: {message}")]

@@ -71,9 +71,18 @@ pub(crate) struct FloatingBody {
     /// Initial (R_x, R_y, θ) and (Ṙ_x, Ṙ_y, θ̇).
     pub(crate) pose: [f64; 3],
     pub(crate) velocity: [f64; 3],
-    mass: f64,
+    /// Which of (R_x, R_y, θ, Ṙ_x, Ṙ_y, θ̇) the description gave (fixed in the assembly of
+    /// initial conditions); the others are solved ([`crate::init_flex`]).
+    pub(crate) fixed: [bool; 6],
+    /// Frequencies (Hz) of the kept modes: the modes of the supported beam for modal
+    /// truncation, the fixed-interface modes for Craig–Bampton (clr-beam `mode_omega` / 2π).
+    pub(crate) mode_hz: Vec<f64>,
+    /// Full beam DOF (3 · node + {0: u_x, 1: u_y, 2: θ_z}) of the first elastic coordinates
+    /// when they are Craig–Bampton boundary DOF (empty for modal truncation).
+    pub(crate) boundary_dofs: Vec<usize>,
+    pub(crate) mass: f64,
     s0: Vector2<f64>,
-    j0: f64,
+    pub(crate) j0: f64,
     sf: Vec<Vector2<f64>>,
     rc: Vec<f64>,
     i1: Vec<f64>,
@@ -184,6 +193,13 @@ impl FloatingBody {
             r,
             pose,
             velocity,
+            fixed: [true; 6],
+            mode_hz: red
+                .mode_omega
+                .iter()
+                .map(|w| w / (2.0 * std::f64::consts::PI))
+                .collect(),
+            boundary_dofs: red.boundary_dofs.clone(),
             mass: inv.mass,
             s0: Vector2::new(inv.first_moment[0], inv.first_moment[1]),
             j0: inv.polar_inertia,
@@ -387,7 +403,7 @@ impl FloatingBody {
     }
 
     /// (ū, φ_θ·q_f): body-frame position of node `n` (m) and its elastic rotation (rad).
-    fn node_local(&self, n: usize, qf: &[f64]) -> (Vector2<f64>, f64) {
+    pub(crate) fn node_local(&self, n: usize, qf: &[f64]) -> (Vector2<f64>, f64) {
         let r = self.r;
         let mut u = Vector2::new(self.nodes[n][0], self.nodes[n][1]);
         let mut psi = 0.0;
@@ -663,12 +679,12 @@ fn positive_definite(a: &[f64], n: usize) -> bool {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use crate::desc::beam::{BeamMaterial, MassKindDesc, SectionDesc, SupportDesc, SupportKind};
     use crate::{BeamMesh, MbdError, ModelBuilder, Reduction, SimOptions, SolverKind};
 
     /// A 1 m arm of 4 elements, section 0.01 × 0.01 m, of `material`, with `supports`.
-    fn arm_mesh(material: BeamMaterial, supports: Vec<SupportDesc>) -> BeamMesh {
+    pub(crate) fn arm_mesh(material: BeamMaterial, supports: Vec<SupportDesc>) -> BeamMesh {
         BeamMesh {
             start: [0.0, 0.0],
             end: [1.0, 0.0],
@@ -686,7 +702,7 @@ mod tests {
 
     /// The arm clamped at node 0, reduced on its 2 lowest cantilever modes, and the mass of the
     /// reduced model (kg).
-    fn arm(e: f64) -> (BeamMesh, Reduction, f64) {
+    pub(crate) fn arm(e: f64) -> (BeamMesh, Reduction, f64) {
         let material = BeamMaterial {
             youngs_modulus: e,
             density: 7850.0,

@@ -21,7 +21,7 @@ const MAX_NEWTON: usize = 50;
 /// Weight of a solved (not given) coordinate relative to a fixed one in the assembly metric:
 /// the correction goes to the solved coordinates whenever they can satisfy the constraints,
 /// and a fixed one moves by about 1e-8 of the correction only where they cannot.
-const SOLVED_WEIGHT: f64 = 1e8;
+pub(crate) const SOLVED_WEIGHT: f64 = 1e8;
 /// Relative size, against max(1, |value|), of a change of a fixed coordinate that the
 /// initial-conditions report counts as a correction (and `exact` mode refuses).
 pub const CORRECTION_TOL: f64 = 1e-9;
@@ -40,8 +40,11 @@ pub(crate) enum Phase {
 pub(crate) enum Metric {
     /// The kinetic metric W = M⁻¹ for every coordinate (drift projection during a run).
     Kinetic,
+    /// Initial conditions with every coordinate given: W = M⁻¹, except that floating flexible
+    /// bodies weigh as [`Model::flexible_weight_sqrt`] says (elastic coordinates held).
+    Given,
     /// W = M⁻¹ for fixed coordinates and [`SOLVED_WEIGHT`]·M⁻¹ for solved ones (initial
-    /// conditions).
+    /// conditions; floating flexible bodies as [`Model::flexible_weight_sqrt`] says).
     FixedFirst,
 }
 
@@ -132,9 +135,16 @@ impl Model {
 
     /// The square root of the assembly weight W_cc of coordinate c in `phase` under `metric`.
     fn weight_sqrt(&self, c: usize, phase: Phase, metric: Metric) -> f64 {
+        if metric == Metric::Kinetic {
+            return self.w_sqrt(c);
+        }
+        let fixed_first = metric == Metric::FixedFirst;
+        if let Some(w) = self.flexible_weight_sqrt(c, phase == Phase::Velocity, fixed_first) {
+            return w;
+        }
         let w = self.w_sqrt(c);
         let k = c / 3;
-        if metric == Metric::Kinetic || k >= self.fixed.len() {
+        if !fixed_first || k >= self.fixed.len() {
             return w;
         }
         let slot = c % 3 + if phase == Phase::Velocity { 3 } else { 0 };
@@ -263,12 +273,27 @@ impl Model {
             return Ok(());
         }
         let mut r = vec![0.0; self.m];
-        let passes = if metric == Metric::Kinetic { 1 } else { 2 };
+        let passes = if metric == Metric::FixedFirst { 2 } else { 1 };
         let (q, rest) = y.split_at_mut(n);
         let qd = &mut rest[..n];
         self.eval_constraints(t, q, qd);
         if !self.factor_s(lu, Phase::Velocity, metric) {
             self.check_rank(t, q)?;
+            let residual = self.phid.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if metric != Metric::Kinetic && !self.floating.is_empty() {
+                // singular only with the elastic rates held (a floating body whose frame the
+                // joints hold more than once): nothing to correct when the given velocities
+                // already satisfy them, else the caller names the body
+                if residual <= 1e-12 {
+                    return Ok(());
+                }
+                return Err(MbdError::Assembly {
+                    t,
+                    residual,
+                    iterations: 0,
+                    worst: "singular velocity constraints with the elastic rates held".into(),
+                });
+            }
         }
         for _ in 0..passes {
             r.copy_from_slice(&self.phid);
@@ -414,6 +439,10 @@ pub struct InitialConditions {
     /// Every coordinate left out of the description, with its assembled value and the items
     /// that determined it (positions first, then velocities).
     pub solved_coordinates: Vec<crate::initial::SolvedCoordinate>,
+    /// Every floating flexible body, in definition order: the coordinates of its frame origin
+    /// (x, y, θ and rates; not its centre of mass). Its elastic coordinates are not listed:
+    /// the assembly never moves them (they start undeformed and at rest).
+    pub flexible: Vec<BodyInitialState>,
 }
 
 impl InitialConditions {
@@ -436,7 +465,7 @@ impl InitialConditions {
     }
 
     fn each(&self) -> impl Iterator<Item = (&str, &'static str, &CoordinateInitialState)> {
-        self.bodies.iter().flat_map(|b| {
+        self.bodies.iter().chain(&self.flexible).flat_map(|b| {
             b.coordinates
                 .iter()
                 .zip(COORDINATE_NAMES)
@@ -482,20 +511,36 @@ impl InitialConditions {
             .solved_coordinates
             .iter()
             .partition(|c| !c.undetermined);
-        if !solved.is_empty() {
-            let list: Vec<String> = solved
+        // the frames of floating flexible bodies left out (their sources are not traced)
+        let frames = self.flexible.iter().flat_map(|b| {
+            b.coordinates
                 .iter()
-                .map(|c| {
+                .zip(COORDINATE_NAMES)
+                .filter(|(c, _)| !c.fixed)
+                .map(move |(c, name)| {
                     format!(
-                        "{}.{} = {:.6e} {} [from {}]",
-                        c.body,
-                        c.coordinate,
-                        c.value,
-                        unit(c.coordinate),
-                        c.from.join(", ")
+                        "{}.{name} = {:.6e} {} [frame]",
+                        b.body,
+                        c.assembled,
+                        unit(name)
                     )
                 })
-                .collect();
+        });
+        let list: Vec<String> = solved
+            .iter()
+            .map(|c| {
+                format!(
+                    "{}.{} = {:.6e} {} [from {}]",
+                    c.body,
+                    c.coordinate,
+                    c.value,
+                    unit(c.coordinate),
+                    c.from.join(", ")
+                )
+            })
+            .chain(frames)
+            .collect();
+        if !list.is_empty() {
             notes.push(format!(
                 "initial conditions: not given in the model, solved from the constraints: {}",
                 list.join(", ")

@@ -110,12 +110,20 @@ impl Model {
         let n = self.n;
         self.check_rank(t0, &y[..n])?;
         let ideal = setup.state == InitialState::Ideal;
-        if self.fixed.iter().flatten().all(|&f| f) && (!ideal || self.initial_offsets.is_empty()) {
+        if self.fixed.iter().flatten().all(|&f| f)
+            && self.flexible_all_fixed()
+            && (!ideal || self.initial_offsets.is_empty())
+        {
             // everything given: the kinetic metric (the same correction, one velocity pass)
-            let iterations = self.project_in(t0, &mut y, 1e-12, Metric::Kinetic)?;
+            // (elastic coordinates held)
+            let iterations = match self.project_in(t0, &mut y, 1e-12, Metric::Given) {
+                Ok(it) => it,
+                Err(e) => return Err(self.flexible_assembly_error(t0, &given, e)),
+            };
             let report = InitialConditions {
                 newton_iterations: iterations,
                 bodies: self.body_corrections(&given, &y),
+                flexible: self.flexible_corrections(&given, &y),
                 ..Default::default()
             };
             return Ok((y, report));
@@ -150,7 +158,9 @@ impl Model {
                 undetermined.extend(u);
             }
             self.pop_rows(saved);
-            run?;
+            if let Err(e) = run {
+                return Err(self.flexible_assembly_error(t0, &given, e));
+            }
         }
         if !undetermined.is_empty() {
             return Err(undetermined_error(&undetermined));
@@ -158,6 +168,7 @@ impl Model {
         let report = InitialConditions {
             newton_iterations: iterations,
             bodies: self.body_corrections(&given, &y),
+            flexible: self.flexible_corrections(&given, &y),
             counterparts: counterparts.into_iter().map(|(c, _)| c).collect(),
             solved_coordinates: solved,
         };
@@ -323,6 +334,14 @@ impl Model {
             for s in 0..3 {
                 if fixed[slot0 + s] {
                     y[base + 3 * k + s] = given[base + 3 * k + s];
+                }
+            }
+        }
+        // the frames of floating flexible bodies (their elastic coordinates weigh 0: never moved)
+        for f in &self.floating {
+            for s in 0..3 {
+                if f.fixed[slot0 + s] {
+                    y[base + f.offset + s] = given[base + f.offset + s];
                 }
             }
         }

@@ -574,8 +574,8 @@ impl ModelBuilder {
             name: name.into(),
             beam: mesh,
             reduction,
-            pose,
-            velocity,
+            pose: Some(pose),
+            velocity: Some(velocity),
         });
         self
     }

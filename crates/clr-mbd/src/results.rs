@@ -22,7 +22,10 @@ use clr_ode::Stats;
 /// t0 by drivers (their reaction forces) and applied forces, torques, actuator forces, nodal
 /// loads, bushings and custom loads; `balance` = total + dissipated − work_in, constant up to
 /// the integration error and the work of constraint reactions through violations);
-/// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞).
+/// `violation.position violation.velocity` (‖Φ‖∞, ‖Φ̇‖∞). Per floating flexible body its
+/// coordinates `F.x F.y F.theta F.q<k>` follow the beams' (units and meaning of each `q<k>`:
+/// [`Model::flexible_coordinates`](crate::Model::flexible_coordinates)), then the recorded
+/// nodes `<body>.node<k>.<ux|uy|rz|x|y>` (opt-in, [`crate::node_output`]).
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct Results {
     /// Column names.

@@ -202,6 +202,7 @@ impl Model {
         for f in &self.floating {
             c.extend(f.coord_names());
         }
+        c.extend(self.node_output_columns());
         for j in self.joint_names() {
             for s in ["Fx", "Fy", "M"] {
                 c.push(format!("{j}.{s}"));
@@ -297,6 +298,7 @@ impl Model {
         for f in &self.floating {
             out.extend_from_slice(&q[f.offset..f.offset + f.n_coords()]);
         }
+        self.record_node_outputs(q, out);
         for s in self.joint_starts() {
             out.extend_from_slice(&self.reaction(s));
         }
@@ -372,7 +374,7 @@ impl Model {
         let (y0, ic) = self.assemble_initial_state_with(opts.t0, &opts.initial_setup)?;
         let corrected = ic.corrected();
         if opts.initial_conditions == InitialConditionsMode::Exact && !corrected.is_empty() {
-            return Err(inconsistent(&corrected));
+            return Err(inconsistent(&ic, &corrected));
         }
         let start = self.check_start(opts.t0, &y0, &ic)?;
         if opts.strict && !start.is_empty() {
@@ -626,13 +628,10 @@ fn implausible(w: &[crate::plausible::Warning], partial: Option<Results>) -> Mbd
 
 /// The error of `exact` initial conditions for the given changes (body, coordinate, given,
 /// assembled).
-fn inconsistent(corrected: &[(&str, &'static str, f64, f64)]) -> MbdError {
-    let field_of = |c: &str| match c {
-        "x" | "y" => "position",
-        "theta" => "angle",
-        "vx" | "vy" => "velocity",
-        _ => "angular_velocity",
-    };
+fn inconsistent(
+    ic: &crate::InitialConditions,
+    corrected: &[(&str, &'static str, f64, f64)],
+) -> MbdError {
     let list: Vec<String> = corrected
         .iter()
         .map(|(b, c, g, a)| format!("{b}.{c} from {g:.9e} to {a:.9e}"))
@@ -641,7 +640,7 @@ fn inconsistent(corrected: &[(&str, &'static str, f64, f64)]) -> MbdError {
         corrected: list.join(", "),
         field: corrected
             .first()
-            .map_or(String::new(), |(b, c, _, _)| format!("{b}.{}", field_of(c))),
+            .map_or(String::new(), |(b, c, _, _)| ic.field_of(b, c)),
     }
 }
 

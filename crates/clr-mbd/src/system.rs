@@ -85,6 +85,9 @@ pub struct Model {
     pub(crate) beams: Vec<FlexBeam>,
     /// Floating-frame flexible bodies (coordinates after the beams).
     pub(crate) floating: Vec<FloatingBody>,
+    /// Nodes of beams and floating bodies recorded as output columns
+    /// ([`Model::set_output_nodes`]).
+    pub(crate) node_outputs: Vec<crate::node_output::NodeOutput>,
     /// Attachment frames: rigid bodies first (index = body index), then beam nodes.
     pub(crate) frames: Vec<Frame>,
     pub(crate) points: Vec<(String, usize, Vector2<f64>)>,

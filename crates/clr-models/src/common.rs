@@ -363,6 +363,7 @@ pub(crate) fn finish_desc(
         t_end: Some(t_end),
         intervals: 0,
         every_step: true,
+        nodes: Default::default(),
     };
     d
 }

@@ -61,6 +61,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
     model.set_contact_events(desc.solver.contact_events);
     model.input_warnings = crate::plausible::description_warnings(desc);
+    model.set_output_nodes(&desc.output.nodes)?;
     Ok(model)
 }
 

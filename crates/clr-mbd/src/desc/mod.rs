@@ -21,7 +21,8 @@ pub use beam::{
 pub use laws::{FrictionLawDesc, MaterialDesc, NormalLawDesc};
 pub use parts::{Body, ForceApplicationDesc, ModelInfo, Point};
 pub use settings::{
-    unused_solver_fields, OutputSettings, SolverMethod, SolverSettings, ATOL_PER_RTOL,
+    unused_solver_fields, AllNodes, NodeSelection, OutputSettings, SolverMethod, SolverSettings,
+    ATOL_PER_RTOL,
 };
 
 pub use crate::field::{closest, edit_distance, suggestion, FieldError};

@@ -174,6 +174,34 @@ pub struct OutputSettings {
     pub intervals: usize,
     /// Also record after every accepted step (default false).
     pub every_step: bool,
+    /// Nodes of flexible bodies and ground-fixed beams to record, by body or beam name
+    /// (`[output.nodes]`, e.g. `rod = [2, 4]` or `rod = "all"`): each node adds the columns
+    /// `<name>.node<k>.ux`, `.uy` (m) and `.rz` (rad), its elastic displacement and rotation in
+    /// the body frame (the world frame for a ground-fixed beam), and `.x`, `.y` (m), its world
+    /// position ([`crate::node_output`]). Empty by default (no columns added).
+    #[serde(skip_serializing_if = "std::collections::BTreeMap::is_empty")]
+    pub nodes: std::collections::BTreeMap<String, NodeSelection>,
+}
+
+/// Which nodes of one body `[output.nodes]` records.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(
+    untagged,
+    expecting = "a list of node indices (e.g. [2, 4], 0 at the beam's start) or \"all\""
+)]
+pub enum NodeSelection {
+    /// Node indices (0 at the beam's `start`).
+    Nodes(Vec<usize>),
+    /// `"all"`: every node of the mesh.
+    All(AllNodes),
+}
+
+/// The keyword `"all"` of [`NodeSelection`].
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AllNodes {
+    /// Every node.
+    All,
 }
 
 impl Default for OutputSettings {
@@ -183,6 +211,7 @@ impl Default for OutputSettings {
             t_end: None,
             intervals: 500,
             every_step: false,
+            nodes: Default::default(),
         }
     }
 }

@@ -376,6 +376,7 @@ impl Compiler {
             fixed,
             beams,
             floating,
+            node_outputs: Vec::new(),
             frames,
             points,
             cons,

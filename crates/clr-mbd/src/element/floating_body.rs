@@ -1,7 +1,10 @@
 //! Floating-frame flexible body (Shabana 2020 ch. 5; formulation in [`crate::floating`]): a
 //! straight beam mesh in the body frame (its supports are the reference conditions, e.g. a
 //! clamp at node 0), reduced by modal truncation or Craig–Bampton, with an initial frame pose
-//! and velocity; elastic coordinates start at rest and undeformed.
+//! and velocity. As for a rigid [`Body`](crate::desc::Body), a pose or velocity that is given
+//! is fixed (kept unless the joints cannot be closed otherwise, every change reported) and one
+//! left out is solved by the assembly; the elastic coordinates start at rest and undeformed
+//! and the assembly never moves them ([`crate::init_flex`]).
 
 use serde::{Deserialize, Serialize};
 
@@ -19,12 +22,14 @@ pub struct FlexibleBody {
     pub beam: BeamMesh,
     /// Reduction of the elastic field.
     pub reduction: Reduction,
-    /// Initial frame pose (R_x m, R_y m, θ rad).
-    #[serde(default)]
-    pub pose: [f64; 3],
-    /// Initial frame velocity (Ṙ_x m/s, Ṙ_y m/s, θ̇ rad/s).
-    #[serde(default)]
-    pub velocity: [f64; 3],
+    /// Initial frame pose (R_x m, R_y m, θ rad); left out: solved by the assembly from
+    /// [0, 0, 0].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pose: Option<[f64; 3]>,
+    /// Initial frame velocity (Ṙ_x m/s, Ṙ_y m/s, θ̇ rad/s); left out: solved by the assembly
+    /// from [0, 0, 0].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<[f64; 3]>,
 }
 
 impl FlexibleBody {
@@ -34,6 +39,22 @@ impl FlexibleBody {
         let red = self
             .reduction
             .reduce(&model, &format!("{path}.reduction"))?;
-        FloatingBody::new(&self.name, &model, &red, self.pose, self.velocity)
+        let mut fb = FloatingBody::new(
+            &self.name,
+            &model,
+            &red,
+            self.pose.unwrap_or_default(),
+            self.velocity.unwrap_or_default(),
+        )?;
+        fb.fixed = self.fixed_coordinates();
+        Ok(fb)
+    }
+
+    /// Which frame coordinates (R_x, R_y, θ, Ṙ_x, Ṙ_y, θ̇) the description fixes: the pose
+    /// when given, the velocity when given (the frame origin is the reference, so unlike a rigid
+    /// body's centre of mass neither depends on the other).
+    pub fn fixed_coordinates(&self) -> [bool; 6] {
+        let (p, v) = (self.pose.is_some(), self.velocity.is_some());
+        [p, p, p, v, v, v]
     }
 }
