@@ -10,7 +10,12 @@
 //!    started from the previous evaluation and clamped to the arc range.
 //! 3. **Signed gap** (P − r(s*))·**n**_g with **n**_g the guide normal into the gap; the
 //!    penetration is δ = −gap when positive. A point whose projection is clamped at an end of the
-//!    guide and lies beyond it is not in contact.
+//!    guide and lies beyond it is not in contact itself: the slider outline from its neighbour
+//!    over the guide to it is clipped at the end, and the candidate stands for the clipped point
+//!    over the end (arc s_e, its depth there, `ContactPoint::over_guide` the fraction of the
+//!    segment still over the guide). The contact of a slider passing the end of its guide thus
+//!    shrinks continuously: the wetted length of the clipped segment goes to 0 as the
+//!    neighbour reaches the end, instead of a corner's share dropping out when it crosses.
 //! 4. **Reverse check**: M guide sample points spread over the arc interval under the slider are
 //!    tested against the slider rectangle. A guide point inside the slider is a contact whose
 //!    depth is measured along **n**_g to the slider face facing the guide. This finds penetrations
@@ -319,6 +324,13 @@ pub struct ContactPoint {
     /// touches, the half spacings to both neighbours when they penetrate too); the length a
     /// distributed (per unit length) law should multiply. Continuous in the configuration.
     pub tributary_length: f64,
+    /// Fraction [0, 1] of the point's share of the slider outline (the half segments to its two
+    /// neighbouring candidates, measured along the guide's tangent at the end) that lies over
+    /// the guide: 1 unless the share reaches past an end of the guide (then the point may be a
+    /// candidate past the end whose contact is clipped to the end, step 3 of the module docs).
+    /// A point law (one without a wetted length) multiplies its force by it, so the part of the
+    /// slider that passes the end leaves the contact continuously.
+    pub over_guide: f64,
 }
 
 /// A point load on the guide at an arc coordinate.
@@ -360,8 +372,19 @@ pub struct MultipointDetector {
     max_iterations: usize,
     /// Warm starts of the projections of the slider candidates (NaN: none yet).
     warm: Vec<f64>,
-    /// Projection of every slider candidate at the last evaluation: (s*, signed gap, active).
+    /// Projection of every slider candidate at the last evaluation: (s*, signed gap, active);
+    /// for a candidate past an end, that of its clipped point.
     projected: Vec<(f64, f64, bool)>,
+    /// Per slider candidate at the last evaluation: its projection is clamped at an end of the
+    /// guide and it lies past that end.
+    past_end: Vec<bool>,
+    /// Per slider candidate past an end: the neighbour over the guide its contact is clipped
+    /// towards and the fraction λ ∈ (0, 1) of the segment from that neighbour at which the end
+    /// lies (`None`: not clipped).
+    clip: Vec<Option<(usize, f64)>>,
+    /// Coordinate of every slider candidate along the outward tangent of a guide end, m
+    /// (scratch of [`Self::clip_at_ends`]).
+    along: Vec<f64>,
     points: Vec<ContactPoint>,
     loads: Vec<PointLoad>,
     class: ContactClass,
@@ -403,6 +426,9 @@ impl MultipointDetector {
             max_iterations: 50,
             warm: vec![f64::NAN; candidates],
             projected: vec![(f64::NAN, f64::NAN, false); candidates],
+            past_end: vec![false; candidates],
+            clip: vec![None; candidates],
+            along: vec![0.0; candidates],
             points: Vec::with_capacity(total),
             loads: Vec::with_capacity(total),
             class: ContactClass::Separated,
@@ -445,6 +471,31 @@ impl MultipointDetector {
     /// frame of the slider's body, m; `None` for other ids.
     pub fn candidate_body_point(&self, id: usize) -> Option<Vector2<f64>> {
         (id < self.warm.len()).then(|| self.shape.body_point(self.candidate(id).0))
+    }
+
+    /// Where the contact of slider candidate `id` (< [`candidate_count`](Self::candidate_count))
+    /// was evaluated at the last [`detect`](Self::detect), in the frame of the slider's body,
+    /// m: the candidate itself, or for a candidate past an end of the guide the point of the
+    /// slider outline over that end it was clipped to; `None` for other ids.
+    pub fn contact_body_point(&self, id: usize) -> Option<Vector2<f64>> {
+        if id >= self.warm.len() {
+            return None;
+        }
+        let local = self.candidate(id).0;
+        Some(match self.clip[id] {
+            Some((nb, lambda)) => {
+                let other = self.candidate(nb).0;
+                self.shape.body_point(other + lambda * (local - other))
+            }
+            None => self.shape.body_point(local),
+        })
+    }
+
+    /// Whether slider candidate `id` lay past an end of the guide at the last
+    /// [`detect`](Self::detect) (its projection clamped at the end and the point beyond it);
+    /// `false` for other ids. Corners are ids 0..4, counter-clockwise from (−L/2, −h/2).
+    pub fn past_end(&self, id: usize) -> bool {
+        self.past_end.get(id).copied().unwrap_or(false)
     }
 
     /// Projection of slider candidate `id` at the last [`detect`](Self::detect): (arc
@@ -586,9 +637,14 @@ impl MultipointDetector {
             let delta = -(p - r).dot(&ng);
             let active = delta > 0.0 && !beyond;
             self.projected[id] = (s, -delta, active);
+            self.past_end[id] = beyond;
+            self.clip[id] = None;
             if active {
                 self.push_point(guide, slider, id, source, s, delta, p, r, ng);
             }
+        }
+        if self.past_end.iter().any(|&b| b) {
+            self.clip_at_ends(guide, slider);
         }
         // Reverse check from guide samples spread over the arc interval under the slider corners.
         let m = self.guide_samples;
@@ -711,7 +767,129 @@ impl MultipointDetector {
             arc,
             contact: PointContact::new(penetration, -guide_normal, slider_point, guide_point, v),
             tributary_length: 0.0,
+            over_guide: 1.0,
         });
+    }
+
+    /// The two neighbours of slider candidate `id` along the slider outline (the previous and
+    /// the next candidate of its face chains).
+    fn outline_neighbours(&self, id: usize) -> [usize; 2] {
+        let n = self.face_points;
+        let last_of = |face: usize| if n > 0 { 4 + face * n + n - 1 } else { face };
+        let first_of = |face: usize| if n > 0 { 4 + face * n } else { (face + 1) % 4 };
+        if id < 4 {
+            return [last_of((id + 3) % 4), first_of(id)];
+        }
+        let (face, index) = ((id - 4) / n, (id - 4) % n);
+        let previous = if index == 0 { face } else { id - 1 };
+        let next = if index + 1 == n {
+            (face + 1) % 4
+        } else {
+            id + 1
+        };
+        [previous, next]
+    }
+
+    /// Clip the contact of the slider at an end of the guide, for each end some candidate lies
+    /// past. With a(P) = (P − r_e)·t_e the coordinate along the outward tangent t_e from the
+    /// end r_e (a > 0 past the end):
+    ///
+    /// - a candidate P_me past the end is not in contact itself; the slider outline from a
+    ///   neighbour P_nb over the guide (a_nb < 0) to it crosses the end's normal line at
+    ///   P = P_nb + λ (P_me − P_nb), λ = a_nb / (a_nb − a_me), and the candidate stands for P:
+    ///   arc s_e, penetration −(P − r_e)·n_e (the deeper of two such neighbours). Its segment
+    ///   to the neighbour is thereby clipped at the end: its wetted share shrinks to 0 as the
+    ///   neighbour reaches the end, and at the crossing (a_me → 0⁺) P is P_me;
+    /// - every active candidate gets `over_guide`, the fraction of its share of the outline
+    ///   (the half segments to its two neighbours, measured along t_e) with a ≤ 0, which a
+    ///   point law multiplies its force by: 1 for a share wholly over the guide, falling
+    ///   linearly to 0 as the share passes the end (also for the last corner to leave).
+    ///
+    /// Both make the contact force continuous in the configuration as the slider passes the
+    /// end (a jump there stalls an adaptive integrator).
+    fn clip_at_ends<G: GuideSurface + ?Sized>(&mut self, guide: &G, slider: &BodyState) {
+        let (s_min, s_max) = guide.arc_range();
+        for (s_e, sign) in [(s_min, -1.0), (s_max, 1.0)] {
+            let at_end = |&(k, past): &(usize, &bool)| *past && self.projected[k].0 == s_e;
+            if !self.past_end.iter().enumerate().any(|p| at_end(&p)) {
+                continue;
+            }
+            let (r_e, n_e) = (guide.point(s_e), guide.normal(s_e));
+            let t_e = guide.tangent(s_e) * sign;
+            for id in 0..self.along.len() {
+                let p = self.shape.world_point(slider, self.candidate(id).0);
+                self.along[id] = (p - r_e).dot(&t_e);
+            }
+            for me in 0..self.past_end.len() {
+                if self.past_end[me] && self.projected[me].0 == s_e {
+                    self.clip_candidate(guide, slider, me, (s_e, r_e, n_e));
+                }
+            }
+            let candidates = self.along.len();
+            for k in 0..self.points.len() {
+                let id = self.points[k].id;
+                if id < candidates {
+                    self.points[k].over_guide = self.share_over_guide(id);
+                }
+            }
+        }
+    }
+
+    /// Clip candidate `me` (past the end at arc `s_e`, point `r_e`, normal `n_e`) to the
+    /// deepest point of the outline over the end ([`Self::clip_at_ends`]).
+    fn clip_candidate<G: GuideSurface + ?Sized>(
+        &mut self,
+        guide: &G,
+        slider: &BodyState,
+        me: usize,
+        (s_e, r_e, n_e): (f64, Vector2<f64>, Vector2<f64>),
+    ) {
+        let a_me = self.along[me];
+        let p_me = self.shape.world_point(slider, self.candidate(me).0);
+        let mut best: Option<(usize, f64, Vector2<f64>, f64)> = None;
+        for nb in self.outline_neighbours(me) {
+            let a_nb = self.along[nb];
+            if self.past_end[nb] || !(a_nb < 0.0 && a_me > 0.0) {
+                continue;
+            }
+            let p_nb = self.shape.world_point(slider, self.candidate(nb).0);
+            let lambda = a_nb / (a_nb - a_me);
+            let p = p_nb + lambda * (p_me - p_nb);
+            let delta = -(p - r_e).dot(&n_e);
+            if best.is_none_or(|b| delta > b.3) {
+                best = Some((nb, lambda, p, delta));
+            }
+        }
+        let Some((nb, lambda, p, delta)) = best else {
+            return;
+        };
+        self.clip[me] = Some((nb, lambda));
+        self.projected[me] = (s_e, -delta, delta > 0.0);
+        if delta > 0.0 {
+            let source = self.candidate(me).1;
+            self.push_point(guide, slider, me, source, s_e, delta, p, r_e, n_e);
+        }
+    }
+
+    /// Fraction of candidate `id`'s share of the slider outline (the half segments to its two
+    /// neighbours, extents measured along the end's outward tangent: `along`) that lies over
+    /// the guide (a ≤ 0); for a share of no extent along the tangent, 1 over the guide, else 0.
+    fn share_over_guide(&self, id: usize) -> f64 {
+        let a = self.along[id];
+        let (mut over, mut extent) = (0.0, 0.0);
+        for nb in self.outline_neighbours(id) {
+            let mid = 0.5 * (a + self.along[nb]);
+            let (lo, hi) = if a <= mid { (a, mid) } else { (mid, a) };
+            extent += hi - lo;
+            over += (hi.min(0.0) - lo).max(0.0);
+        }
+        if extent > 0.0 {
+            over / extent
+        } else if a <= 0.0 {
+            1.0
+        } else {
+            0.0
+        }
     }
 
     /// Tributary (wetted) length of every active point, m: the integral of the penetration

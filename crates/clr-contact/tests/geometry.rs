@@ -464,6 +464,81 @@ fn multipoint_ignores_points_beyond_the_guide_end() {
     assert_eq!(det.points().len(), 3);
 }
 
+/// A flat slider 5 µm into a straight guide on [0, 1] slides off its end (clr issue 29). Closed
+/// forms, with the bottom face over [x_l, x_r] = [x_c − L/2, x_c + L/2] and its 5 candidates at
+/// x_k = x_l + k L/4:
+///
+/// - a distributed law p = k δ per unit length has the total force k δ o, o = the overlap
+///   length clamp(1 − x_l, 0, L) of the face with the guide: Σ l_i δ_i = δ o (the clipped
+///   profile is flat, so the lumping is exact; tolerance 1e-9 relative to δ L);
+/// - a point law weighted by `over_guide` gives candidate k the fraction of its share
+///   [x_k − L/8, x_k + L/8] ∩ [x_l, x_r] of the face that lies at x ≤ 1 (tolerance 1e-9);
+/// - both are continuous: across each crossing of a candidate (x_k = 1 ± 1e-9 m) the totals
+///   move by less than 1e-6 of their scale, where before the clipping a corner's share (L/8 of
+///   the area force, one whole point of the point law) dropped out.
+#[test]
+fn multipoint_force_leaves_continuously_past_the_guide_end() {
+    let ground = BodyState::default();
+    let guide = StraightGuide::new(ground, v(0.0, 0.0), 0.0, 1.0, true).unwrap();
+    let (l, h, depth) = (0.1, 0.02, 5e-6);
+    let shape = SliderShape::new(l, h, v(0.0, 0.0), 0.0).unwrap();
+    let mut det = MultipointDetector::new(shape, 3, 0).unwrap();
+    // bottom-face candidates in order along x: corner 0, face points 4, 5, 6, corner 1
+    let ids = [0usize, 4, 5, 6, 1];
+    let totals = |det: &mut MultipointDetector, xc: f64| {
+        det.detect(&guide, &BodyState::fixed(v(xc, 0.5 * h - depth), 0.0));
+        let wetted: f64 = det
+            .points()
+            .iter()
+            .map(|p| p.tributary_length * p.contact.penetration)
+            .sum();
+        let weights: f64 = det.points().iter().map(|p| p.over_guide).sum();
+        (wetted, weights)
+    };
+    let sp = 0.25 * l;
+    let mut xc = 0.9;
+    while xc < 1.0 + 0.5 * l + 0.01 {
+        let xl = xc - 0.5 * l;
+        let (wetted, _) = totals(&mut det, xc);
+        let overlap = (1.0 - xl).clamp(0.0, l);
+        assert!(
+            (wetted - depth * overlap).abs() <= 1e-9 * depth * l,
+            "x_c = {xc}: Σ l δ = {wetted:e}, closed form {:e}",
+            depth * overlap
+        );
+        for (k, &id) in ids.iter().enumerate() {
+            let xk = xl + k as f64 * sp;
+            let (lo, hi) = ((xk - 0.5 * sp).max(xl), (xk + 0.5 * sp).min(xl + l));
+            let expected = ((hi.min(1.0) - lo) / (hi - lo)).clamp(0.0, 1.0);
+            let got = det
+                .points()
+                .iter()
+                .find(|p| p.id == id)
+                .map_or(0.0, |p| p.over_guide);
+            assert!(
+                (got - expected).abs() <= 1e-9,
+                "x_c = {xc}, candidate {id} at x = {xk}: weight {got}, closed form {expected}"
+            );
+        }
+        assert!(det
+            .points()
+            .iter()
+            .all(|p| p.contact.slider_point.x <= 1.0 + 1e-12 && p.arc <= 1.0));
+        xc += 0.00137;
+    }
+    // continuity across each candidate's crossing of the end
+    for k in 0..5 {
+        let crossing = 1.0 + 0.5 * l - k as f64 * sp;
+        let (a, wa) = totals(&mut det, crossing - 1e-9);
+        let (b, wb) = totals(&mut det, crossing + 1e-9);
+        assert!(
+            (a - b).abs() <= 1e-6 * depth * l,
+            "Σ l δ {a:e} → {b:e} at {k}"
+        );
+        assert!((wa - wb).abs() <= 1e-6, "Σ weights {wa} → {wb} at {k}");
+    }
+}
+
 #[test]
 fn multipoint_buffers_are_reused() {
     // No allocation after construction: the output buffers keep their address and capacity.

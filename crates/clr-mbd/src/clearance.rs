@@ -580,21 +580,20 @@ impl Clearance {
         };
         // with an area law: every point gets it with its wetted length (continuous in the
         // configuration, so the law passes from line to area contact without a jump; NormalLaw
-        // is Copy, so this allocates nothing); without one: the line law
+        // is Copy, so this allocates nothing); without one: the line law, weighted by the
+        // fraction of the point's segment over the guide (1 but at a clipped guide end)
         let area = g.area_normal;
         let gf = g.detector.apply_forces(|p| {
             let pc = &p.contact;
             let vm = memory.impact_velocity(mem + p.id, pc.penetration, pc.normal_velocity);
-            let law = match area {
-                Some(a) => a.with_contact_length(p.tributary_length),
-                None => *normal,
-            };
-            let f_n = law.force(pc.penetration, pc.normal_velocity, vm);
+            let (law, w) = point_law(area, *normal, p);
+            let f_n = w * law.force(pc.penetration, pc.normal_velocity, vm);
             let f_t = friction.force(pc.tangential_velocity, f_n);
             rep.active_points += 1;
             rep.normal_force += f_n;
             rep.friction_force += f_t;
-            rep.dissipated_power += (f_n - law.elastic_force(pc.penetration)) * pc.normal_velocity
+            rep.dissipated_power += (f_n - w * law.elastic_force(pc.penetration))
+                * pc.normal_velocity
                 - f_t * pc.tangential_velocity;
             if pc.penetration > rep.penetration {
                 rep.penetration = pc.penetration;
@@ -701,15 +700,29 @@ impl Clearance {
                 .points()
                 .iter()
                 .map(|p| {
-                    let law =
-                        area.map_or(self.normal, |a| a.with_contact_length(p.tributary_length));
-                    elastic_energy(&law, p.contact.penetration)
+                    let (law, w) = point_law(area, self.normal, p);
+                    w * elastic_energy(&law, p.contact.penetration)
                 })
                 .sum();
         }
         (0..self.points())
             .map(|k| elastic_energy(&self.normal, self.gap(bi, bj, k).0))
             .sum()
+    }
+}
+
+/// The normal law of a slider-on-beam contact point and the weight of its force: the area law
+/// with the point's wetted length (weight 1), or the line law weighted by the fraction of the
+/// point's slider segment over the guide (`ContactPoint::over_guide`: below 1 only for a point
+/// clipped at an end of the guide, so a slider passing the end leaves it continuously).
+pub(crate) fn point_law(
+    area: Option<NormalLaw>,
+    line: NormalLaw,
+    p: &clr_contact::multipoint::ContactPoint,
+) -> (NormalLaw, f64) {
+    match area {
+        Some(a) => (a.with_contact_length(p.tributary_length), 1.0),
+        None => (line, p.over_guide),
     }
 }
 

@@ -39,6 +39,7 @@ mod face_pair;
 mod field;
 mod flexible;
 pub mod floating;
+mod guide_exit;
 mod ideal;
 pub mod impacts;
 mod init;

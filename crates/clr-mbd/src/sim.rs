@@ -9,6 +9,7 @@
 use clr_ode::{Control, Dopri5, Ndf, Observer, OdeSystem, Options, Output, Stats, StopReason};
 
 use crate::error::MbdError;
+use crate::guide_exit::GuideExits;
 use crate::impacts::ImpactTracker;
 use crate::linsys::LinearSolver;
 use crate::newton::{Integrand, JacobianMode, NewtonWs};
@@ -484,13 +485,16 @@ impl Model {
             projections: 0,
             max_viol: 0.0,
             impacts: ImpactTracker::new(self, opts.t0, y0),
+            exits: GuideExits::new(self),
         };
         let mut newton = NewtonWs::new(self, opts.jacobian, opts.linear_solver);
         match self.integrate(opts, (&mut solver, &mut newton), &mut run, progress) {
             Ok(()) => {
                 let stats = with_solver!(&solver, s => s.stats());
-                let mut res = run.results(self.columns(), stats);
-                res.notes = self.run_notes(opts);
+                let mut res = run.results(self.columns(), stats, self);
+                let mut notes = self.run_notes(opts);
+                notes.append(&mut res.notes);
+                res.notes = notes;
                 Ok(res)
             }
             Err(Stop::Mbd(e)) => Err(e),
@@ -512,7 +516,7 @@ impl Model {
                     run.y.copy_from_slice(&sol.y_final);
                 }
                 Err(MbdError::Failed {
-                    partial: Box::new(run.results(self.columns(), stats)),
+                    partial: Box::new(run.results(self.columns(), stats, self)),
                     source: e,
                 })
             }
@@ -569,6 +573,7 @@ impl Model {
                 |tp: f64, out: &mut [f64]| with_solver!(&*solver, s => s.interpolate(tp, out));
             run.impacts.step(self, (t, &run.y), &interp, &mut y_out);
             self.commit_contacts(&run.y);
+            run.exits.observe(self, t);
             let (pv, _) = self.violation(t, &run.y);
             run.max_viol = run.max_viol.max(pv);
             let mut restart = false;
@@ -657,11 +662,14 @@ struct Run {
     max_viol: f64,
     /// Impacts of the clearance joints located so far.
     impacts: ImpactTracker,
+    /// Sliders that passed an end of their guide so far (reported in the notes).
+    exits: GuideExits,
 }
 
 impl Run {
-    fn results(self, columns: Vec<String>, stats: Stats) -> Results {
+    fn results(self, columns: Vec<String>, stats: Stats, model: &Model) -> Results {
         Results {
+            notes: self.exits.notes(model),
             columns,
             data: self.data,
             stats,
@@ -669,7 +677,6 @@ impl Run {
             projections: self.projections,
             max_position_violation: self.max_viol,
             y_final: self.y,
-            notes: Vec::new(),
             impacts: self.impacts.into_impacts(),
             initial_conditions: None,
             warnings: Vec::new(),

@@ -233,7 +233,10 @@ impl Guide<'_> {
         cands.clear();
         let end = self.path.length();
         for id in 0..det.candidate_count() {
-            let cand = match (det.candidate_body_point(id), det.projection(id)) {
+            // a candidate past an end of the face at the point it was clipped to (held fixed
+            // on the slider: the motion of the clipped point along the outline, O(tilt), is
+            // left out of the Newton matrix)
+            let cand = match (det.contact_body_point(id), det.projection(id)) {
                 (Some(c), Some((s, _, _))) if s.is_finite() => {
                     self.candidate(c, s, s <= 0.0 || s >= end)
                 }
@@ -308,10 +311,14 @@ impl Guide<'_> {
         let v = slider.point_velocity(c.p) - c.vel;
         let (vn, vt) = (v.dot(n), v.dot(t));
         let vm = memory.impact_velocity(self.cl.mem + pt.id, delta.v, vn.v);
-        let law = self.area.map_or(self.cl.normal, |a| {
-            a.with_contact_length(pt.tributary_length)
-        });
+        let (law, w) = crate::clearance::point_law(self.area, self.cl.normal, pt);
         let (f_n, f_t, t_n) = law_forces(&law, &self.cl.friction, [delta, vn, vt], vm);
+        // the weight of a point clipped at a guide end held fixed (friction ∝ F_N)
+        let (f_n, f_t) = if w == 1.0 {
+            (f_n, f_t)
+        } else {
+            (f_n * w, f_t * w)
+        };
         self.add(out, &self.loads(c, n.scale(-f_n) + t.scale(f_t)), c, c);
         // the wetted length l: ∂Q/∂l = (∂Q/∂F_N)(∂F_N/∂l) with F_T following F_N (∂F_T/∂F_N)
         let f_l = law.contact_length_derivative(delta.v, vn.v, vm);
