@@ -82,6 +82,19 @@ impl Loads {
         self
     }
 
+    /// The self weight of every element of `model` under the gravitational acceleration
+    /// `g` = (g_x, g_y) in m/s²: a uniform global load ρA·g (N/m) on each element, whose
+    /// consistent (work-equivalent) nodal loads f = ∫Nᵀ ρA g dx ([`FrameElement::uniform_load`];
+    /// Przemieniecki 1968 ch. 5, Cook et al. 2002 ch. 2) are the exact gradient of the potential
+    /// −g·∫ρA (r + u) dx of the interpolated displacement field.
+    pub fn self_weight(mut self, model: &BeamModel, g: [f64; 2]) -> Self {
+        for (e, el) in model.elements.iter().enumerate() {
+            self.uniform_global
+                .push((e, [el.rho_a * g[0], el.rho_a * g[1]]));
+        }
+        self
+    }
+
     /// Assemble the global load vector (length 3 × nodes) of `model`.
     pub fn vector(&self, model: &BeamModel) -> Result<Vec<f64>, BeamError> {
         let mut f = vec![0.0; model.n_dof()];

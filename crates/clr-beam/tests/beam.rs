@@ -166,6 +166,39 @@ fn static_tip_load_and_uniform_load_exact_at_nodes() {
     assert_relative_eq!(sol.reactions[2], -q * L * L / 2.0, max_relative = 1e-10);
 }
 
+/// Self weight of a cantilever inclined at 30° (clamped at the lower end, gravity −9.81 m/s²
+/// along y): the transverse component q = −ρAg cos α gives the tip deflection qL⁴/(8EI) normal
+/// to the axis (Roark 8th ed. Table 8.1 case 2a) and the axial component p = −ρAg sin α the tip
+/// shortening pL²/(2EA) (a bar under a uniform axial load). Hermite cubics and linear axial
+/// elements with consistent loads are exact at the nodes: tolerance 1e-9 (round-off).
+#[test]
+fn self_weight_of_an_inclined_cantilever() {
+    let n = 4;
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let mut b = BeamModel::straight([0.0, 0.0], [L * c, L * s], n, mat(), sec()).unwrap();
+    b.support(0, Support::Clamped).unwrap();
+    let g = 9.81;
+    let sol = b
+        .solve_static(&Loads::new().self_weight(&b, [0.0, -g]))
+        .unwrap();
+    let w = mat().density * sec().area * g;
+    let (ei, ea) = (
+        mat().youngs_modulus * sec().second_moment,
+        mat().youngs_modulus * sec().area,
+    );
+    let (q, p) = (-w * c, -w * s);
+    let (ux, uy) = (sol.displacements[3 * n], sol.displacements[3 * n + 1]);
+    // axial along (c, s), transverse along (−s, c)
+    assert_relative_eq!(ux * c + uy * s, p * L * L / (2.0 * ea), max_relative = 1e-9);
+    assert_relative_eq!(
+        -ux * s + uy * c,
+        q * L.powi(4) / (8.0 * ei),
+        max_relative = 1e-9
+    );
+    // the support carries the whole weight ρA g L
+    assert_relative_eq!(sol.reactions[1], w * L, max_relative = 1e-9);
+}
+
 #[test]
 fn point_force_inside_an_element_via_load_row() {
     // Tip deflection of a cantilever under P at a: P a²(3L − a)/(6EI) (Roark, Table 8.1 case 1a).

@@ -70,6 +70,28 @@
 //! The radius in the closed forms is the journal radius r (as in the ROSS implementation,
 //! petrobras/ross `fluid_flow_coefficients.py`); using R instead changes the forces by O(c/r).
 //!
+//! # Viscous shear torque (Petroff)
+//!
+//! The pressure resultant passes through the journal centre; the shear stress of the film on
+//! the two surfaces adds a torque on each. With the velocity profile of the Reynolds equation
+//! (Couette plus Poiseuille), the shear stress on the journal is
+//! τ_j = μ r(ω_i − ω_j)/h − (h/2) ∂p/∂x, on the bearing τ_b = −μ r(ω_i − ω_j)/h − (h/2) ∂p/∂x
+//! (along ψ). Integrated over the surfaces (the pressure part by parts, ∂h/∂ψ = cε sin ψ), the
+//! torques about each surface's own centre are
+//!
+//! T_j = T_C − (e/2) F_t,   T_b = −T_C − (e/2) F_t,   T_C = −2πμr³L(ω_j − ω_i)/(c√(1 − ε²)),
+//!
+//! (Petroff's law at ε = 0, N.P. Petroff 1883; with eccentricity and the pressure-induced term
+//! (e/2)·W sin φ = (e/2)·F_t: Hamrock, Schmid & Jacobson, *Fundamentals of Fluid Film
+//! Lubrication*, 2nd ed. 2004, ch. 10 (journal and bearing friction of the short bearing); Pinkus
+//! & Sternlicht 1961, ch. 3). The Couette integral ∫dψ/(1 − ε cos ψ) = 2π/√(1 − ε²) is taken over
+//! the whole circumference: the cavitated half carries lubricant streamers that still shear (the
+//! usual assumption of these texts); the pressure term is exact for the π-film. The two torques
+//! differ by the load × eccentricity term and sum to −e F_t = −(**e** × **F**)·k̂, the moment that
+//! balances the pressure pair (F on the journal through its centre, −F on the bearing through
+//! its centre): the lubricant, massless, carries no net moment. See
+//! [`HydrodynamicBearing::joint_forces`] for how they are applied.
+//!
 //! # Near contact
 //!
 //! The closed forms diverge as (1 − ε²)^{−5/2}. A [`Transition`] (film threshold h_t, dry
@@ -212,6 +234,8 @@ pub struct FilmKinematics {
     pub line_of_centres_rate: f64,
     /// ω_i + ω_j, rad/s.
     pub angular_velocity_sum: f64,
+    /// ω_j − ω_i, rad/s: the sliding speed of the surfaces over r (Couette shear).
+    pub relative_angular_velocity: f64,
     /// Ω = ω_i + ω_j − 2γ̇, rad/s.
     pub wedge_speed: f64,
     /// εΩ = ε(ω_i + ω_j) − 2(ė·**t**)/c, 1/s: the wedge term, regular at e = 0 where Ω is not.
@@ -239,10 +263,28 @@ pub struct FilmJointForces {
     pub film: FilmForce,
     /// Weight w(h_min) ∈ [0, 1] of the dry contact force ([`Transition`]).
     pub dry_weight: f64,
-    /// (f_x, f_y, m) of the film force on the bearing body about its reference point.
+    /// Viscous shear torques of the film on the journal and on the bearing, each about its own
+    /// centre, at min(ε, ε_t), N·m.
+    pub torques: FilmTorques,
+    /// (f_x, f_y, m) of the film (pressure and shear) on the bearing body about its reference
+    /// point.
     pub bearing: GeneralizedForce,
-    /// (f_x, f_y, m) of the film force on the journal body about its reference point.
+    /// (f_x, f_y, m) of the film (pressure and shear) on the journal body about its reference
+    /// point.
     pub journal: GeneralizedForce,
+}
+
+/// Viscous shear torques of the film, each about the centre of its surface, N·m
+/// (counter-clockwise positive; module docs, *Viscous shear torque*).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct FilmTorques {
+    /// Couette part on the journal, T_C = −2πμr³L(ω_j − ω_i)/(c√(1 − ε²)) (Petroff at ε = 0); the
+    /// bearing's is −T_C.
+    pub couette: f64,
+    /// On the journal: T_j = T_C − (e/2) F_t.
+    pub journal: f64,
+    /// On the bearing: T_b = −T_C − (e/2) F_t.
+    pub bearing: f64,
 }
 
 impl FilmForce {
@@ -444,6 +486,41 @@ impl HydrodynamicBearing {
         )
     }
 
+    /// Couette (Petroff) shear torque on the journal about its centre, N·m, and its partials
+    /// (∂/∂ε in N·m, ∂/∂(ω_j − ω_i) in N·m·s): T_C = −2πμr³L(ω_j − ω_i)/(c√(1 − ε²)) from ε
+    /// (0 ≤ ε < 1) and the relative angular velocity ω_j − ω_i (rad/s). Petroff's law at ε = 0
+    /// (module docs, *Viscous shear torque*); the bearing carries −T_C.
+    pub fn couette_torque(
+        &self,
+        eccentricity_ratio: f64,
+        relative_angular_velocity: f64,
+    ) -> (f64, f64, f64) {
+        let (r, c) = (self.journal_radius, self.clearance());
+        let s = 1.0 - eccentricity_ratio * eccentricity_ratio;
+        let k = -2.0 * PI * self.viscosity * r * r * r * self.length / (c * s.sqrt());
+        let torque = k * relative_angular_velocity;
+        (torque, torque * eccentricity_ratio / s, k)
+    }
+
+    /// Shear torques of the film on the journal and the bearing (each about its centre) at ε
+    /// (0 ≤ ε < 1), relative angular velocity ω_j − ω_i (rad/s) and with the tangential film
+    /// force F_t (N) at that ε: T_j = T_C − (e/2)F_t, T_b = −T_C − (e/2)F_t, e = εc (module docs,
+    /// *Viscous shear torque*).
+    pub fn shear_torques(
+        &self,
+        eccentricity_ratio: f64,
+        relative_angular_velocity: f64,
+        film: FilmForce,
+    ) -> FilmTorques {
+        let (couette, _, _) = self.couette_torque(eccentricity_ratio, relative_angular_velocity);
+        let pressure = 0.5 * eccentricity_ratio * self.clearance() * film.tangential;
+        FilmTorques {
+            couette,
+            journal: couette - pressure,
+            bearing: -couette - pressure,
+        }
+    }
+
     /// Kinematics of the joint from the local coordinates (m) of the bearing centre on body i
     /// and of the journal centre on body j, and the two body states.
     pub fn kinematics(
@@ -470,6 +547,7 @@ impl HydrodynamicBearing {
             eccentricity_rate: e_dot.dot(&normal) / c,
             line_of_centres_rate: gamma_dot,
             angular_velocity_sum: omega_sum,
+            relative_angular_velocity: journal.angular_velocity - bearing.angular_velocity,
             wedge_speed: omega_sum - 2.0 * gamma_dot,
             wedge_term: (e * omega_sum - 2.0 * v_t) / c,
             normal,
@@ -517,11 +595,13 @@ impl HydrodynamicBearing {
     ///
     /// The pressure resultant on the journal passes through the journal centre, so **f**_j =
     /// F_r **n** + F_t **t** is applied at r_j^P; the reaction −**f**_j on the bearing is applied
-    /// on the same line (at r_j^P too). Its moment about the bearing centre, **e** × (−**f**_j),
-    /// is the net viscous torque of the film (the lubricant carries no net moment); with the
-    /// pair collinear the joint conserves the angular momentum of the system exactly (as
+    /// on the same line (at r_j^P too), so the pair is collinear. The shear torques
+    /// ([`FilmTorques`], at min(ε, ε_t)) are added as the couple T_j on the journal and
+    /// −T_j = T_b + e F_t on the bearing: with −**f**_j at r_j^P (moment −e F_t about the bearing
+    /// centre) the bearing's total moment about its centre is T_b. The added couples are equal
+    /// and opposite, so the joint still conserves the angular momentum of the system exactly (as
     /// [`ForceApplication::CommonPoint`](crate::revolute::ForceApplication::CommonPoint) does for
-    /// the dry law). The Petroff (Couette) friction torque on each surface is not modelled.
+    /// the dry law), and their power −T_j(ω_j − ω_i) counts with the film force's.
     ///
     /// The dry force is not included: add w·(dry generalized forces) as [`Transition`] says, e.g.
     /// `RevoluteClearance::contact(..).forces_from_laws_with(.., ForceApplication::CommonPoint)`
@@ -541,12 +621,16 @@ impl HydrodynamicBearing {
             radial: fr,
             tangential: ft,
         };
-        let (on_bearing, on_journal) = kin.generalized_forces(film);
+        let torques = self.shear_torques(eps, kin.relative_angular_velocity, film);
+        let (mut on_bearing, mut on_journal) = kin.generalized_forces(film);
+        on_journal.moment += torques.journal;
+        on_bearing.moment -= torques.journal;
         FilmJointForces {
             kinematics: kin,
             effective_eccentricity_ratio: eps,
             film,
             dry_weight: transition.dry_weight(kin.min_film_thickness),
+            torques,
             bearing: on_bearing,
             journal: on_journal,
         }
@@ -1233,7 +1317,88 @@ mod tests {
                 (out.journal.force - expect).norm() < 1e-12 * expect.norm(),
                 "{out:?}"
             );
-            assert!(out.journal.moment.abs() < 1e-15);
+            // the only moment is Petroff's torque, on the journal spinning at 50 rad/s
+            let petroff = 2.0 * PI * 0.04 * 9.95e-3f64.powi(3) * 10e-3 * 50.0 / c;
+            assert!(rel(out.journal.moment, -petroff) < 1e-12, "{out:?}");
+        }
+    }
+
+    /// Petroff's law at ε = 0 (N.P. Petroff 1883; Hamrock, Schmid & Jacobson 2004, ch. 10):
+    /// T = 2πμr³Lω/c against the journal's rotation relative to the bearing, equal and opposite
+    /// on the bearing, for both models, with the bearing turning too; and T_C(ε) → Petroff as
+    /// ε → 0. Tolerance 1e-14 (the same formula evaluated twice, round-off only).
+    #[test]
+    fn petroff_torque_at_zero_eccentricity() {
+        let t = Transition::new(1e-6, 0.0).unwrap();
+        let (mu, r, l): (f64, f64, f64) = (0.04, 9.95e-3, 10e-3);
+        for model in [BearingModel::ShortBearing, BearingModel::LongBearing] {
+            let b = bearing(model);
+            let c = b.clearance();
+            let (wi, wj) = (-12.0, 300.0);
+            let petroff = 2.0 * PI * mu * r.powi(3) * l * (wj - wi) / c;
+            let housing = BodyState::new(Vector2::zeros(), 0.0, Vector2::zeros(), wi);
+            let journal = BodyState::new(Vector2::zeros(), 0.0, Vector2::zeros(), wj);
+            let out = b.joint_forces(&t, Vector2::zeros(), Vector2::zeros(), &housing, &journal);
+            assert!(out.journal.force.norm() < 1e-30, "{out:?}");
+            assert!(rel(out.journal.moment, -petroff) < 1e-14, "{out:?}");
+            assert!(rel(out.bearing.moment, petroff) < 1e-14, "{out:?}");
+            assert!(rel(out.torques.couette, -petroff) < 1e-14);
+            let (tc, d_eps, d_w) = b.couette_torque(1e-4, wj - wi);
+            assert!(
+                rel(tc, -petroff) < 1e-8,
+                "O(ε²) from Petroff: {tc} vs {petroff}"
+            );
+            assert!(rel(d_w * (wj - wi), tc) < 1e-14);
+            assert!(rel(d_eps, tc * 1e-4 / (1.0 - 1e-8)) < 1e-14);
+        }
+    }
+
+    /// The shear torques of the short bearing at ε > 0 against an independent quadrature of the
+    /// shear stress over the surfaces (module docs, *Viscous shear torque*): the Couette part
+    /// μr(ω_i − ω_j)/h over the whole circumference and the Poiseuille part −(h/2)∂p/∂x on the
+    /// π-film, with the Ocvirk pressure p = (3μ/c²)(z² − L²/4)(εΩ sin ψ − 2ε̇ cos ψ)/(1 − ε cos ψ)³
+    /// differentiated in closed form and ∫(z² − L²/4)dz = −L³/6; 200 000 midpoints in ψ
+    /// (periodic or vanishing at the film ends: error far below the tolerance 1e-8). Steady and
+    /// squeezing states, both surfaces turning.
+    #[test]
+    fn short_bearing_shear_torques_match_the_integrated_shear_stress() {
+        let b = bearing(BearingModel::ShortBearing);
+        let (mu, r, l, c): (f64, f64, f64, f64) = (0.04, 9.95e-3, 10e-3, b.clearance());
+        for (eps, rate, wi, wj) in [(0.3, 0.0, 0.0, 300.0), (0.7, 20.0, -40.0, 150.0)] {
+            let omega = wi + wj; // γ̇ = 0
+            let film = b.force_wedge(eps, rate, omega);
+            let tq = b.shear_torques(eps, wj - wi, film);
+            let n = 200_000;
+            let (mut couette, mut poiseuille) = (0.0, 0.0);
+            // π-film start as PiFilm::Moving places it
+            let a = (-eps * omega).atan2(2.0 * rate) - 0.5 * PI;
+            for k in 0..n {
+                let psi = 2.0 * PI * (k as f64 + 0.5) / n as f64;
+                let h = c * (1.0 - eps * psi.cos());
+                couette += mu * r * (wi - wj) / h * r * (2.0 * PI / n as f64) * l * r;
+                let chi = a + PI * (k as f64 + 0.5) / n as f64;
+                let (s, co) = chi.sin_cos();
+                let den = 1.0 - eps * co;
+                let g = eps * omega * s - 2.0 * rate * co;
+                let dg = eps * omega * co + 2.0 * rate * s;
+                // dP/dψ of P = (3μ/c²) g/den³ (den' = ε sin ψ)
+                let dp = 3.0 * mu / (c * c) * (dg / den.powi(3) - 3.0 * g * eps * s / den.powi(4));
+                let hf = c * den;
+                // −(h/2)(1/r)∂p/∂ψ, times r dψ dz and the arm r; ∫(z² − L²/4)dz = −L³/6
+                poiseuille += -0.5 * hf * dp * (-l.powi(3) / 6.0) * r * (PI / n as f64);
+            }
+            let journal = couette + poiseuille;
+            // bearing: Couette reversed, Poiseuille the same
+            let bearing_t = -couette + poiseuille;
+            assert!(
+                rel(tq.journal, journal) < 1e-8,
+                "{eps}: {tq:?} vs {journal}"
+            );
+            assert!(
+                rel(tq.bearing, bearing_t) < 1e-8,
+                "{eps}: {tq:?} vs {bearing_t}"
+            );
+            assert!(rel(tq.couette, couette) < 1e-8);
         }
     }
 

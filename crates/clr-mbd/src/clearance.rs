@@ -454,8 +454,9 @@ impl Clearance {
         rep
     }
 
-    /// Add the film force of a lubricated revolute joint, report it (film force and minimum
-    /// film thickness; its power is all dissipated: a viscous film stores no energy), and
+    /// Add the film force and the film's shear (Petroff) torques of a lubricated revolute joint,
+    /// report them (film force and minimum film thickness; their power is all dissipated: a
+    /// viscous film stores no energy), and
     /// return the weight w of the dry laws.
     fn apply_film(
         &self,

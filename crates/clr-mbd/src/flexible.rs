@@ -4,7 +4,15 @@
 //! ground; its free DOF u (nodal displacements and rotations, small-deformation
 //! Euler–Bernoulli frame elements) enter q after the rigid-body coordinates with the constant
 //! mass matrix M_ff, stiffness K_ff and Rayleigh damping C_ff of clr-beam restricted to the free
-//! DOF: M_ff ü = −K_ff u − C_ff u̇ + f(t).
+//! DOF: M_ff ü = −K_ff u − C_ff u̇ + f(t) + f_g.
+//!
+//! Gravity g acts on the beam's distributed mass ρA as the consistent nodal loads of a uniform
+//! load ρA·g on every element, f_g = Σ_e ∫Nᵀ ρA g dx (transverse and axial components in the
+//! element frame: clr-beam `Loads::self_weight`; Przemieniecki, *Theory of Matrix Structural
+//! Analysis*, 1968, ch. 5). They are the exact gradient of the potential of the interpolated
+//! field, V = −g·(S₀ + ∫ρA u dx) = −g·S₀ − f_gᵀu with S₀ = Σ ρA L r_centroid the undeformed
+//! first mass moment, so the energy balance stays closed; being constant they add nothing to
+//! the Jacobian.
 
 use clr_beam::BeamModel;
 
@@ -34,6 +42,14 @@ pub(crate) struct FlexBeam {
     pub(crate) c: RowSparse,
     /// Nodal loads: the free index of the node's three DOF (`None` when constrained) and f(t).
     pub(crate) loads: Vec<([Option<usize>; 3], NodalLoadFn)>,
+    /// Consistent nodal loads of the self weight per unit acceleration along x and along y
+    /// (free ordering, kg: N per m/s²), and the undeformed first mass moment S₀ (kg·m).
+    weight: [Vec<f64>; 2],
+    mass_moment: [f64; 2],
+    /// f_g for the model's gravity (free ordering, N and N·m; empty without gravity, so that a
+    /// beam without gravity adds nothing, not even zeros) and its potential at u = 0, −g·S₀ (J).
+    gravity_load: Vec<f64>,
+    gravity_potential0: f64,
 }
 
 impl FlexBeam {
@@ -51,6 +67,20 @@ impl FlexBeam {
         let nf = map.free.len();
         let free =
             |a: &faer::Mat<f64>| RowSparse::from_fn(nf, |r, c| a[(map.free[r], map.free[c])]);
+        let unit_weight = |g: [f64; 2]| -> Result<Vec<f64>, MbdError> {
+            let full = clr_beam::Loads::new()
+                .self_weight(model, g)
+                .vector(model)
+                .map_err(err)?;
+            Ok(map.free.iter().map(|&d| full[d]).collect())
+        };
+        let mut mass_moment = [0.0; 2];
+        for e in model.elements() {
+            let [a, b] = e.nodes.map(|k| model.nodes()[k]);
+            for (s, (xa, xb)) in mass_moment.iter_mut().zip(a.into_iter().zip(b)) {
+                *s += e.rho_a * e.length * 0.5 * (xa + xb);
+            }
+        }
         let out = FlexBeam {
             name: name.to_string(),
             offset: 0,
@@ -63,8 +93,26 @@ impl FlexBeam {
             k: free(&k),
             c: free(&c),
             loads: Vec::new(),
+            weight: [unit_weight([1.0, 0.0])?, unit_weight([0.0, 1.0])?],
+            mass_moment,
+            gravity_load: Vec::new(),
+            gravity_potential0: 0.0,
         };
         Ok(out)
+    }
+
+    /// Set the gravitational acceleration `g` (m/s²) the beam's weight follows.
+    pub(crate) fn set_gravity(&mut self, g: [f64; 2]) {
+        self.gravity_load = if g == [0.0, 0.0] {
+            Vec::new()
+        } else {
+            let [wx, wy] = &self.weight;
+            wx.iter()
+                .zip(wy)
+                .map(|(x, y)| g[0] * x + g[1] * y)
+                .collect()
+        };
+        self.gravity_potential0 = -(g[0] * self.mass_moment[0] + g[1] * self.mass_moment[1]);
     }
 
     /// Number of free DOF.
@@ -80,9 +128,10 @@ impl FlexBeam {
             .collect()
     }
 
-    /// Add −K u − C u̇ + f(t) to `qf` (free ordering at `offset`) and return (the dissipated
-    /// power u̇ᵀ C u̇, the power of the nodal loads f(t)ᵀu̇), W. Load components on supported DOF
-    /// do no work and are dropped.
+    /// Add −K u − C u̇ + f(t) + f_g to `qf` (free ordering at `offset`) and return (the dissipated
+    /// power u̇ᵀ C u̇, the power of the nodal loads f(t)ᵀu̇), W; the weight's power is in the
+    /// potential energy ([`FlexBeam::energies`]). Load components on supported DOF do no work
+    /// and are dropped.
     pub(crate) fn forces(&self, t: f64, q: &[f64], qd: &[f64], qf: &mut [f64]) -> (f64, f64) {
         let (o, nf) = (self.offset, self.n_free());
         let (u, ud) = (&q[o..o + nf], &qd[o..o + nf]);
@@ -92,6 +141,9 @@ impl FlexBeam {
             let cu = self.c.row_dot(a, ud);
             qf[o + a] -= ku + cu;
             p += ud[a] * cu;
+        }
+        for (a, fg) in self.gravity_load.iter().enumerate() {
+            qf[o + a] += fg;
         }
         let mut p_in = 0.0;
         for (idx, f) in &self.loads {
@@ -106,8 +158,8 @@ impl FlexBeam {
         (p, p_in)
     }
 
-    /// (kinetic ½u̇ᵀMu̇, elastic ½uᵀKu), J.
-    pub(crate) fn energies(&self, q: &[f64], qd: &[f64]) -> (f64, f64) {
+    /// [kinetic ½u̇ᵀMu̇, gravitational −g·S₀ − f_gᵀu, elastic ½uᵀKu], J.
+    pub(crate) fn energies(&self, q: &[f64], qd: &[f64]) -> [f64; 3] {
         let (o, nf) = (self.offset, self.n_free());
         let (u, ud) = (&q[o..o + nf], &qd[o..o + nf]);
         let (mut ek, mut ee) = (0.0, 0.0);
@@ -115,7 +167,12 @@ impl FlexBeam {
             ek += 0.5 * ud[a] * self.m.row_dot(a, ud);
             ee += 0.5 * u[a] * self.k.row_dot(a, u);
         }
-        (ek, ee)
+        let ep = self.gravity_potential0
+            - (self.gravity_load.iter())
+                .zip(u)
+                .map(|(f, u)| f * u)
+                .sum::<f64>();
+        [ek, ep, ee]
     }
 }
 

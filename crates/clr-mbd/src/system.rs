@@ -537,8 +537,9 @@ impl Model {
             e.potential -= b.mass * (self.gravity.x * q[3 * k] + self.gravity.y * q[3 * k + 1]);
         }
         for b in &self.beams {
-            let (ek, ee) = b.energies(q, qd);
+            let [ek, ep, ee] = b.energies(q, qd);
             e.kinetic += ek;
+            e.potential += ep;
             e.elastic += ee;
         }
         for f in &self.floating {

@@ -436,6 +436,51 @@ fn flexible_beam_step_load_matches_modal_superposition() {
     }
 }
 
+/// A ground-fixed steel cantilever (0.5 m, 20 × 10 mm, 10 elements) inclined at 30° and
+/// released from rest under gravity (0, −9.81 m/s²) with Rayleigh α = 400 s⁻¹, β = 1e-5 s
+/// (every mode decays at least as e^{−αt/2}: e^{−60} by 0.3 s; β damps the stiff axial modes)
+/// settles on the static deflection under its
+/// own weight w = ρAg: tip deflection normal to the axis q L⁴/(8EI) with q = −w cos 30°
+/// (Timoshenko & Gere, *Mechanics of Materials*; Roark 8th ed. Table 8.1 case 2a) and axial
+/// tip displacement p L²/(2EA) with p = −w sin 30° (a bar under a uniform axial load). The
+/// consistent nodal loads make both exact at the nodes (Hermite cubics and linear axial
+/// elements), so the tolerance 1e-9 relative covers the integration error only (NDF rtol 1e-8,
+/// atol 1e-12 on a settled state: measured 3e-12 transverse, 8e-12 axial).
+#[test]
+fn beam_self_weight_settles_on_the_static_deflection() {
+    let (l, ne, g) = (0.5, 10, 9.81);
+    let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+    let mut mesh = cantilever(l, ne, steel(), 0.02, 0.01);
+    mesh.end = [l * c, l * s];
+    mesh.rayleigh = [400.0, 1e-5];
+    let sec = clr_beam::Section::rectangular(0.02, 0.01).unwrap();
+    let mat = clr_beam::Material::steel();
+    let w = mat.density * sec.area * g;
+    let (ei, ea) = (
+        mat.youngs_modulus * sec.second_moment,
+        mat.youngs_modulus * sec.area,
+    );
+    let mut b = ModelBuilder::new();
+    b.gravity(0.0, -g).flexible_beam("beam", mesh);
+    let mut model = b.build().unwrap();
+    let res = model
+        .simulate(&SimOptions::span(0.0, 0.3, 30).tolerances(1e-8, 1e-12))
+        .unwrap();
+    let last = |name: &str| *res.column(name).unwrap().last().unwrap();
+    let (ux, uy) = (
+        last(&format!("beam.n{ne}.u")),
+        last(&format!("beam.n{ne}.v")),
+    );
+    let transverse = -ux * s + uy * c;
+    let axial = ux * c + uy * s;
+    assert_relative_eq!(
+        transverse,
+        -w * c * l.powi(4) / (8.0 * ei),
+        max_relative = 1e-9
+    );
+    assert_relative_eq!(axial, -w * s * l * l / (2.0 * ea), max_relative = 1e-9);
+}
+
 /// A free body under a constant applied force and torque (no gravity): x = x0 + F t²/(2m),
 /// θ = τ t²/(2I) (Newton's second law in closed form).
 #[test]
@@ -556,8 +601,9 @@ fn add_pendulum_on_beam(b: &mut ModelBuilder) {
 }
 
 /// A rigid pendulum pinned to the tip node of an undamped steel cantilever (joint on a beam
-/// node): with gravity on the pendulum, the total energy (pendulum kinetic and potential, beam
-/// kinetic and elastic) is conserved, and the tip stays on the pendulum's pin.
+/// node): with gravity on the pendulum and the beam, the total energy (pendulum kinetic and
+/// potential, beam kinetic, potential and elastic) is conserved, and the tip stays on the
+/// pendulum's pin.
 #[test]
 fn pendulum_on_flexible_beam_conserves_energy() {
     let mut b = ModelBuilder::new();

@@ -1,6 +1,8 @@
 //! The input work W_in (`energy.work_in`) and the energy balance (`energy.balance` = kinetic +
 //! potential + elastic + dissipated − work_in) against independent formulations:
 //!
+//! - a beam released under its own weight: the balance stays constant with the weight in the
+//!   potential energy;
 //! - each applied load (torque, force at an offset point, torque between two bodies, actuator
 //!   force, nodal load on a beam) at constant magnitude: W_in = load × displacement of its
 //!   work-conjugate coordinate, a closed form from the recorded coordinates (1e-8 relative);
@@ -152,16 +154,13 @@ fn torque_between_and_actuator_work() {
     assert!(drift < 1e-8, "balance: {drift:e}");
 }
 
-/// A steel cantilever (0.5 m, 4 elements, 20 × 5 mm, undamped) with a constant tip load
-/// (F_y, M) applied at t = 0: W_in = F_y·v_tip + M·θ_tip (the tip displacements from rest, as
-/// recorded), and the balance (beam kinetic + elastic energy − W_in) stays constant. This fails
-/// when the nodal loads' power is not accounted.
-#[test]
-fn nodal_load_work_is_load_times_tip_displacement() {
+/// A steel strip (20 × 5 mm) from `start` to `end` (m), 4 elements, clamped at `start`,
+/// undamped, consistent mass.
+fn steel_strip(start: [f64; 2], end: [f64; 2]) -> BeamMesh {
     let steel = clr_beam::Material::steel();
-    let mesh = BeamMesh {
-        start: [0.0, 0.0],
-        end: [0.5, 0.0],
+    BeamMesh {
+        start,
+        end,
         elements: 4,
         material: BeamMaterial {
             youngs_modulus: steel.youngs_modulus,
@@ -178,7 +177,16 @@ fn nodal_load_work_is_load_times_tip_displacement() {
         }],
         rayleigh: [0.0, 0.0],
         mass: MassKindDesc::Consistent,
-    };
+    }
+}
+
+/// A steel cantilever (0.5 m, 4 elements, 20 × 5 mm, undamped) with a constant tip load
+/// (F_y, M) applied at t = 0: W_in = F_y·v_tip + M·θ_tip (the tip displacements from rest, as
+/// recorded), and the balance (beam kinetic + elastic energy − W_in) stays constant. This fails
+/// when the nodal loads' power is not accounted.
+#[test]
+fn nodal_load_work_is_load_times_tip_displacement() {
+    let mesh = steel_strip([0.0, 0.0], [0.5, 0.0]);
     let (fy, mz) = (-20.0, 1.5);
     let mut b = ModelBuilder::new();
     b.flexible_beam("beam", mesh).nodal_load(
@@ -205,6 +213,53 @@ fn nodal_load_work_is_load_times_tip_displacement() {
         max_abs(expected.iter().copied())
     );
     assert!(err < 1e-8, "W_in vs F·Δu: {err:e}");
+    assert!(drift < 1e-6, "balance: {drift:e}");
+}
+
+/// A steel cantilever (0.5 m, 4 elements, 20 × 5 mm, clamped at (0, 0.2) m, inclined at 30°,
+/// Rayleigh α = 50 s⁻¹) released from rest under gravity (0, −9.81 m/s²): its potential energy
+/// starts at m g y_c (the centroid's height y_c = 0.2 + 0.25 sin 30° m; closed form, 1e-12), the
+/// weight does no input work (W_in = 0: it is in the potential energy) and the balance
+/// (kinetic + potential + elastic + dissipated) stays constant to 1e-6 of the largest kinetic
+/// energy, the tolerance of the other balance tests at this rtol. This fails when the weight's
+/// nodal loads are not the gradient of the beam's potential energy.
+#[test]
+fn beam_weight_is_in_the_potential_energy() {
+    let steel = clr_beam::Material::steel();
+    let (l, (c, s), y0) = (
+        0.5,
+        (30f64.to_radians().cos(), 30f64.to_radians().sin()),
+        0.2,
+    );
+    let (width, depth) = (0.02, 0.005);
+    let mesh = BeamMesh {
+        rayleigh: [50.0, 0.0],
+        ..steel_strip([0.0, y0], [l * c, y0 + l * s])
+    };
+    let mut b = ModelBuilder::new();
+    b.gravity(0.0, -9.81).flexible_beam("beam", mesh);
+    let mut m = b.build().unwrap();
+    let r = m
+        .simulate(&SimOptions::span(0.0, 0.1, 200).tolerances(1e-10, 1e-13))
+        .unwrap();
+    let mass = steel.density * width * depth * l;
+    let pot0 = mass * 9.81 * (y0 + 0.5 * l * s);
+    let pot = col(&r, "energy.potential");
+    assert!(
+        (pot[0] - pot0).abs() < 1e-12 * pot0,
+        "E_pot(0) {} vs m g y_c {pot0}",
+        pot[0]
+    );
+    let kmax = max_abs(col(&r, "energy.kinetic"));
+    let dissipated = max_abs(col(&r, "energy.dissipated"));
+    let bal = col(&r, "energy.balance");
+    let drift = max_abs(bal.iter().map(|x| x - bal[0])) / kmax;
+    eprintln!(
+        "beam weight: max E_kin {kmax:.3e} J, dissipated {dissipated:.3e} J, balance drift \
+         {drift:.2e}"
+    );
+    assert!(dissipated > 0.1 * kmax, "the damping dissipates");
+    assert_eq!(max_abs(col(&r, "energy.work_in")), 0.0);
     assert!(drift < 1e-6, "balance: {drift:e}");
 }
 

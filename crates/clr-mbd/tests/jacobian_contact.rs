@@ -530,9 +530,10 @@ fn lugre_and_guide_samples_are_on_the_fallback() {
 }
 
 /// A lubricated revolute clearance joint (short-bearing film + dry Hertz law): the analytic
-/// Newton-matrix block (film force through its exact local partials, chained by dual numbers;
-/// the dry laws weighted by w(h_min)) against central differences of the whole model, in the
-/// film regime, beyond the film threshold (force frozen in ε) and in contact.
+/// Newton-matrix block (film force through its exact local partials, chained by dual numbers,
+/// and the shear torque; the dry laws weighted by w(h_min)) against central differences of the
+/// whole model, in the film regime, beyond the film threshold (force frozen in ε) and in
+/// contact.
 #[test]
 fn lubricated_revolute_jacobians_match_central_differences() {
     let text = r#"

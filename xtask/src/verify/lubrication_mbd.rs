@@ -12,6 +12,11 @@
 //! Parameters (reconstructed test rig, not from a paper): R = 10 mm, r = 9.9 mm, L = 10 mm
 //! (L/D = 0.5), μ = 0.05 Pa·s, ω = 200 rad/s, W = 60 N (ε ≈ 0.8: the short-bearing rigid
 //! rotor is stable for every mass above ε ≈ 0.76, so the journal settles instead of whirling).
+//!
+//! The drive torque (the driver's reaction moment) is the film's shear torque on the journal:
+//! at the loaded equilibrium T = 2πμr³Lω/(c√(1 − ε²)) + (e/2)·W sin φ (Couette plus
+//! pressure-induced shear; Hamrock, Schmid & Jacobson 2004, ch. 10) with ε, φ of the Ocvirk
+//! equilibrium above, and with no load (ε = 0) Petroff's T = 2πμr³Lω/c (N.P. Petroff 1883).
 
 use clr::spec::run::{execute, resolve_text};
 
@@ -30,10 +35,49 @@ const SOURCE: &str = "Ocvirk short-bearing equilibrium: W = μUL³ε/(4c²(1−�
                       tan φ = π√(1−ε²)/(4ε) (Hamrock, Schmid & Jacobson 2004, §12.3)";
 
 pub fn cases(filter: &Filter) -> Vec<Case> {
-    if !filter.wants("lubrication.mbd") {
-        return Vec::new();
+    let mut out = Vec::new();
+    if filter.wants("lubrication.mbd.steady_load") {
+        out.extend(steady_load());
     }
-    steady_load()
+    if filter.wants("lubrication.mbd.petroff") {
+        out.push(petroff());
+    }
+    out
+}
+
+/// Petroff's torque 2πμr³Lω/c scaled by 1/√(1 − ε²), N·m.
+fn couette_torque(eps: f64) -> f64 {
+    let c = R_BEARING - R_JOURNAL;
+    2.0 * std::f64::consts::PI * VISCOSITY * R_JOURNAL.powi(3) * LENGTH * OMEGA
+        / (c * (1.0 - eps * eps).sqrt())
+}
+
+/// The unloaded journal (ε = 0): drive torque against Petroff's law.
+fn petroff() -> Case {
+    let reference = couette_torque(0.0);
+    let case = Case::new(
+        "lubrication.mbd.petroff",
+        "drive torque of an unloaded lubricated journal at ω = 200 rad/s (ε = 0)",
+        "N·m",
+        "Petroff's law T = 2πμr³Lω/c (N.P. Petroff 1883; Hamrock, Schmid & Jacobson 2004, \
+         ch. 10); the journal stays centred, so the tolerance 1e-9 relative is round-off",
+    );
+    match run(0.0) {
+        Ok(o) if o.error.is_none() => {
+            let m = o.results.column("spin.M").unwrap_or_default();
+            let t = m.last().copied().unwrap_or(f64::NAN);
+            case.relative(t, reference, 1e-9)
+                .note(format!("spin.M at {T_END} s: {t:.9e} N·m"))
+        }
+        Ok(o) => case.failed(reference, format!("the run failed: {:?}", o.error)),
+        Err(e) => case.failed(reference, format!("the model did not build: {e}")),
+    }
+}
+
+fn run(load: f64) -> Result<clr::spec::run::Outcome, String> {
+    resolve_text("<lubricated journal>", &model(load), &[], None, None)
+        .map_err(|e| e.to_string())
+        .and_then(|job| execute(&job, None, None, None).map_err(|e| e.to_string()))
 }
 
 /// The load capacity (N) of the short bearing at eccentricity ratio ε.
@@ -59,52 +103,18 @@ fn ocvirk_eccentricity(load: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
-fn model() -> String {
+/// The rig (tests/data/lubricated_journal.toml: the constants above, NDF rtol 1e-9, 0.3 s) with
+/// a constant downward load (N) on the journal centre when `load` is not 0.
+fn model(load: f64) -> String {
+    let rig = include_str!("../../../tests/data/lubricated_journal.toml");
+    if load == 0.0 {
+        return rig.to_string();
+    }
     format!(
-        r#"
-[model]
-name = "lubricated_journal"
-
-[[body]]
-name = "journal"
-mass = 1.0
-inertia = 1e-4
-position = [0.0, 0.0]
-angle = 0.0
-velocity = [0.0, 0.0]
-angular_velocity = {OMEGA}
-
-[[driver]]
-name = "spin"
-type = "angle"
-body = "journal"
-motion = {{ type = "linear", initial = 0.0, rate = {OMEGA} }}
-
-[[force]]
-name = "load"
-type = "force"
-at = {{ body = "journal", at = [0.0, 0.0] }}
-fy = {{ type = "constant", value = {fy} }}
-
-[[clearance]]
-name = "J"
-type = "revolute"
-bearing = {{ body = "ground", at = [0.0, 0.0] }}
-journal = {{ body = "journal", at = [0.0, 0.0] }}
-bearing_radius = {R_BEARING}
-journal_radius = {R_JOURNAL}
-normal = {{ law = "hertz", stiffness = 1e10, restitution = 0.9, damping = "lankarani-nikravesh" }}
-lubrication = {{ model = "short_bearing", viscosity = {VISCOSITY}, length = {LENGTH}, film_threshold = 1e-6 }}
-
-[solver]
-method = "ndf"
-rtol = 1e-9
-
-[output]
-t_end = {T_END}
-intervals = 300
-"#,
-        fy = -LOAD
+        "{rig}\n[[force]]\nname = \"load\"\ntype = \"force\"\n\
+         at = {{ body = \"journal\", at = [0.0, 0.0] }}\n\
+         fy = {{ type = \"constant\", value = {fy} }}\n",
+        fy = -load
     )
 }
 
@@ -112,10 +122,10 @@ fn steady_load() -> Vec<Case> {
     let eps_ref = ocvirk_eccentricity(LOAD);
     let eps0 = eps_ref.max(1e-3);
     let phi_ref = (std::f64::consts::PI * (1.0 - eps0 * eps0).sqrt() / (4.0 * eps0)).atan();
-    let run = resolve_text("<lubricated journal>", &model(), &[], None, None)
-        .map_err(|e| e.to_string())
-        .and_then(|job| execute(&job, None, None, None).map_err(|e| e.to_string()));
-    let (eps, phi, note) = match run {
+    let torque_ref =
+        couette_torque(eps_ref) + 0.5 * eps_ref * (R_BEARING - R_JOURNAL) * LOAD * phi_ref.sin();
+    let mut torque = f64::NAN;
+    let (eps, phi, note) = match run(LOAD) {
         Ok(o) if o.error.is_none() => {
             let ex = o.results.column("J.ex").unwrap_or_default();
             let ey = o.results.column("J.ey").unwrap_or_default();
@@ -128,6 +138,8 @@ fn steady_load() -> Vec<Case> {
             // attitude angle: between the load line (−y) and the line of centres
             let phi = (-y / e).clamp(-1.0, 1.0).acos();
             let film = o.results.column("J.film_force").unwrap_or_default();
+            let spin = o.results.column("spin.M").unwrap_or_default();
+            torque = spin.last().copied().unwrap_or(f64::NAN);
             (
                 e / c,
                 phi,
@@ -158,6 +170,18 @@ fn steady_load() -> Vec<Case> {
             SOURCE,
         )
         .relative(phi, phi_ref, 0.01)
-        .note(note),
+        .note(note.clone()),
+        Case::new(
+            "lubrication.mbd.steady_load.drive_torque",
+            "drive torque of the loaded journal at equilibrium",
+            "N·m",
+            "T = 2πμr³Lω/(c√(1−ε²)) + (e/2)·W sin φ at the Ocvirk equilibrium ε, φ (Hamrock, \
+             Schmid & Jacobson 2004, ch. 10 and §12.3); tolerance 1 % as ε and φ",
+        )
+        .relative(torque, torque_ref, 0.01)
+        .note(format!(
+            "spin.M {torque:.6e} N·m vs {torque_ref:.6e} N·m (Couette {:.6e}); {note}",
+            couette_torque(eps_ref)
+        )),
     ]
 }

@@ -567,6 +567,62 @@ fn beam_step_case(out: &mut Vec<Case>) {
     });
 }
 
+/// Steel cantilever (0.5 m, 20 × 10 mm, E = 207 GPa, ρ = 7800 kg/m³, 10 elements) released from
+/// rest under its own weight (gravity −9.81 m/s², Rayleigh α = 400 s⁻¹, β = 1e-5 s: every mode
+/// decays at least as e^{−αt/2}, e^{−60} by 0.3 s), integrated by clr-mbd as a ground-fixed
+/// flexible beam: tip deflection at 0.3 s against the static deflection under a uniform load
+/// w = ρAg, wL⁴/(8EI) (Timoshenko & Gere, *Mechanics of Materials*; Roark's *Formulas for
+/// Stress and Strain*, 8th ed., Table 8.1 case 2a).
+fn beam_gravity_case(out: &mut Vec<Case>) {
+    let src =
+        "static tip deflection of a cantilever under its own weight wL⁴/(8EI) (Roark 8th ed. \
+               Table 8.1 case 2a); the consistent nodal loads make the FE nodal deflection exact, \
+               so the tolerance 1e-8 relative is the integration's (NDF rtol 1e-8 on the settled \
+               state) and the decay of the transient (e^−60)";
+    let case = Case::new(
+        "mbd.beam.gravity_cantilever_tip",
+        "tip deflection of a steel cantilever (0.5 m, 20 × 10 mm) under gravity, 0.3 s",
+        "m",
+        src,
+    );
+    let (l, ne, g): (f64, usize, f64) = (0.5, 10, 9.81);
+    let steel = clr_beam::Material::steel();
+    let (area, second_moment) = (0.02 * 0.01, 0.02 * 0.01f64.powi(3) / 12.0);
+    let w = steel.density * area * g;
+    let reference = -w * l.powi(4) / (8.0 * steel.youngs_modulus * second_moment);
+    let run = || -> Result<(f64, String), String> {
+        let sec = clr_beam::Section::rectangular(0.02, 0.01).map_err(|e| e.to_string())?;
+        let model = clr_beam::BeamModel::straight([0.0, 0.0], [l, 0.0], ne, steel, sec)
+            .map_err(|e| e.to_string())?;
+        let beam = clr_mbd::BeamMesh {
+            end: [l, 0.0],
+            rayleigh: [400.0, 1e-5],
+            ..mesh(ne, [0.02, 0.01], &model)
+        };
+        let mut b = ModelBuilder::new();
+        b.gravity(0.0, -g).flexible_beam("beam", beam);
+        let mut m = b.build().map_err(|e| e.to_string())?;
+        let res = m
+            .simulate(&SimOptions::span(0.0, 0.3, 30).tolerances(1e-8, 1e-12))
+            .map_err(|e| e.to_string())?;
+        let v = col(&res, &format!("beam.n{ne}.v"));
+        let tip = *v.last().ok_or("no output")?;
+        Ok((
+            tip,
+            format!(
+                "NDF rtol 1e-8: tip {tip:.6e} m vs wL⁴/(8EI) {reference:.6e} m (w = {w:.3} N/m), \
+                 relative error {:.1e}, {} steps",
+                (tip / reference - 1.0).abs(),
+                res.stats.accepted
+            ),
+        ))
+    };
+    out.push(match run() {
+        Ok((v, note)) => case.relative(v, reference, 1e-8).note(note),
+        Err(e) => case.failed(reference, e),
+    });
+}
+
 /// Energy balance of a dissipative, undriven system: a rod on a clearance pin with
 /// Lankarani–Nikravesh damping (c_e = 0.5), Coulomb friction (μ = 0.1) and a rotational damper
 /// to the ground; E_kin + E_pot + E_el + E_dissipated is constant.
@@ -850,6 +906,9 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
     }
     if filter.wants("mbd.flexible.beam_step") {
         beam_step_case(&mut out);
+    }
+    if filter.wants("mbd.beam.gravity_cantilever_tip") {
+        beam_gravity_case(&mut out);
     }
     if filter.wants("mbd.flexible.floating_pendulum") {
         floating_pendulum_cases(&mut out);

@@ -313,6 +313,9 @@ impl Compiler {
         for (f, node, col) in std::mem::take(&mut self.ties) {
             self.floating[f].ties.push((node, col));
         }
+        for b in self.beams.iter_mut() {
+            b.set_gravity([gravity.x, gravity.y]);
+        }
         let Compiler {
             bodies,
             fixed,

@@ -152,7 +152,8 @@ pub(super) fn revolute(
 /// Ω = ω_i + ω_j − 2γ̇, carried as dual numbers; the film force F(ε, ε̇, Ω) enters through its
 /// exact local partials (`HydrodynamicBearing::film_force`: the ε column is zero where the
 /// force is frozen beyond ε_t), F = F_r n + F_t t on the journal at its centre and −F on the
-/// bearing on the same line. Returns the dry laws' weight w(h_min) as a dual number.
+/// bearing on the same line, and the shear torque ±T_j ([`shear_torque`]) on journal and
+/// bearing. Returns the dry laws' weight w(h_min) as a dual number.
 fn film_force(
     cl: &Clearance,
     film: &crate::clearance::Film,
@@ -169,9 +170,17 @@ fn film_force(
     let h_min = -len + c;
     let tr = &film.transition;
     let weight = variation(h_min) * tr.dry_weight_derivative(h_min.v) + tr.dry_weight(h_min.v);
+    let seeds = [(cl.i, 0), (cl.j, 6)];
     // at coincident centres the line of centres (and γ̇) is undefined: the force is that of
-    // clr-contact's evaluation, its derivatives there are left out (a simplified Newton matrix)
+    // clr-contact's evaluation, its derivatives there are left out (a simplified Newton
+    // matrix); the Petroff torque T_C(0, ω_j − ω_i) keeps its ω-derivative
     if !(len.v > f64::MIN_POSITIVE && len.v.is_finite()) {
+        let (tc, _, d_w) = film
+            .bearing
+            .couette_torque(0.0, sj.angular_velocity - si.angular_velocity);
+        let torque = variation(bj.w - bi.w) * d_w + tc;
+        out.add_frame(cl.i, &[D::cst(0.0), D::cst(0.0), -torque], &seeds);
+        out.add_frame(cl.j, &[D::cst(0.0), D::cst(0.0), torque], &seeds);
         return weight;
     }
     let n = e.scale(D::cst(1.0) / len);
@@ -184,7 +193,7 @@ fn film_force(
     let kin = film
         .bearing
         .kinematics(g.bearing_centre(), g.journal_centre(), si, sj);
-    let (f, jac, _) = film.bearing.film_force(&kin, tr);
+    let (f, jac, eps_eff) = film.bearing.film_force(&kin, tr);
     let comp = |v: f64, de: f64, dr: f64, dw: f64| {
         variation(eps) * de + variation(rate) * dr + variation(omega) * dw + v
     };
@@ -201,10 +210,34 @@ fn film_force(
         jac.d_wedge_speed.tangential,
     );
     let fj = n.scale(fr) + t.scale(ft);
-    let seeds = [(cl.i, 0), (cl.j, 6)];
-    out.add_frame(cl.i, &[-fj.x, -fj.y, (pj - bi.r).cross(-fj)], &seeds);
-    out.add_frame(cl.j, &[fj.x, fj.y, (pj - bj.r).cross(fj)], &seeds);
+    let torque = shear_torque(film, (eps, eps_eff), bj.w - bi.w, ft, &kin);
+    out.add_frame(
+        cl.i,
+        &[-fj.x, -fj.y, (pj - bi.r).cross(-fj) - torque],
+        &seeds,
+    );
+    out.add_frame(cl.j, &[fj.x, fj.y, (pj - bj.r).cross(fj) + torque], &seeds);
     weight
+}
+
+/// The film's shear torque on the journal, T_j = T_C(ε, ω_j − ω_i) − (εc/2)F_t (clr-contact
+/// `HydrodynamicBearing::shear_torques`), as a dual number: the Couette part through its local
+/// partials (`couette_torque`), the pressure part as the product of duals. Beyond ε_t both are
+/// evaluated at the frozen ε_t (no ε dependence), as the right-hand side does.
+fn shear_torque(
+    film: &crate::clearance::Film,
+    (eps, eps_eff): (D<N>, f64),
+    relative_w: D<N>,
+    ft: D<N>,
+    kin: &clr_contact::lubrication::FilmKinematics,
+) -> D<N> {
+    let clamped = eps_eff < kin.eccentricity_ratio;
+    let eps = if clamped { D::cst(eps_eff) } else { eps };
+    let (tc, d_eps, d_w) = film
+        .bearing
+        .couette_torque(eps_eff, kin.relative_angular_velocity);
+    let couette = variation(eps) * d_eps + variation(relative_w) * d_w + tc;
+    couette - eps * ft * (0.5 * film.bearing.clearance())
 }
 
 /// The derivative part of `x` (value 0): `variation(x) * k + v` is the first-order expansion
