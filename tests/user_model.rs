@@ -325,3 +325,30 @@ fn shipped_models_give_no_warning() {
         assert_eq!(s["warnings"], serde_json::json!([]), "{}", f.display());
     }
 }
+
+/// A step-budget failure gives advice that fits the run: under NDF it does not suggest the
+/// stiff solver again (it names what the last state shows instead); under Dormand–Prince it
+/// suggests NDF.
+#[test]
+fn step_budget_advice_fits_the_method() {
+    let dir = scratch("advice");
+    let shipped = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("models/slider_crank.toml"),
+    )
+    .unwrap();
+    assert!(shipped.contains("max_steps = 1000000\n") && shipped.contains("method = \"dopri5\"\n"));
+    for (method, stiff) in [("ndf", true), ("dopri5", false)] {
+        let text = shipped
+            .replace("max_steps = 1000000\n", "max_steps = 20\n")
+            .replace("method = \"dopri5\"\n", &format!("method = \"{method}\"\n"));
+        let (code, err, _) = run(&dir, &write(&dir, &text), &[]);
+        assert_ne!(code, 0, "{method}: {err}");
+        assert!(err.contains("step budget of 20"), "{method}: {err}");
+        assert_eq!(
+            err.contains("use the stiff solver (Ndf)"),
+            !stiff,
+            "{method}: {err}"
+        );
+        assert_eq!(err.contains("already in use"), stiff, "{method}: {err}");
+    }
+}

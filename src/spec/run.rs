@@ -522,10 +522,14 @@ pub fn execute(
                     let metrics = generic_metrics(&res, s);
                     Ok(Outcome::from_results(s, res, metrics, None).with_flexible(flexible))
                 }
-                Err(clr_mbd::MbdError::Failed { source, partial }) => {
+                Err(clr_mbd::MbdError::Failed {
+                    source,
+                    partial,
+                    cause,
+                }) => {
                     let msg = format!(
                         "{source} (in the model file these are [solver] max_steps, rtol, atol, \
-                         method)"
+                         method){cause}"
                     );
                     let metrics = generic_metrics(&partial, s);
                     Ok(Outcome::from_results(s, *partial, metrics, Some(msg))

@@ -208,10 +208,14 @@ pub enum MbdError {
     /// successful run (see [`Results`]), with the statistics and the last state reached
     /// (`partial.y_final`); `source` is clr-ode's error with its own partial solution (the
     /// states at the output times) and says what to change.
-    #[error("integration failed: {source}{}", rows_note(partial))]
+    #[error("integration failed: {source}{}{cause}", rows_note(partial))]
     Failed {
         /// The integrator's error.
         source: OdeError,
+        /// What the model shows at the last state reached that likely caused the failure (the
+        /// deepest contact against its clearance, the largest contact force, the fastest body),
+        /// as a sentence starting with `; ` (empty when nothing stands out).
+        cause: String,
         /// The results recorded up to the failure.
         partial: Box<Results>,
     },

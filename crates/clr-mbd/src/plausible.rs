@@ -435,6 +435,79 @@ impl Model {
         }
     }
 
+    /// What the state y at t (the last one an integrator failure reached) shows that likely
+    /// caused the failure: the deepest contact against its clearance (or its shapes' size), the
+    /// largest contact force against the weight of the mechanism, the fastest body; `""` when
+    /// the state is empty. A sentence starting with `; `.
+    pub(crate) fn failure_cause(&mut self, t: f64, y: &[f64]) -> String {
+        let n = self.n;
+        if y.len() < 2 * n || y.iter().any(|v| !v.is_finite()) {
+            return "; the state reached is not finite: look for a force that grows without \
+                    bound (a penetration deep against the contact's size, a stiffness in the \
+                    wrong unit)"
+                .into();
+        }
+        let mut parts = Vec::new();
+        if !self.clearances.is_empty() {
+            self.load_bristles(y);
+            self.eval_forces(t, &y[..n], &y[n..2 * n]);
+            let deepest = self
+                .clearances
+                .iter()
+                .zip(&self.contacts)
+                .filter_map(|(c, r)| {
+                    let scale = match contact_scale(c) {
+                        Scale::Clearance(cl, _) => cl,
+                        Scale::Size(s) => s,
+                        Scale::None => return None,
+                    };
+                    (r.penetration > 0.0).then(|| (c.name.as_str(), r.penetration, scale))
+                })
+                .max_by(|a, b| (a.1 / a.2).total_cmp(&(b.1 / b.2)));
+            if let Some((name, d, s)) = deepest {
+                parts.push(format!(
+                    "the deepest contact is {name}, {d:.3e} m in ({:.2} of its clearance or size \
+                     {s:.3e} m)",
+                    d / s
+                ));
+            }
+            let strongest = self
+                .clearances
+                .iter()
+                .zip(&self.contacts)
+                .max_by(|a, b| a.1.normal_force.abs().total_cmp(&b.1.normal_force.abs()));
+            let weight: f64 = self.bodies.iter().map(|b| b.mass).sum::<f64>() * 9.81;
+            if let Some((c, r)) = strongest.filter(|(_, r)| r.normal_force != 0.0) {
+                parts.push(format!(
+                    "the largest contact force is {:.3e} N in {} ({:.1e} times the mechanism's \
+                     weight at 9.81 m/s²)",
+                    r.normal_force,
+                    c.name,
+                    r.normal_force.abs() / weight.max(f64::MIN_POSITIVE)
+                ));
+            }
+        }
+        let sc = self.scales(&y[..n]);
+        let fastest = (0..self.bodies.len())
+            .map(|k| {
+                let v =
+                    y[n + 3 * k].hypot(y[n + 3 * k + 1]) + y[n + 3 * k + 2].abs() * sc.extent[k];
+                (k, v)
+            })
+            .max_by(|a, b| a.1.total_cmp(&b.1));
+        if let Some((k, v)) = fastest.filter(|(_, v)| *v > MAX_TIP_SPEED) {
+            parts.push(format!(
+                "body {} moves at {v:.3e} m/s (above {MAX_TIP_SPEED} m/s)",
+                self.body_names[k]
+            ));
+        }
+        if parts.is_empty() {
+            String::new()
+        } else {
+            format!("; at the last state reached, {}", parts.join("; "))
+        }
+    }
+
     fn scales_extent(&self, k: usize) -> f64 {
         self.anchors()
             .iter()

@@ -400,9 +400,14 @@ impl Model {
                 }
                 Ok(r)
             }
-            Err(MbdError::Failed { partial, source }) => Err(MbdError::Failed {
+            Err(MbdError::Failed {
+                partial,
+                source,
+                cause,
+            }) => Err(MbdError::Failed {
                 partial: Box::new(with_report(self, *partial)),
                 source,
+                cause,
             }),
             Err(e) => Err(e),
         }
@@ -515,9 +520,11 @@ impl Model {
                 if sol.y_final.len() == run.y.len() {
                     run.y.copy_from_slice(&sol.y_final);
                 }
+                let cause = self.failure_cause(sol.t_final, run.y.as_slice());
                 Err(MbdError::Failed {
                     partial: Box::new(run.results(self.columns(), stats, self)),
                     source: e,
+                    cause,
                 })
             }
         }

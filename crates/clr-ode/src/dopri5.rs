@@ -93,6 +93,7 @@ fn all_finite(x: &[f64]) -> bool {
 
 impl Method for Dopri5Method {
     const SUPPORTS_MASS: bool = false;
+    const STIFF: bool = false;
 
     fn resize(&mut self, n: usize) {
         self.n = n;

@@ -414,6 +414,7 @@ impl NdfMethod {
 
 impl Method for NdfMethod {
     const SUPPORTS_MASS: bool = true;
+    const STIFF: bool = true;
 
     fn resize(&mut self, n: usize) {
         self.n = n;

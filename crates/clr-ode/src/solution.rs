@@ -101,15 +101,30 @@ impl Solution {
     }
 }
 
+/// The last clause of a step failure's advice: the stiff solver under an explicit method; under
+/// the stiff one, the model (a stiff solver that still needs tiny steps meets a discontinuity or
+/// a force far larger than the model's scale, which no method change fixes).
+fn stiff_advice(stiff: bool) -> &'static str {
+    if stiff {
+        " (the stiff solver is already in use: look for a force far out of scale or a \
+         discontinuity in the model)"
+    } else {
+        ", or use the stiff solver (Ndf) if the problem is stiff"
+    }
+}
+
 /// A failed run. Every variant carries the solution computed up to the failure.
 #[derive(Debug, thiserror::Error)]
 pub enum OdeError {
     /// The step size fell below its floor.
     #[error(
         "step size {h:e} at t = {t} fell below its floor {h_min:e}: the solution may be \
-         singular there; loosen rtol/atol, lower Options::h_min, or check the model"
+         singular there; loosen rtol/atol, lower Options::h_min, or check the model{}",
+        stiff_advice(*stiff)
     )]
     StepSizeUnderflow {
+        /// The method was the stiff one (NDF): its advice does not suggest it again.
+        stiff: bool,
         /// Time reached.
         t: f64,
         /// Step size that was too small.
@@ -122,9 +137,12 @@ pub enum OdeError {
     /// The step budget was spent.
     #[error(
         "step budget of {max_steps} accepted steps spent at t = {t}: raise Options::max_steps, \
-         loosen the tolerances, or use the stiff solver (Ndf) if the problem is stiff"
+         loosen the tolerances{}",
+        stiff_advice(*stiff)
     )]
     StepBudget {
+        /// The method was the stiff one (NDF): its advice does not suggest it again.
+        stiff: bool,
         /// Time reached.
         t: f64,
         /// The budget.

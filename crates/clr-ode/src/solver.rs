@@ -88,6 +88,8 @@ pub enum Failure {
 pub trait Method: Default {
     /// Whether the method handles a mass matrix M ≠ I.
     const SUPPORTS_MASS: bool;
+    /// Whether the method is meant for stiff problems (its failures do not suggest it again).
+    const STIFF: bool;
     /// Size the buffers for dimension n (allocates only when n changes).
     fn resize(&mut self, n: usize);
     /// Total capacity of the buffers (to check that restarts do not reallocate).
@@ -515,6 +517,7 @@ impl<M: Method> Solver<M> {
         let solution = self.take_partial();
         match f {
             Failure::Underflow { t, h, h_min } => OdeError::StepSizeUnderflow {
+                stiff: M::STIFF,
                 t,
                 h,
                 h_min,
@@ -558,6 +561,7 @@ impl<M: Method> Solver<M> {
             if self.solution.stats.accepted >= self.opts.max_steps {
                 let t = self.method.t();
                 return Err(OdeError::StepBudget {
+                    stiff: M::STIFF,
                     t,
                     max_steps: self.opts.max_steps,
                     solution: self.take_partial(),
