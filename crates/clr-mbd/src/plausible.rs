@@ -461,7 +461,7 @@ impl Model {
                         Scale::Size(s) => s,
                         Scale::None => return None,
                     };
-                    (r.penetration > 0.0).then(|| (c.name.as_str(), r.penetration, scale))
+                    (r.penetration > 0.0).then_some((c.name.as_str(), r.penetration, scale))
                 })
                 .max_by(|a, b| (a.1 / a.2).total_cmp(&(b.1 / b.2)));
             if let Some((name, d, s)) = deepest {
