@@ -107,6 +107,8 @@ mass = {m}
 inertia = {ic}
 position = [{x}, {y}]
 angle = {angle}
+velocity = [0.0, 0.0]
+angular_velocity = 0.0
 
 [[joint]]
 name = "pin"

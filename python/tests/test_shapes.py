@@ -39,6 +39,9 @@ name = "ball"
 mass = 0.0327
 inertia = 1.308e-6
 position = [0.0, 0.11]
+angle = 0.0
+velocity = [0.0, 0.0]
+angular_velocity = 0.0
 
 [[shape]]
 name = "floor"
@@ -69,7 +72,8 @@ intervals = 9000
 def ball_drop(h0=H0, restitution=E, sphere=None, shapes_pair=("floor", "sphere")) -> clr.Model:
     """A steel ball (r = 10 mm, m = 32.7 g) dropped from h0 above a ground block."""
     m = clr.Model("ball_drop", gravity=(0.0, -9.81))
-    m.body("ball", mass=0.0327, inertia=1.308e-6, position=(0.0, R + h0))
+    m.body("ball", mass=0.0327, inertia=1.308e-6, position=(0.0, R + h0), angle=0.0,
+           velocity=(0.0, 0.0), angular_velocity=0.0)
     m.shape("floor", at=clr.at("ground", 0.0, -0.05), geometry=shapes.cuboid(0.5, 0.05))
     m.shape("sphere", at=clr.at("ball"), geometry=sphere or shapes.ball(R))
     m.contact(
@@ -172,7 +176,8 @@ def test_every_geometry_type_has_a_helper_writing_the_fields_of_the_file():
 def test_every_geometry_reads_and_round_trips(kind):
     tomllib = pytest.importorskip("tomllib")
     m = clr.Model("one_shape")
-    m.body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.5), angle=0.0)
+    m.body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.5), angle=0.0,
+           velocity=(0.0, 0.0), angular_velocity=0.0)
     m.shape("probe", at=clr.at("b", 0.001, 0.002), angle=0.3, geometry=SAMPLES[kind]())
     m.shape("ground_ball", at=clr.at("ground"), geometry=shapes.ball(0.01))
     m.contact("pair", shapes=["ground_ball", "probe"],

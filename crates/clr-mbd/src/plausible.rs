@@ -557,7 +557,8 @@ fn check_film(
             ),
         ));
     }
-    let ld = b.length() / (2.0 * b.journal_radius());
+    // D is the bore (bearing) diameter, the nominal size of a journal bearing
+    let ld = b.length() / (2.0 * b.bearing_radius());
     let (bad, form) = match b.model() {
         BearingModel::ShortBearing => (ld > SHORT_BEARING_MAX_LD, "short-bearing (Ocvirk)"),
         BearingModel::LongBearing => (ld < LONG_BEARING_MIN_LD, "long-bearing (Sommerfeld)"),

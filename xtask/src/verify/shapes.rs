@@ -103,6 +103,9 @@ name = "ball"
 mass = {BALL_M:?}
 inertia = 1.308e-6    # (2/5) m r², kg·m²
 position = [0.0, {y0:?}]    # lowest point h0 above the floor
+angle = 0.0
+velocity = [0.0, 0.0]    # released from rest
+angular_velocity = 0.0
 
 [[shape]]
 name = "floor"

@@ -641,6 +641,8 @@ static const char *JOURNAL_MODEL =
     "mass = 1.0\n"
     "inertia = 1.0e-2\n"
     "position = [0.25, 0.0]\n"
+    "velocity = [0.0, 0.0]\n"
+    "angular_velocity = 0.0\n"
     "[[joint]]\n"
     "name = \"shaft\"\n"
     "type = \"revolute\"\n"
