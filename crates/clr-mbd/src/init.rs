@@ -349,7 +349,7 @@ impl Model {
         &mut self,
         t0: f64,
     ) -> Result<(Vec<f64>, InitialConditions), MbdError> {
-        self.assemble_initial_state_with(t0, &crate::initial::InitialSetup::default())
+        self.assemble_initial_state_with(t0, &crate::initial_data::InitialSetup::default())
     }
 
     /// The given and assembled coordinates of every rigid body.
@@ -387,11 +387,7 @@ impl Model {
     }
 }
 
-/// The names of a rigid body's six initial coordinates in [`BodyInitialState::coordinates`]
-/// (centre of mass): x, y (m), θ (rad), v_x, v_y (m/s), ω (rad/s).
-pub const COORDINATE_NAMES: [&str; 6] = ["x", "y", "theta", "vx", "vy", "omega"];
-/// Units of [`COORDINATE_NAMES`].
-pub const COORDINATE_UNITS: [&str; 6] = ["m", "m", "rad", "m/s", "m/s", "rad/s"];
+pub use crate::initial_data::{COORDINATE_NAMES, COORDINATE_UNITS};
 
 /// One initial coordinate of a rigid body before and after the assembly.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -435,10 +431,10 @@ pub struct InitialConditions {
     pub bodies: Vec<BodyInitialState>,
     /// The ideal counterparts of clearance joints the assembly used (empty when every
     /// coordinate was given, or under `initial_state = "as_given"`).
-    pub counterparts: Vec<crate::initial::IdealCounterpart>,
+    pub counterparts: Vec<crate::initial_data::IdealCounterpart>,
     /// Every coordinate left out of the description, with its assembled value and the items
     /// that determined it (positions first, then velocities).
-    pub solved_coordinates: Vec<crate::initial::SolvedCoordinate>,
+    pub solved_coordinates: Vec<crate::initial_data::SolvedCoordinate>,
     /// Every floating flexible body, in definition order: the coordinates of its frame origin
     /// (x, y, θ and rates; not its centre of mass). Its elastic coordinates are not listed:
     /// the assembly never moves them (they start undeformed and at rest).
@@ -478,7 +474,7 @@ impl InitialConditions {
     /// for coordinates nothing determined (free bodies), and one for the corrected ones (empty
     /// when every coordinate was given and consistent).
     pub fn notes(&self) -> Vec<String> {
-        let unit = crate::initial::unit_of;
+        let unit = crate::initial_data::unit_of;
         let mut notes = Vec::new();
         if !self.counterparts.is_empty() {
             let list: Vec<String> = self

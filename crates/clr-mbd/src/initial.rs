@@ -15,71 +15,17 @@
 //! the modified Gram–Schmidt basis of those rows tells (Golub & Van Loan, *Matrix Computations*,
 //! 4th ed., §5.2.8).
 
-use serde::{Deserialize, Serialize};
-
 use crate::error::MbdError;
-use crate::init::{InitialConditions, Metric, Phase, COORDINATE_NAMES, COORDINATE_UNITS, RANK_TOL};
+use crate::init::{InitialConditions, Metric, Phase, COORDINATE_NAMES, RANK_TOL};
+pub use crate::initial_data::{
+    unit_of, IdealCounterpart, InitialSetup, InitialState, SolvedCoordinate,
+};
 use crate::runtime::{Con, GROUND_ID};
 use crate::system::Model;
 
 /// Residual of e_c after its projection on the row space above which coordinate c counts as
 /// undetermined (rows and e_c have unit norm, so rounding leaves ~1e-15).
 const UNDETERMINED_TOL: f64 = 1e-8;
-
-/// How the assembly of initial conditions treats contact elements (`[solver] initial_state`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum InitialState {
-    /// Revolute and translational clearance joints act as their ideal joints while the
-    /// coordinates left out are solved (journal centred, or at the joint's
-    /// `initial_eccentricity`; slider centred and aligned), then are released (default).
-    #[default]
-    Ideal,
-    /// Contact elements play no part in the assembly: coordinates determined only through a
-    /// clearance joint are undetermined (and refused).
-    AsGiven,
-}
-
-/// Settings of the assembly of initial conditions.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct InitialSetup {
-    /// Ideal counterparts or not.
-    pub state: InitialState,
-    /// Bodies deliberately left free: their undetermined coordinates keep their start values
-    /// (0 when left out) and are recorded instead of refused.
-    pub free_bodies: Vec<String>,
-}
-
-/// An ideal counterpart the assembly used.
-#[derive(Debug, Clone, PartialEq)]
-pub struct IdealCounterpart {
-    /// The contact element.
-    pub element: String,
-    /// Its rows took part in the position assembly.
-    pub positions: bool,
-    /// Its rows took part in the velocity assembly.
-    pub velocities: bool,
-    /// The initial offset it imposed: revolute, the journal centre from the bearing centre in
-    /// the bearing body's frame; translational, (0, offset across the guide); m.
-    pub offset: [f64; 2],
-    /// Rows left out because they repeat others (`J4 (ideal counterpart) (normal offset)`).
-    pub dropped: Vec<String>,
-}
-
-/// A coordinate the assembly solved, with the constraint items that determined it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SolvedCoordinate {
-    /// Body name.
-    pub body: String,
-    /// Coordinate name ([`COORDINATE_NAMES`]).
-    pub coordinate: &'static str,
-    /// The assembled value, in [`COORDINATE_UNITS`].
-    pub value: f64,
-    /// Joints, drivers and ideal counterparts whose rows involve it (empty when undetermined).
-    pub from: Vec<String>,
-    /// No constraint determines it: it kept its start value (the body is in `free_bodies`).
-    pub undetermined: bool,
-}
 
 impl Model {
     /// As [`Model::assemble_initial_state`] with explicit settings: ideal counterparts of the
@@ -455,14 +401,6 @@ fn undetermined_error(list: &[String]) -> MbdError {
         bodies: bodies.join(", "),
         field,
     }
-}
-
-/// The unit of a coordinate name ([`COORDINATE_UNITS`]).
-pub fn unit_of(name: &str) -> &'static str {
-    COORDINATE_NAMES
-        .iter()
-        .position(|n| *n == name)
-        .map_or("", |k| COORDINATE_UNITS[k])
 }
 
 impl IdealCounterpart {

@@ -45,6 +45,7 @@ pub mod impacts;
 mod init;
 pub mod init_flex;
 pub mod initial;
+mod initial_data;
 pub mod jacobian;
 pub mod linsys;
 mod lugre;

@@ -13,25 +13,11 @@
 
 use std::collections::BTreeMap;
 
-use crate::desc::{AllNodes, NodeSelection};
 use crate::error::MbdError;
+use crate::initial_data::{AllNodes, NodeSelection};
 use crate::system::Model;
 
-/// Where a recorded node lives.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub(crate) enum NodeOwner {
-    /// A ground-fixed beam (index into the model's beams).
-    Beam(usize),
-    /// A floating flexible body (index into the model's floating bodies).
-    Floating(usize),
-}
-
-/// One recorded node.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord)]
-pub(crate) struct NodeOutput {
-    pub(crate) owner: NodeOwner,
-    pub(crate) node: usize,
-}
+pub(crate) use crate::initial_data::{NodeOutput, NodeOwner};
 
 /// The column suffixes of one recorded node, in order.
 const NODE_COLUMNS: [&str; 5] = ["ux", "uy", "rz", "x", "y"];
@@ -242,7 +228,7 @@ impl Model {
 mod tests {
     use std::collections::BTreeMap;
 
-    use crate::desc::{AllNodes, NodeSelection};
+    use crate::initial_data::{AllNodes, NodeSelection};
     use crate::{MbdError, ModelBuilder, ModelDesc, SimOptions};
 
     /// A 1 m steel arm of 4 elements clamped at node 0 (2 cantilever modes), pinned to the

@@ -49,9 +49,7 @@ pub const LONG_BEARING_MIN_LD: f64 = 2.0;
 /// Relative difference of the effective restitution from the one asked for (the dual guide's
 /// Flores law at 0.8 gives 0.7885, 1.4 %; Lankarani–Nikravesh at 0.8 gives 0.847, 5.9 %).
 pub const RESTITUTION_TOLERANCE: f64 = 0.02;
-/// Young's modulus outside [min, max] Pa (soft elastomers ~1 MPa, diamond 1.1e12 Pa; a value in
-/// GPa or MPa falls below).
-pub const MODULUS_RANGE: (f64, f64) = (1e6, 1.5e12);
+pub use crate::desc::checks::MODULUS_RANGE;
 /// Energy-balance error above this fraction of the energy scale (largest of the energy change,
 /// the work in, the dissipated energy and the kinetic energy); built-ins reach 2e-3.
 pub const BALANCE_FRACTION: f64 = 0.05;
@@ -68,20 +66,7 @@ pub const SHAPE_START_FRACTION: f64 = 0.01;
 /// v²/L) over the run (ρ the body's extent, L the mechanism's size).
 pub const FORCE_RATIO: f64 = 1e4;
 
-/// A finding of the plausibility checks.
-#[derive(Debug, Clone, PartialEq, serde::Serialize)]
-pub struct Warning {
-    /// The field or item it concerns (`J1.bearing_radius`, `crank.omega`, `energy`).
-    pub field: String,
-    /// What was found and what to check.
-    pub message: String,
-}
-
-impl std::fmt::Display for Warning {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "{}: {}", self.field, self.message)
-    }
-}
+pub use crate::initial_data::Warning;
 
 fn warn(field: impl Into<String>, message: String) -> Warning {
     Warning {
@@ -603,50 +588,5 @@ fn check_energy(r: &Results, out: &mut Vec<Warning>) {
                  initial state"
             ),
         ));
-    }
-}
-
-/// Findings on the values of a description that do not depend on the state: Young's moduli
-/// outside [`MODULUS_RANGE`] (a value in GPa or MPa). The description is walked as data, so
-/// every material of every law and shape is seen wherever it sits.
-pub fn description_warnings(desc: &crate::ModelDesc) -> Vec<Warning> {
-    let mut out = Vec::new();
-    for c in &desc.clearances {
-        if let Ok(v) = toml::Value::try_from(c) {
-            walk_moduli(c.name(), &v, &mut out);
-        }
-    }
-    out
-}
-
-fn walk_moduli(path: &str, v: &toml::Value, out: &mut Vec<Warning>) {
-    match v {
-        toml::Value::Table(o) => {
-            for (k, x) in o {
-                let p = format!("{path}.{k}");
-                match (k.as_str(), x.as_float()) {
-                    ("youngs_modulus", Some(e))
-                        if !(MODULUS_RANGE.0..=MODULUS_RANGE.1).contains(&e) =>
-                    {
-                        out.push(warn(
-                            p,
-                            format!(
-                                "a Young's modulus of {e:e} Pa is outside [{:e}, {:e}] Pa \
-                                 (steel 2.07e11, aluminium 7e10, elastomers ~1e6): the unit is \
-                                 Pa, so 210 GPa is 2.1e11",
-                                MODULUS_RANGE.0, MODULUS_RANGE.1
-                            ),
-                        ))
-                    }
-                    _ => walk_moduli(&p, x, out),
-                }
-            }
-        }
-        toml::Value::Array(a) => {
-            for (i, x) in a.iter().enumerate() {
-                walk_moduli(&format!("{path}[{i}]"), x, out);
-            }
-        }
-        _ => {}
     }
 }

@@ -58,7 +58,7 @@ pub struct Results {
     pub initial_conditions: Option<crate::InitialConditions>,
     /// Findings of the plausibility checks before and after the run ([`crate::plausible`];
     /// set by [`Model::simulate`](crate::Model::simulate)).
-    pub warnings: Vec<crate::plausible::Warning>,
+    pub warnings: Vec<crate::initial_data::Warning>,
 }
 
 impl Results {

@@ -96,7 +96,7 @@ pub struct SimOptions {
     /// How the assembly of initial conditions treats clearance joints and which bodies are
     /// deliberately left free (default: ideal counterparts, none free; see
     /// [`crate::initial`]).
-    pub initial_setup: crate::initial::InitialSetup,
+    pub initial_setup: crate::initial_data::InitialSetup,
     /// Turn the findings of the plausibility checks into [`MbdError::Implausible`] (default
     /// false: they are listed in [`Results::warnings`]).
     pub strict: bool,
@@ -626,7 +626,7 @@ impl Model {
 }
 
 /// The error of `strict` runs with plausibility findings.
-fn implausible(w: &[crate::plausible::Warning], partial: Option<Results>) -> MbdError {
+fn implausible(w: &[crate::initial_data::Warning], partial: Option<Results>) -> MbdError {
     MbdError::Implausible {
         warnings: w
             .iter()

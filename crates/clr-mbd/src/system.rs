@@ -87,7 +87,7 @@ pub struct Model {
     pub(crate) floating: Vec<FloatingBody>,
     /// Nodes of beams and floating bodies recorded as output columns
     /// ([`Model::set_output_nodes`]).
-    pub(crate) node_outputs: Vec<crate::node_output::NodeOutput>,
+    pub(crate) node_outputs: Vec<crate::initial_data::NodeOutput>,
     /// Attachment frames: rigid bodies first (index = body index), then beam nodes.
     pub(crate) frames: Vec<Frame>,
     pub(crate) points: Vec<(String, usize, Vector2<f64>)>,
@@ -101,7 +101,7 @@ pub struct Model {
     pub(crate) initial_offsets: std::collections::HashMap<String, Vector2<f64>>,
     /// Findings of the plausibility checks of the description's values (materials, laws),
     /// reported by every run ([`crate::plausible`]).
-    pub(crate) input_warnings: Vec<crate::plausible::Warning>,
+    pub(crate) input_warnings: Vec<crate::initial_data::Warning>,
     pub(crate) gravity: Vector2<f64>,
     pub(crate) memory: ContactMemory,
     pub(crate) alpha: f64,

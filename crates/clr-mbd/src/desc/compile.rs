@@ -60,7 +60,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     let mut model = c.finish(Vector2::new(g[0], g[1]))?;
     model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
     model.set_contact_events(desc.solver.contact_events);
-    model.input_warnings = crate::plausible::description_warnings(desc);
+    model.input_warnings = super::checks::description_warnings(desc);
     model.set_output_nodes(&desc.output.nodes)?;
     Ok(model)
 }

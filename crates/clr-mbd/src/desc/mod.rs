@@ -8,6 +8,7 @@
 //! element): a description holding one still compiles and runs but cannot be written to a file.
 
 pub mod beam;
+pub mod checks;
 mod compile;
 pub mod laws;
 pub mod parts;

@@ -71,7 +71,7 @@ pub struct SolverSettings {
     /// `ideal` (default: as their ideal joints, journal centred or at its
     /// `initial_eccentricity`, then released) or `as_given` (they play no part).
     #[serde(skip_serializing_if = "is_default")]
-    pub initial_state: crate::initial::InitialState,
+    pub initial_state: crate::initial_data::InitialState,
     /// Rigid bodies deliberately left free: coordinates of theirs that are left out and that
     /// nothing determines keep their start values (0) and are recorded, instead of refused.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
@@ -183,26 +183,7 @@ pub struct OutputSettings {
     pub nodes: std::collections::BTreeMap<String, NodeSelection>,
 }
 
-/// Which nodes of one body `[output.nodes]` records.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(
-    untagged,
-    expecting = "a list of node indices (e.g. [2, 4], 0 at the beam's start) or \"all\""
-)]
-pub enum NodeSelection {
-    /// Node indices (0 at the beam's `start`).
-    Nodes(Vec<usize>),
-    /// `"all"`: every node of the mesh.
-    All(AllNodes),
-}
-
-/// The keyword `"all"` of [`NodeSelection`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum AllNodes {
-    /// Every node.
-    All,
-}
+pub use crate::initial_data::{AllNodes, NodeSelection};
 
 impl Default for OutputSettings {
     fn default() -> Self {
@@ -318,7 +299,7 @@ pub(crate) fn sim_options(
     options.newton_rate_reuse = s.newton_rate_reuse;
     options.initial_conditions = s.initial_conditions;
     options.strict = s.strict;
-    options.initial_setup = crate::initial::InitialSetup {
+    options.initial_setup = crate::initial_data::InitialSetup {
         state: s.initial_state,
         free_bodies: s.free_bodies.clone(),
     };
