@@ -252,12 +252,18 @@ class Model:
         scale_velocity_error: Optional[bool] = None,
         newton_rate_reuse: Optional[bool] = None,
         initial_conditions: Optional[str] = None,
+        initial_state: Optional[str] = None,
+        free_bodies: Optional[Sequence[str]] = None,
+        strict: Optional[bool] = None,
     ) -> "Model":
         """``[solver]``: ``method`` (``ndf`` or ``dopri5``), ``rtol`` (–), ``atol`` (mixed
         units; default 1e-3·rtol), ``h_max`` (s), ``max_steps``, Baumgarte ``baumgarte_alpha``
         (1/s) and ``baumgarte_beta`` (1/s²), ``projection``, ``contact_events``, NDF settings
         (``jacobian``, ``max_order``, ``linear_solver``, ``scale_velocity_error``,
-        ``newton_rate_reuse``) and ``initial_conditions`` (``assemble`` or ``exact``)."""
+        ``newton_rate_reuse``), ``initial_conditions`` (``assemble`` or ``exact``),
+        ``initial_state`` (``ideal``: clearance joints start as their ideal joints, or
+        ``as_given``), ``free_bodies`` (bodies deliberately left free) and ``strict`` (refuse
+        plausibility warnings); docs/model-file.md#initial-conditions."""
         return self._set_table("solver", **{k: v for k, v in locals().items() if k != "self"})
 
     def output(
@@ -543,6 +549,7 @@ class Model:
         force_application: Optional[str] = None,
         bearing_wear: Optional[Sequence[float]] = None,
         lubrication: Optional[Table] = None,
+        initial_eccentricity: Optional[Any] = None,
     ) -> "Model":
         """Revolute clearance joint: a journal of radius ``journal_radius`` (m) centred at
         ``journal`` inside a bearing of radius ``bearing_radius`` (m) centred at ``bearing``;
@@ -551,12 +558,14 @@ class Model:
         the worn bearing's radial wear depth (m) at N ≥ 8 equally spaced angles in the bearing
         body frame (docs/wear.md), ``lubrication``: an oil film ``{"model": "short_bearing" |
         "long_bearing", "viscosity": Pa·s, "length": m, "film_threshold": m, "dry_threshold":
-        m}`` (docs/lubrication.md)."""
+        m}`` (docs/lubrication.md), ``initial_eccentricity``: where the journal starts from the
+        bearing centre, ``(e_x, e_y)`` m in the bearing body frame or ``{"magnitude": m,
+        "angle": rad}``."""
         return self._add(
             "clearance", "revolute", name, bearing=bearing, journal=journal,
             bearing_radius=bearing_radius, journal_radius=journal_radius, normal=normal,
             friction=friction, force_application=force_application, bearing_wear=bearing_wear,
-            lubrication=lubrication,
+            lubrication=lubrication, initial_eccentricity=initial_eccentricity,
         )
 
     def translational_clearance(
@@ -572,16 +581,18 @@ class Model:
         guide_angle: Optional[float] = None,
         slider_angle: Optional[float] = None,
         friction: Optional[Table] = None,
+        initial_offset: Optional[float] = None,
     ) -> "Model":
         """Translational clearance joint: a rectangular slider (``slider_length`` ×
         ``slider_height``, m, at ``slider``, tilted ``slider_angle`` rad) between two parallel
         guide faces ``guide_width`` (m) apart (centre line through ``guide`` at ``guide_angle``
-        rad); corner contacts by ``normal``, ``friction``."""
+        rad); corner contacts by ``normal``, ``friction``; ``initial_offset`` (m): where the
+        slider centre starts across the guide."""
         return self._add(
             "clearance", "translational", name, guide=guide, slider=slider,
             guide_width=guide_width, guide_angle=guide_angle, slider_length=slider_length,
             slider_height=slider_height, slider_angle=slider_angle, normal=normal,
-            friction=friction,
+            friction=friction, initial_offset=initial_offset,
         )
 
     def slider_on_beam(
