@@ -223,12 +223,7 @@ impl Model {
         let n = self.n;
         let zeros = vec![0.0; n];
         self.eval_constraints(t, q, &zeros);
-        let slot0 = if phase == Phase::Position { 0 } else { 3 };
-        let solved: Vec<usize> = (0..self.fixed.len())
-            .flat_map(|k| (0..3).map(move |s| (k, s)))
-            .filter(|&(k, s)| !self.fixed[k][slot0 + s])
-            .map(|(k, s)| 3 * k + s)
-            .collect();
+        let solved = self.solved_columns(phase);
         let explicit = |c: &Con| {
             phase == Phase::Position
                 && self
@@ -272,6 +267,17 @@ impl Model {
         drop.iter().map(|&r| labels[r].clone()).collect()
     }
 
+    /// The columns (of q, or of q̇ for velocities) of the rigid-body coordinates of `phase`
+    /// left out of the description.
+    fn solved_columns(&self, phase: Phase) -> Vec<usize> {
+        let slot0 = if phase == Phase::Position { 0 } else { 3 };
+        (0..self.fixed.len())
+            .flat_map(|k| (0..3).map(move |s| (k, s)))
+            .filter(|&(k, s)| !self.fixed[k][slot0 + s])
+            .map(|(k, s)| 3 * k + s)
+            .collect()
+    }
+
     /// Set the fixed coordinates of `phase` in y back to their given values.
     fn restore_fixed_in(&self, given: &[f64], y: &mut [f64], phase: Phase) {
         let base = if phase == Phase::Position { 0 } else { self.n };
@@ -304,11 +310,7 @@ impl Model {
     ) -> (Vec<SolvedCoordinate>, Vec<String>) {
         let (n, m) = (self.n, self.m);
         let slot0 = if phase == Phase::Position { 0 } else { 3 };
-        let cols: Vec<usize> = (0..self.fixed.len())
-            .flat_map(|k| (0..3).map(move |s| (k, s)))
-            .filter(|&(k, s)| !self.fixed[k][slot0 + s])
-            .map(|(k, s)| 3 * k + s)
-            .collect();
+        let cols = self.solved_columns(phase);
         if cols.is_empty() {
             return (Vec::new(), Vec::new());
         }

@@ -341,7 +341,7 @@ impl Model {
     }
 
     /// Checks of a finished (or failed) run's results.
-    pub(crate) fn check_end(&self, r: &Results, t0_size: f64) -> Vec<Warning> {
+    pub(crate) fn check_end(&self, r: &Results, sc: &Scales) -> Vec<Warning> {
         let mut out = Vec::new();
         check_energy(r, &mut out);
         for c in &self.clearances {
@@ -367,11 +367,12 @@ impl Model {
                 ));
             }
         }
-        self.check_peak_forces(r, t0_size, &mut out);
+        self.check_peak_forces(r, sc, &mut out);
         out
     }
 
-    fn check_peak_forces(&self, r: &Results, size: f64, out: &mut Vec<Warning>) {
+    fn check_peak_forces(&self, r: &Results, sc: &Scales, out: &mut Vec<Warning>) {
+        let size = sc.size;
         let g = self.gravity.norm();
         let mut load = 0.0;
         for (k, b) in self.bodies.iter().enumerate() {
@@ -383,7 +384,7 @@ impl Model {
             ) else {
                 return;
             };
-            let ext = self.scales_extent(k);
+            let ext = sc.extent[k];
             let a = w
                 .iter()
                 .zip(vx.iter().zip(&vy))
@@ -491,14 +492,6 @@ impl Model {
         } else {
             format!("; at the last state reached, {}", parts.join("; "))
         }
-    }
-
-    fn scales_extent(&self, k: usize) -> f64 {
-        self.anchors()
-            .iter()
-            .filter(|(f, _)| *f == k)
-            .map(|(_, s)| s.norm())
-            .fold(0.0, f64::max)
     }
 }
 

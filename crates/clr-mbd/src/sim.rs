@@ -381,14 +381,14 @@ impl Model {
         if opts.strict && !start.is_empty() {
             return Err(implausible(&start, None));
         }
-        let size = self.scales(&y0[..self.n]).size;
+        let scales = self.scales(&y0[..self.n]);
         let with_report = |model: &Model, mut r: Results| {
             let mut notes = ic.notes();
             notes.append(&mut r.notes);
             r.notes = notes;
             r.initial_conditions = Some(ic.clone());
             r.warnings = start.clone();
-            r.warnings.extend(model.check_end(&r, size));
+            r.warnings.extend(model.check_end(&r, &scales));
             r
         };
         match self.simulate_from_with(opts, &y0, progress) {
