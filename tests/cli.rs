@@ -748,8 +748,8 @@ fn every_builtin_exports_to_an_equal_file() {
             file.to_str().unwrap(),
         ]);
         assert!(o.status.success(), "{}: {}", e.name, stderr(&o));
-        match clr::spec::load(&file, &[]) {
-            Ok(clr::spec::Loaded::Builtin { name, parameters }) => {
+        match clr_sim::spec::load(&file, &[]) {
+            Ok(clr_sim::spec::Loaded::Builtin { name, parameters }) => {
                 assert_eq!(name, e.name);
                 assert_eq!(
                     parameters,

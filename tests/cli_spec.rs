@@ -4,7 +4,7 @@
 
 use std::path::Path;
 
-use clr::spec::{load_str, Loaded};
+use clr_sim::spec::{load_str, Loaded};
 
 const FILES: [&str; 7] = [
     "pendulum.toml",
@@ -145,8 +145,8 @@ fn older_files_are_upgraded_and_every_change_is_noted() {
 /// after the file is gone, points still resolve, and each changes only its own copy.
 #[test]
 fn sweep_points_clone_the_description_without_reading_the_file() {
-    use clr::spec::run::{resolve, Job};
-    use clr::spec::{parse_assignment, Assignment};
+    use clr_sim::spec::run::{resolve, Job};
+    use clr_sim::spec::{parse_assignment, Assignment};
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/pendulum.toml");
     let dir = std::env::temp_dir().join(format!("clr-sweep-clone-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

@@ -9,8 +9,8 @@ mod common;
 
 use std::path::{Path, PathBuf};
 
-use clr::spec::run::{execute, resolve, Outcome};
-use clr::spec::{parse_assignment, Assignment};
+use clr_sim::spec::run::{execute, resolve, Outcome};
+use clr_sim::spec::{parse_assignment, Assignment};
 use common::clr;
 
 fn scratch(name: &str) -> PathBuf {

@@ -147,7 +147,7 @@ fn fuzz_findings_are_refused_at_their_place() {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/bad");
     for (file, line, field, needle) in cases {
         let text = std::fs::read_to_string(dir.join(file)).unwrap();
-        let e = match clr::spec::load_str(file, &text, &[]) {
+        let e = match clr_sim::spec::load_str(file, &text, &[]) {
             Err(e) => e,
             Ok(_) => panic!("{file}: accepted"),
         };

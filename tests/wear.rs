@@ -4,7 +4,7 @@
 //! behaves as a circular bearing of radius R_i + h (the same geometry; equal to rounding, so
 //! compared at 1e-9 of the eccentricity scale).
 
-use clr::spec::run::{execute, resolve_text};
+use clr_sim::spec::run::{execute, resolve_text};
 
 const SLIDER_CRANK: &str = include_str!("data/slider_crank.toml");
 
@@ -32,7 +32,7 @@ fn with_b(extra: &str, radius: Option<&str>, fixed_law: bool) -> String {
     text
 }
 
-fn run(text: &str) -> clr::mbd::Results {
+fn run(text: &str) -> clr_sim::mbd::Results {
     let job = resolve_text("<test>", text, &[], Some(0.01), None).expect("the model reads");
     let o = execute(&job, Some(0.01), None, None).expect("it runs");
     assert!(o.error.is_none(), "{:?}", o.error);
@@ -60,7 +60,7 @@ fn a_uniformly_worn_bearing_is_a_larger_circle() {
     let uniform = format!("bearing_wear = [{}]", vec![format!("{h:e}"); 16].join(", "));
     let worn = run(&with_b(&uniform, None, true));
     let larger = run(&with_b("", Some(&format!("{}", 0.01 + h)), true));
-    let ex = |r: &clr::mbd::Results| r.column("B.ex").unwrap();
+    let ex = |r: &clr_sim::mbd::Results| r.column("B.ex").unwrap();
     let (a, b) = (ex(&worn), ex(&larger));
     // the same contact geometry through different arithmetic: the runs agree to the
     // integrator's tolerance scale, not bit for bit (rtol 1e-7 on a 0.5 mm eccentricity)

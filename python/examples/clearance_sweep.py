@@ -17,7 +17,7 @@ import matplotlib
 matplotlib.use("Agg")  # no display needed
 import matplotlib.pyplot as plt
 
-import clr
+import clr_sim
 
 OMEGA = 5000.0 * 2.0 * math.pi / 60.0  # rad/s, crank speed
 R_CRANK, L_ROD = 0.05, 0.3  # m
@@ -26,22 +26,22 @@ R_BEARING = 0.01  # m
 
 def slider_crank(journal_radius=0.0095):
     """The clearance slider–crank; initial velocities from the ideal kinematics at θ = 0."""
-    steel = clr.material(207e9, 0.3)
+    steel = clr_sim.material(207e9, 0.3)
     v_mid = OMEGA * R_CRANK / 2  # m/s, crank centre and rod at θ = 0
-    m = clr.Model("slider_crank", gravity=(0.0, -9.81))
+    m = clr_sim.Model("slider_crank", gravity=(0.0, -9.81))
     m.body("crank", mass=0.343, inertia=2.16e-4, position=(R_CRANK / 2, 0.0), angle=0.0,
            velocity=(0.0, v_mid), angular_velocity=OMEGA)
     m.body("rod", mass=1.072, inertia=0.034, position=(R_CRANK + L_ROD / 2, 0.0), angle=0.0,
            velocity=(0.0, v_mid), angular_velocity=-OMEGA * R_CRANK / L_ROD)
     m.body("slider", mass=0.347, inertia=1.15e-4, position=(R_CRANK + L_ROD, 0.0))
-    m.revolute("O", a=clr.at("ground"), b=clr.at("crank", -R_CRANK / 2, 0.0))
-    m.revolute("A", a=clr.at("crank", R_CRANK / 2, 0.0), b=clr.at("rod", -L_ROD / 2, 0.0))
-    m.translational("guide", a=clr.at("ground"), b=clr.at("slider"), axis=(1.0, 0.0))
-    m.drive_angle("motor", body="crank", motion=clr.motion("linear", initial=0.0, rate=OMEGA))
+    m.revolute("O", a=clr_sim.at("ground"), b=clr_sim.at("crank", -R_CRANK / 2, 0.0))
+    m.revolute("A", a=clr_sim.at("crank", R_CRANK / 2, 0.0), b=clr_sim.at("rod", -L_ROD / 2, 0.0))
+    m.translational("guide", a=clr_sim.at("ground"), b=clr_sim.at("slider"), axis=(1.0, 0.0))
+    m.drive_angle("motor", body="crank", motion=clr_sim.motion("linear", initial=0.0, rate=OMEGA))
     m.revolute_clearance(
-        "B", bearing=clr.at("slider"), journal=clr.at("rod", L_ROD / 2, 0.0),
+        "B", bearing=clr_sim.at("slider"), journal=clr_sim.at("rod", L_ROD / 2, 0.0),
         bearing_radius=R_BEARING, journal_radius=journal_radius,
-        normal=clr.normal("preset", 0.9, preset="LN", bearing_material=steel,
+        normal=clr_sim.normal("preset", 0.9, preset="LN", bearing_material=steel,
                           journal_material=steel),
     )
     m.solver(method="ndf", rtol=1e-7)
@@ -51,7 +51,7 @@ def slider_crank(journal_radius=0.0095):
 
 def main(path="clearance_sweep.png", t_end=0.05):
     clearances = [0.1e-3, 0.25e-3, 0.5e-3]  # m
-    sweep = clr.sweep(
+    sweep = clr_sim.sweep(
         slider_crank(),
         {"clearance.B.journal_radius": [R_BEARING - c for c in clearances]},
         t_end=t_end,
@@ -68,7 +68,7 @@ def main(path="clearance_sweep.png", t_end=0.05):
         ax.set_title(f"c = {c * 1e3:.2f} mm")
         ax.set_xlabel("e_x / c")
     axes[0].set_ylabel("e_y / c")
-    fig.suptitle("journal orbit in the clearance joint B (clr.sweep)")
+    fig.suptitle("journal orbit in the clearance joint B (clr_sim.sweep)")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
     return sweep

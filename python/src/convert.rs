@@ -33,7 +33,7 @@ pub(crate) fn value(path: &str, v: &Bound<'_, PyAny>, as_text: bool) -> PyResult
     if let Ok(s) = v.cast::<PyString>() {
         let s = s.to_cow()?;
         return Ok(if as_text {
-            clr::spec::overrides_value(&s)
+            clr_sim::spec::overrides_value(&s)
         } else {
             toml::Value::String(s.into_owned())
         });

@@ -1,8 +1,8 @@
 //! The typed Python errors (`clr.errors`) raised from Rust: every one carries the field path of
 //! what to change (`body[1].mass`, `clearance.B.journal_radius`, `model`).
 
-use clr::spec::run::RunError;
-use clr::spec::SpecError;
+use clr_sim::spec::run::RunError;
+use clr_sim::spec::SpecError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use pyo3::IntoPyObjectExt;
@@ -10,7 +10,7 @@ use pyo3::IntoPyObjectExt;
 /// An instance of `clr.errors.<class>` built with `message` and keyword attributes.
 fn make(py: Python<'_>, class: &str, message: &str, kw: &[(&str, Option<Py<PyAny>>)]) -> PyErr {
     let build = || -> PyResult<PyErr> {
-        let cls = py.import("clr.errors")?.getattr(class)?;
+        let cls = py.import("clr_sim.errors")?.getattr(class)?;
         let kwargs = PyDict::new(py);
         for (k, v) in kw {
             kwargs.set_item(k, v)?;

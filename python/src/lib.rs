@@ -64,7 +64,7 @@ fn same_length(lengths: &[(&'static str, usize)]) -> PyResult<usize> {
 }
 
 /// A normal-force law F_N = F_e(δ)(1 + χ δ̇/δ̇⁻) (N, m, m/s).
-#[pyclass(frozen, module = "clr._native")]
+#[pyclass(frozen, module = "clr_sim._native")]
 struct NormalLawCore {
     law: NormalLaw,
 }
@@ -205,7 +205,7 @@ impl NormalLawCore {
 }
 
 /// A stateless friction law F_T = μ(v_T) F_N.
-#[pyclass(frozen, module = "clr._native")]
+#[pyclass(frozen, module = "clr_sim._native")]
 struct FrictionLawCore {
     law: FrictionLaw,
 }
@@ -261,7 +261,7 @@ impl FrictionLawCore {
 type ArrayPair<'py> = (Bound<'py, PyArray1<f64>>, Bound<'py, PyArray1<f64>>);
 
 /// The oil film of a lubricated journal bearing (clr-contact `HydrodynamicBearing`).
-#[pyclass(frozen, module = "clr._native")]
+#[pyclass(frozen, module = "clr_sim._native")]
 struct FilmLawCore {
     bearing: clr_contact::lubrication::HydrodynamicBearing,
 }
@@ -340,7 +340,7 @@ impl FilmLawCore {
 }
 
 /// A planar revolute clearance joint (journal in bearing).
-#[pyclass(frozen, module = "clr._native")]
+#[pyclass(frozen, module = "clr_sim._native")]
 struct RevoluteJointCore {
     joint: RevoluteClearance,
 }

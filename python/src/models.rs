@@ -1,14 +1,14 @@
 //! Whole clr models from Python: [`JobCore`] (a resolved built-in or generic model, from a
 //! name, a file, TOML text or the dict a `clr.Model` builds), `list_models`, the studies, and
 //! what the builder checks itself against (`element_kinds`, `kind_fields`). Everything goes
-//! through the library path of `clr run` (`clr::spec::run::resolve` then `execute`), so a run
+//! through the library path of `clr run` (`clr_sim::spec::run::resolve` then `execute`), so a run
 //! from Python and one from the command line with the same input give the same numbers bit for
 //! bit.
 
 use std::time::Instant;
 
-use clr::spec::run::{self, Job, Outcome};
-use clr::spec::Assignment;
+use clr_sim::spec::run::{self, Job, Outcome};
+use clr_sim::spec::Assignment;
 use numpy::{IntoPyArray, PyArray1};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
@@ -64,7 +64,8 @@ pub(crate) fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'
     d.set_item("warnings", warnings)?;
     d.set_item(
         "initial_conditions",
-        clr::spec::run::initial_conditions_json(o.results.initial_conditions.as_ref()).to_string(),
+        clr_sim::spec::run::initial_conditions_json(o.results.initial_conditions.as_ref())
+            .to_string(),
     )?;
     d.set_item("parameters", o.parameters.to_string())?;
     d.set_item("model", o.model)?;
@@ -79,7 +80,7 @@ pub(crate) fn outcome_dict<'py>(py: Python<'py>, o: Outcome) -> PyResult<Bound<'
 /// the contact lasts at the end of the run).
 fn impacts_list<'py>(
     py: Python<'py>,
-    impacts: &[clr::mbd::Impact],
+    impacts: &[clr_sim::mbd::Impact],
 ) -> PyResult<Bound<'py, PyList>> {
     let list = PyList::empty(py);
     for i in impacts {
@@ -120,7 +121,7 @@ pub(crate) fn assignments(set: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<Assig
 /// A resolved model, ready to run: a built-in with its parameters or a checked generic model
 /// (plain data, run without the GIL), with the end time (s) and relative tolerance it was
 /// resolved with.
-#[pyclass(frozen, module = "clr._native")]
+#[pyclass(frozen, module = "clr_sim._native")]
 pub(crate) struct JobCore {
     pub(crate) job: Job,
     pub(crate) t_end: Option<f64>,
@@ -286,7 +287,7 @@ pub(crate) fn run_study(py: Python<'_>, name: &str, out: std::path::PathBuf) -> 
 
 /// The reader's message for the probe model `text` (empty if it reads).
 fn probe_message(text: &str) -> String {
-    match clr::spec::load_str("<probe>", text, &[]) {
+    match clr_sim::spec::load_str("<probe>", text, &[]) {
         Err(e) => e.message,
         Ok(_) => String::new(),
     }
@@ -321,7 +322,7 @@ fn probe_header(section: &str) -> Option<String> {
 /// (`shape.geometry` with its geometry types), for the builder's consistency check.
 #[pyfunction]
 pub(crate) fn element_kinds() -> PyResult<Vec<(String, Vec<String>)>> {
-    use clr::mbd::element::{Clearance, Driver, Force, Joint};
+    use clr_sim::mbd::element::{Clearance, Driver, Force, Joint};
     let tagged: [(&str, &[&str]); 4] = [
         ("joint", Joint::KINDS),
         ("driver", Driver::KINDS),

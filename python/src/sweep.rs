@@ -1,4 +1,4 @@
-//! `clr.sweep`: the points of `clr::spec::sweep` run on Rust threads without the GIL, while the
+//! `clr.sweep`: the points of `clr_sim::spec::sweep` run on Rust threads without the GIL, while the
 //! Python side polls the count of finished points for its progress display (terminal or
 //! Jupyter) and stays interruptible (Ctrl-C cancels the points not yet started).
 
@@ -6,7 +6,7 @@ use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::sync::{Arc, Condvar, Mutex};
 use std::time::Duration;
 
-use clr::spec::sweep::{self, Axis, PointRun};
+use clr_sim::spec::sweep::{self, Axis, PointRun};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
@@ -19,13 +19,13 @@ use crate::models::{outcome_dict, JobCore};
 struct Shared {
     done: AtomicUsize,
     cancel: AtomicBool,
-    runs: Mutex<Option<Result<Vec<Option<PointRun>>, clr::spec::run::RunError>>>,
+    runs: Mutex<Option<Result<Vec<Option<PointRun>>, clr_sim::spec::run::RunError>>>,
     finished: Condvar,
 }
 
 /// A sweep running in the background: every point of the cartesian product of `axes` over a
 /// resolved model, checked before the first runs.
-#[pyclass(module = "clr._native")]
+#[pyclass(module = "clr_sim._native")]
 pub(crate) struct SweepRun {
     shared: Arc<Shared>,
     total: usize,

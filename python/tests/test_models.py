@@ -230,10 +230,10 @@ def test_left_out_velocity_is_solved_and_reported(tmp_path):
 
 def test_plausibility_warnings_and_strict(tmp_path):
     """Issue 29: radii written in mm run with a warning naming the field (in
-    `Result.warnings` and as a `clr.PlausibilityWarning`); `strict=True` refuses the run."""
+    `Result.warnings` and as a `clr_sim.PlausibilityWarning`); `strict=True` refuses the run."""
     import warnings
 
-    import clr
+    import clr_sim
 
     repo = pathlib.Path(__file__).resolve().parents[2]
     text = (repo / "models" / "slider_crank.toml").read_text()
@@ -247,11 +247,11 @@ def test_plausibility_warnings_and_strict(tmp_path):
     f.write_text(text)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        r = clr.simulate(str(f), t_end=0.0005)
+        r = clr_sim.simulate(str(f), t_end=0.0005)
     fields = [w["field"] for w in r.warnings]
     assert "B.bearing_radius" in fields, r.warnings
-    assert any(issubclass(w.category, clr.PlausibilityWarning) for w in caught)
-    with pytest.raises(clr.ClrError, match="strict"):
-        clr.simulate(str(f), t_end=0.0005, strict=True)
+    assert any(issubclass(w.category, clr_sim.PlausibilityWarning) for w in caught)
+    with pytest.raises(clr_sim.ClrError, match="strict"):
+        clr_sim.simulate(str(f), t_end=0.0005, strict=True)
     # the shipped file itself gives no warning
-    assert clr.simulate(str(repo / "models" / "slider_crank.toml"), t_end=0.0005).warnings == []
+    assert clr_sim.simulate(str(repo / "models" / "slider_crank.toml"), t_end=0.0005).warnings == []

@@ -1,4 +1,4 @@
-"""Contact shapes from Python: `Model.shape` (`[[shape]]`), the geometries of `clr.shapes` and
+"""Contact shapes from Python: `Model.shape` (`[[shape]]`), the geometries of `clr_sim.shapes` and
 `Model.contact` (`[[clearance]] type = "contact"`).
 
 References:
@@ -12,7 +12,7 @@ References:
   crates/clr-mbd/tests/shape_contact.rs), read by the Rust reader: the model built in Python
   must be the same description and give the same numbers bit for bit;
 - the Rust reader's own lists of geometry types and of each type's fields: every helper of
-  `clr.shapes` must write exactly those.
+  `clr_sim.shapes` must write exactly those.
 """
 
 import inspect
@@ -21,9 +21,9 @@ import math
 import numpy as np
 import pytest
 
-import clr
-from clr import shapes
-from clr.shapes import GEOMETRIES
+import clr_sim
+from clr_sim import shapes
+from clr_sim.shapes import GEOMETRIES
 
 H0 = 0.1  # m, drop height of the ball's lowest point above the floor
 E = 0.8  # –, coefficient of restitution
@@ -69,17 +69,17 @@ intervals = 9000
 """
 
 
-def ball_drop(h0=H0, restitution=E, sphere=None, shapes_pair=("floor", "sphere")) -> clr.Model:
+def ball_drop(h0=H0, restitution=E, sphere=None, shapes_pair=("floor", "sphere")) -> clr_sim.Model:
     """A steel ball (r = 10 mm, m = 32.7 g) dropped from h0 above a ground block."""
-    m = clr.Model("ball_drop", gravity=(0.0, -9.81))
+    m = clr_sim.Model("ball_drop", gravity=(0.0, -9.81))
     m.body("ball", mass=0.0327, inertia=1.308e-6, position=(0.0, R + h0), angle=0.0,
            velocity=(0.0, 0.0), angular_velocity=0.0)
-    m.shape("floor", at=clr.at("ground", 0.0, -0.05), geometry=shapes.cuboid(0.5, 0.05))
-    m.shape("sphere", at=clr.at("ball"), geometry=sphere or shapes.ball(R))
+    m.shape("floor", at=clr_sim.at("ground", 0.0, -0.05), geometry=shapes.cuboid(0.5, 0.05))
+    m.shape("sphere", at=clr_sim.at("ball"), geometry=sphere or shapes.ball(R))
     m.contact(
         "drop",
         shapes=list(shapes_pair),
-        normal=clr.normal("hertz", restitution, stiffness=1.5e10, damping="hc-exact"),
+        normal=clr_sim.normal("hertz", restitution, stiffness=1.5e10, damping="hc-exact"),
     )
     m.solver(rtol=1e-9, atol=1e-12)
     m.output(t_end=0.9, intervals=9000)
@@ -99,7 +99,7 @@ def apexes(t, y, after=0.01):
 
 @pytest.fixture(scope="module")
 def drop_run():
-    return clr.simulate(ball_drop())
+    return clr_sim.simulate(ball_drop())
 
 
 def test_ball_drop_rebounds_follow_the_restitution(drop_run):
@@ -126,11 +126,11 @@ def test_the_python_model_is_its_model_file_bit_for_bit(drop_run):
     text = m.to_toml()
     assert "[[shape]]" in text and 'type = "contact"' in text
     # the same description as the model file written by hand, and as its own text read back
-    assert clr.Model.from_toml(BALL_DROP_TOML).to_toml() == text
-    again = clr.Model.from_toml(text)
+    assert clr_sim.Model.from_toml(BALL_DROP_TOML).to_toml() == text
+    again = clr_sim.Model.from_toml(text)
     assert again.to_toml() == text
-    for other in (again, clr.Model.from_dict(m.to_dict())):
-        r = clr.simulate(other)
+    for other in (again, clr_sim.Model.from_dict(m.to_dict())):
+        r = clr_sim.simulate(other)
         assert r.column_names() == drop_run.column_names()
         for name in r.column_names():
             assert np.array_equal(r[name], drop_run[name]), name
@@ -157,17 +157,17 @@ SAMPLES = {
 
 def test_every_geometry_type_has_a_helper_writing_the_fields_of_the_file():
     """The Rust reader lists the geometry types and each type's fields; each helper of
-    clr.shapes writes exactly those, and every one is accepted by the reader."""
-    kinds = dict(clr._native.element_kinds())["shape.geometry"]
+    clr_sim.shapes writes exactly those, and every one is accepted by the reader."""
+    kinds = dict(clr_sim._native.element_kinds())["shape.geometry"]
     assert set(kinds) == set(GEOMETRIES) == set(SAMPLES), set(kinds) ^ set(GEOMETRIES)
     for kind in kinds:
         assert callable(getattr(shapes, GEOMETRIES[kind]))
         g = SAMPLES[kind]()
         assert g["type"] == kind
-        fields = set(clr._native.kind_fields("shape.geometry", kind))
+        fields = set(clr_sim._native.kind_fields("shape.geometry", kind))
         assert set(g) - {"type"} == fields, (kind, (set(g) - {"type"}) ^ fields)
     # a part of a compound: part() takes exactly its fields
-    part_fields = set(clr._native.kind_fields("shape.geometry.parts"))
+    part_fields = set(clr_sim._native.kind_fields("shape.geometry.parts"))
     assert set(inspect.signature(shapes.part).parameters) == part_fields
     assert set(SAMPLES["compound"]()["parts"][0]) == part_fields
 
@@ -175,17 +175,17 @@ def test_every_geometry_type_has_a_helper_writing_the_fields_of_the_file():
 @pytest.mark.parametrize("kind", sorted(set(SAMPLES) - {"beam_face"}))
 def test_every_geometry_reads_and_round_trips(kind):
     tomllib = pytest.importorskip("tomllib")
-    m = clr.Model("one_shape")
+    m = clr_sim.Model("one_shape")
     m.body("b", mass=1.0, inertia=1e-3, position=(0.0, 0.5), angle=0.0,
            velocity=(0.0, 0.0), angular_velocity=0.0)
-    m.shape("probe", at=clr.at("b", 0.001, 0.002), angle=0.3, geometry=SAMPLES[kind]())
-    m.shape("ground_ball", at=clr.at("ground"), geometry=shapes.ball(0.01))
+    m.shape("probe", at=clr_sim.at("b", 0.001, 0.002), angle=0.3, geometry=SAMPLES[kind]())
+    m.shape("ground_ball", at=clr_sim.at("ground"), geometry=shapes.ball(0.01))
     m.contact("pair", shapes=["ground_ball", "probe"],
-              normal=clr.normal("hertz", 0.8, stiffness=1e9, damping="hc-exact"))
+              normal=clr_sim.normal("hertz", 0.8, stiffness=1e9, damping="hc-exact"))
     m.output(t_end=0.01)
     assert m.check() == []
     text = m.to_toml()
-    assert clr.Model.from_toml(text).to_toml() == text
+    assert clr_sim.Model.from_toml(text).to_toml() == text
     written = tomllib.loads(text)["shape"][0]
     assert written["angle"] == 0.3 and written["at"] == {"body": "b", "at": [0.001, 0.002]}
     given = SAMPLES[kind]()
@@ -211,20 +211,20 @@ def test_involute_gear_defaults_are_the_files():
 
 def test_a_misspelt_geometry_field_names_its_path():
     m = ball_drop(sphere={"type": "ball", "radiuss": R})
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         m.check()
     assert e.value.field == "shape[1].geometry.radiuss"
     assert "did you mean `radius`" in e.value.message and e.value.line is None
 
     m = ball_drop(sphere={"type": "bal", "radius": R})
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         m.check()
     assert e.value.field == "shape[1].geometry.type" and "did you mean `ball`" in e.value.message
 
     # the same in model-file text: with its line
     text = BALL_DROP_TOML.replace("radius = 0.01", "radiuss = 0.01")
-    with pytest.raises(clr.FieldError) as e:
-        clr.Model.from_toml(text).check()
+    with pytest.raises(clr_sim.FieldError) as e:
+        clr_sim.Model.from_toml(text).check()
     assert e.value.field == "shape[1].geometry.radiuss"
     assert e.value.line == 1 + text.splitlines().index(
         'geometry = { type = "ball", radiuss = 0.01 }'
@@ -233,29 +233,29 @@ def test_a_misspelt_geometry_field_names_its_path():
     # a misspelt field of the contact element
     d = ball_drop().to_dict()
     d["clearance"][0]["max_point"] = 2
-    with pytest.raises(clr.FieldError) as e:
-        clr.Model.from_dict(d).check()
+    with pytest.raises(clr_sim.FieldError) as e:
+        clr_sim.Model.from_dict(d).check()
     assert e.value.field == "clearance[0].max_point" and "max_points" in e.value.message
 
 
 def test_an_unknown_shape_name_names_its_path_and_the_known_shapes():
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         ball_drop(shapes_pair=("floor", "spher")).check()
     assert e.value.field == "clearance[0].shapes[1]"
     assert "`spher`" in e.value.message and "floor, sphere" in e.value.message
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         ball_drop(shapes_pair=("flor", "sphere")).check()
     assert e.value.field == "clearance[0].shapes[0]"
 
 
 def test_invalid_geometry_values_are_refused():
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         ball_drop(sphere=shapes.ball(-0.01)).check()
     assert "ball radius" in e.value.message and "-0.01" in e.value.message
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         ball_drop(sphere=shapes.involute_gear(0.002, 20.5)).check()
     assert e.value.field.startswith("shape[1].geometry") and "expected u32" in e.value.message
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         ball_drop(sphere={"type": "ball"}).check()
     assert e.value.field == "shape[1].geometry.radius" and "give `radius`" in e.value.message
 
@@ -270,7 +270,7 @@ _FIELD_NOT_YET = pytest.mark.xfail(strict=True, reason="the path inside a geomet
     "change, path",
     [
         (lambda m: m._doc["shape"][1].update(geometry=shapes.ball(-0.01)), "shape[1].geometry"),
-        (lambda m: m._doc["shape"][1].update(at=clr.at("bal")), "shape[1].at.body"),
+        (lambda m: m._doc["shape"][1].update(at=clr_sim.at("bal")), "shape[1].at.body"),
         pytest.param(
             lambda m: m._doc["shape"][1].update(
                 geometry=shapes.compound([{"type": "ball", "radiuss": 0.01}])
@@ -289,6 +289,6 @@ _FIELD_NOT_YET = pytest.mark.xfail(strict=True, reason="the path inside a geomet
 def test_shape_errors_name_the_shape_item(change, path):
     m = ball_drop()
     change(m)
-    with pytest.raises(clr.FieldError) as e:
+    with pytest.raises(clr_sim.FieldError) as e:
         m.check()
     assert e.value.field == path, e.value.field

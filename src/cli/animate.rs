@@ -2,7 +2,7 @@
 //! file for slides.
 //!
 //! The run's `report.html` holds the drawing data as JSON (`<script id="clr-data">`, the serde
-//! form of `clr::report::Report`); it is read here into the module's own `Deserialize` types and
+//! form of `clr_sim::report::Report`); it is read here into the module's own `Deserialize` types and
 //! every frame is drawn in Rust with tiny-skia (a pure-Rust 2-D rasterizer, anti-aliased) in a
 //! simplified form of the page's drawing: ground symbols, rigid parts as outlines through their
 //! attachment points (a rounded bar for two points, the convex hull for more, a block for one),
@@ -70,7 +70,7 @@ pub(crate) struct AnimateArgs {
 }
 
 // ---------------------------------------------------------------------------------------------
-// The report data (the serde form of clr::report::Report, only what is drawn)
+// The report data (the serde form of clr_sim::report::Report, only what is drawn)
 
 /// Numbers that may hold `null` (serde_json writes a NaN as `null`): read as NaN.
 #[derive(Debug, Default, Clone)]

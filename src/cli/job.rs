@@ -3,14 +3,14 @@
 use std::path::Path;
 use std::time::Instant;
 
-use clr::spec::run::{self, is_file};
-use clr::spec::Assignment;
+use clr_sim::spec::run::{self, is_file};
+use clr_sim::spec::Assignment;
 
 use super::output::{self, Record};
 use super::progress::Progress;
 use super::{assignments, CliError, RunArgs};
 
-pub(crate) use clr::spec::run::Job;
+pub(crate) use clr_sim::spec::run::Job;
 
 impl From<run::RunError> for CliError {
     fn from(e: run::RunError) -> Self {
@@ -18,7 +18,7 @@ impl From<run::RunError> for CliError {
     }
 }
 
-/// Resolve a target with its overrides, end time and tolerance (`clr::spec::run::resolve`).
+/// Resolve a target with its overrides, end time and tolerance (`clr_sim::spec::run::resolve`).
 pub(crate) fn resolve(
     target: &str,
     overrides: &[Assignment],
@@ -28,7 +28,7 @@ pub(crate) fn resolve(
     Ok(run::resolve(target, overrides, t_end, rtol)?)
 }
 
-/// Run a job (`clr::spec::run::execute`) with a progress bar over simulated time (when
+/// Run a job (`clr_sim::spec::run::execute`) with a progress bar over simulated time (when
 /// `progress` is given) and its wall time. A simulation failure still returns a [`Record`]
 /// (with `error` set and the partial results); only bad input is an `Err`.
 pub(crate) fn execute(
@@ -213,7 +213,7 @@ pub(crate) fn view_command(
     let sets = assignments(set)?;
     let job = resolve(target, &sets, None, None)?;
     let desc = job.desc(None, None).map_err(CliError::Input)?;
-    let results = clr::report::initial_state(&desc, desc.output.t_start)
+    let results = clr_sim::report::initial_state(&desc, desc.output.t_start)
         .map_err(|e| CliError::Input(format!("{target}: {e}")))?;
     let mut notes: Vec<String> = match &job {
         Job::Generic(s) => s.notes.clone(),
@@ -228,7 +228,7 @@ pub(crate) fn view_command(
         .clone()
         .unwrap_or_else(|| target.to_string());
     let source = if is_file(target) { target } else { "builtin" };
-    let input = clr::report::Input {
+    let input = clr_sim::report::Input {
         model: &name,
         source,
         description: desc.model.description.as_deref().unwrap_or(""),
@@ -238,7 +238,7 @@ pub(crate) fn view_command(
         notes: &notes,
         error: None,
     };
-    let report = clr::report::Report::new("view", &input, clr::report::Limits::default());
+    let report = clr_sim::report::Report::new("view", &input, clr_sim::report::Limits::default());
     std::fs::write(out, report.html())
         .map_err(|e| CliError::Input(format!("cannot write {}: {e}", out.display())))?;
     if !quiet {

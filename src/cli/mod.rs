@@ -12,7 +12,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-use clr::spec::{parse_assignment, Assignment, SpecError};
+use clr_sim::spec::{parse_assignment, Assignment, SpecError};
 
 /// clr: planar mechanisms with clearance joints, contact, friction and flexible links.
 #[derive(Parser)]

@@ -3,12 +3,12 @@
 use std::io::Write;
 use std::path::Path;
 
-use clr::spec::run::{Job, Outcome};
 use clr_plot::Figure;
+use clr_sim::spec::run::{Job, Outcome};
 
 use super::{CliError, RunArgs};
 
-/// The outcome of one run (`clr::spec::run::Outcome`, whose fields it derefs to) and its wall
+/// The outcome of one run (`clr_sim::spec::run::Outcome`, whose fields it derefs to) and its wall
 /// time.
 pub(crate) struct Record {
     /// Model, source, results, units, metrics, parameters, error.
@@ -159,11 +159,11 @@ pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> se
             "projections": rec.results.projections,
             "max_position_violation": finite(rec.results.max_position_violation),
         },
-        "initial_conditions": clr::spec::run::initial_conditions_json(
+        "initial_conditions": clr_sim::spec::run::initial_conditions_json(
             rec.results.initial_conditions.as_ref()
         ),
         "impacts": impacts_summary(&rec.results.impacts),
-        "flexible_bodies": clr::spec::run::flexible_json(&rec.flexible),
+        "flexible_bodies": clr_sim::spec::run::flexible_json(&rec.flexible),
         "parameters": rec.parameters,
     })
 }
@@ -261,7 +261,7 @@ fn write_report(
     rec: &Record,
     desc: Result<&clr_mbd::ModelDesc, String>,
 ) -> Result<(), CliError> {
-    let input = clr::report::Input {
+    let input = clr_sim::report::Input {
         model: &rec.model,
         source: &rec.source,
         description: "",
@@ -271,7 +271,7 @@ fn write_report(
         notes: &rec.notes,
         error: rec.error.as_deref(),
     };
-    let report = clr::report::Report::new("run", &input, clr::report::Limits::default());
+    let report = clr_sim::report::Report::new("run", &input, clr_sim::report::Limits::default());
     std::fs::write(path, report.html()).map_err(|e| io(path, e))
 }
 

@@ -2,8 +2,8 @@
 
 use std::path::{Path, PathBuf};
 
-use clr::spec::locate::suggestion;
 use clr_plot::Figure;
+use clr_sim::spec::locate::suggestion;
 
 use super::output::read_csv;
 use super::CliError;

@@ -4,10 +4,10 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use clr::report::{Report, SweepRow};
-use clr::spec::overrides_value;
-use clr::spec::sweep::{self, Axis};
 use clr_plot::Figure;
+use clr_sim::report::{Report, SweepRow};
+use clr_sim::spec::overrides_value;
+use clr_sim::spec::sweep::{self, Axis};
 use rayon::prelude::*;
 
 use super::job::{execute, resolve, Job};
@@ -190,7 +190,7 @@ fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
 
 /// sweep.csv as text: `point,folder,<varied>...,status,wall_s,<metric [unit]>...`.
 fn sweep_table(varies: &[Vary], rows: &[SweepRow]) -> String {
-    let metrics = clr::report::metric_names(rows);
+    let metrics = clr_sim::report::metric_names(rows);
     let mut s = String::from("point,folder");
     for v in varies {
         s.push(',');

@@ -1,12 +1,12 @@
 //! Whole models at the C boundary: a model file (TOML text, `docs/model-file.md`) is loaded,
 //! run and read back through the same path as `clr run` and the Python package
-//! (`clr::spec::load_str`, then `clr::spec::run::execute`), so the numbers are the same bit for
+//! (`clr_sim::spec::load_str`, then `clr_sim::spec::run::execute`), so the numbers are the same bit for
 //! bit.
 
 use std::ffi::{c_char, CStr, CString};
 
-use clr::spec::run::{execute, Job, Outcome};
-use clr::spec::{load_str, Assignment, Loaded};
+use clr_sim::spec::run::{execute, Job, Outcome};
+use clr_sim::spec::{load_str, Assignment, Loaded};
 
 use crate::error::{finite, guard, CapiError, ClrStatus};
 use crate::ffi::{free_handle, new_handle};

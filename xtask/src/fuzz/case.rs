@@ -1,6 +1,6 @@
 //! One fuzz case through the public API of `clr`, as `clr run <file>` does it: parse and
-//! validate the model file (`clr::spec::load_str`), build the model, and (when asked) simulate
-//! a short span with a step budget (`clr::spec::run::execute` with `--max-steps`-like knobs).
+//! validate the model file (`clr_sim::spec::load_str`), build the model, and (when asked) simulate
+//! a short span with a step budget (`clr_sim::spec::run::execute` with `--max-steps`-like knobs).
 //! A panic is caught and returned as [`Verdict::Panic`]; hangs are the caller's watchdog's.
 //!
 //! Depends on `clr`, `serde_json`, `toml` and `std` only (all dependencies of `clr`), so that
@@ -10,8 +10,8 @@
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use clr::spec::run::{execute, Job, RunError};
-use clr::spec::{load_str, Loaded, SpecError};
+use clr_sim::spec::run::{execute, Job, RunError};
+use clr_sim::spec::{load_str, Loaded, SpecError};
 
 /// How much of a case runs.
 #[derive(Debug, Clone, Copy)]
@@ -115,8 +115,8 @@ pub fn run(text: &str, limits: &Limits) -> Verdict {
     }
 }
 
-fn knobs(limits: &Limits) -> clr::models::SolverKnobs {
-    clr::models::SolverKnobs {
+fn knobs(limits: &Limits) -> clr_sim::models::SolverKnobs {
+    clr_sim::models::SolverKnobs {
         max_steps: Some(limits.max_steps),
         ..Default::default()
     }
@@ -205,10 +205,10 @@ pub fn quiet_panics() {
 /// A built-in model file (`[model] builtin = "<name>"` with every `[parameters]` at its catalog
 /// default) for each catalog model, as seeds of the built-in form.
 pub fn builtin_seeds() -> Vec<(String, String)> {
-    clr::models::catalog::entries()
+    clr_sim::models::catalog::entries()
         .iter()
         .filter_map(|e| {
-            let params = clr::models::catalog::default_parameters(e.name).ok()?;
+            let params = clr_sim::models::catalog::default_parameters(e.name).ok()?;
             let params: toml::Value = serde_json::from_value(params).ok()?;
             let mut root = toml::Table::new();
             let mut model = toml::Table::new();

@@ -18,7 +18,7 @@
 //! pressure-induced shear; Hamrock, Schmid & Jacobson 2004, ch. 10) with ε, φ of the Ocvirk
 //! equilibrium above, and with no load (ε = 0) Petroff's T = 2πμr³Lω/c (N.P. Petroff 1883).
 
-use clr::spec::run::{execute, resolve_text};
+use clr_sim::spec::run::{execute, resolve_text};
 
 use super::Filter;
 use crate::report::Case;
@@ -74,7 +74,7 @@ fn petroff() -> Case {
     }
 }
 
-fn run(load: f64) -> Result<clr::spec::run::Outcome, String> {
+fn run(load: f64) -> Result<clr_sim::spec::run::Outcome, String> {
     resolve_text("<lubricated journal>", &model(load), &[], None, None)
         .map_err(|e| e.to_string())
         .and_then(|job| execute(&job, None, None, None).map_err(|e| e.to_string()))

@@ -5,12 +5,12 @@ as TOML give the same numbers bit for bit.
 
 SI units everywhere (m, kg, s, N, Pa, J), angles in rad, angular rates in rad/s. An argument
 left at ``None`` is not written (the file's default applies); every argument given is used or
-refused with a :class:`clr.errors.FieldError` naming its field (``joint[1].axis``).
+refused with a :class:`clr_sim.errors.FieldError` naming its field (``joint[1].axis``).
 
 Attachment points (``a``, ``b``, ``bearing``, ``journal``, ``guide``, ``slider``, ``at``) are a
 point name (``"O"``), a body and local coordinates (:func:`at`) or a beam node (:func:`node`).
 Laws and time functions are dicts as in the file; :func:`normal`, :func:`friction`,
-:func:`material` and :func:`motion` write them, and :mod:`clr.shapes` the geometries of
+:func:`material` and :func:`motion` write them, and :mod:`clr_sim.shapes` the geometries of
 contact shapes (:meth:`Model.shape`).
 """
 
@@ -96,8 +96,8 @@ class Model:
     >>> m.output(t_end=1.0)
 
     Every method returns the model, so calls can be chained. Nothing is checked until the model
-    is used (:meth:`check`, :meth:`to_toml`, :func:`clr.simulate`); then every problem is a
-    :class:`clr.errors.FieldError` with the path of its field (``body[0].mass``: the first
+    is used (:meth:`check`, :meth:`to_toml`, :func:`clr_sim.simulate`); then every problem is a
+    :class:`clr_sim.errors.FieldError` with the path of its field (``body[0].mass``: the first
     :meth:`body`).
     """
 
@@ -119,7 +119,7 @@ class Model:
             gravity=gravity,
             clearance_force_application=clearance_force_application,
         )
-        self._label = f"<clr.Model {name!r}>" if name else "<clr.Model>"
+        self._label = f"<clr_sim.Model {name!r}>" if name else "<clr_sim.Model>"
 
     # ----- reading and writing -----------------------------------------------------------
 
@@ -130,7 +130,7 @@ class Model:
         m = cls()
         m._doc = copy.deepcopy(dict(doc))
         name = m._doc.get("model", {}).get("name")
-        m._label = f"<clr.Model {name!r}>" if name else "<clr.Model>"
+        m._label = f"<clr_sim.Model {name!r}>" if name else "<clr_sim.Model>"
         return m
 
     @classmethod
@@ -165,12 +165,12 @@ class Model:
         """The checked model as model-file text, every section written as ``clr export`` writes
         it (a built-in model file: its ``[model] builtin`` form with every parameter).
 
-        Raises :class:`clr.errors.FieldError` for anything the model file would refuse."""
+        Raises :class:`clr_sim.errors.FieldError` for anything the model file would refuse."""
         return self._job().to_toml()
 
     def check(self) -> List[str]:
         """Check the model as ``clr run`` would read it; returns the notes (what reading it
-        changed on its own, one sentence each). Raises :class:`clr.errors.FieldError`."""
+        changed on its own, one sentence each). Raises :class:`clr_sim.errors.FieldError`."""
         return list(self._job().notes)
 
     def _source(self) -> Optional[Tuple[str, str]]:
@@ -501,7 +501,7 @@ class Model:
         name, :func:`at` on a body or ``"ground"``, or :func:`node` of a beam: the shape then
         moves with the node's small-rotation frame) and is turned by ``angle`` (rad, from the
         body's x axis; default 0). ``geometry`` (m, in the shape frame) is written by
-        :mod:`clr.shapes`: ``ball``, ``capsule``, ``cuboid``, ``convex_polygon``, ``polyline``,
+        :mod:`clr_sim.shapes`: ``ball``, ``capsule``, ``cuboid``, ``convex_polygon``, ``polyline``,
         ``compound``, ``involute_gear``, or ``beam_face`` (the deformed face of a flexible beam:
         then without ``at`` and ``angle``; ``at`` is required for every other geometry). A shape
         does nothing on its own; :meth:`contact` puts two in contact."""

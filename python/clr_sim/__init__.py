@@ -2,8 +2,8 @@
 
 Build a model (:class:`Model`, or a model file, or a built-in model by name), run it
 (:func:`simulate`) and sweep its parameters in parallel (:func:`sweep`); the geometries of
-contact shapes are in :mod:`clr.shapes`, the contact and friction laws on their own in
-:mod:`clr.contact`. Everything runs in Rust through the same
+contact shapes are in :mod:`clr_sim.shapes`, the contact and friction laws on their own in
+:mod:`clr_sim.contact`. Everything runs in Rust through the same
 code as the ``clr`` command, so the numbers are those of ``clr run`` and ``clr sweep`` bit for
 bit. SI units throughout (docs/python.md).
 """
@@ -83,7 +83,7 @@ def _job(model: Target, set: Optional[Mapping[str, Any]], t_end, rtol) -> "_nati
             os.fspath(model), None if set is None else dict(set), t_end, rtol
         )
     raise ModelError(
-        f"cannot run a {type(model).__name__}; give a clr.Model, a built-in model name or a "
+        f"cannot run a {type(model).__name__}; give a clr_sim.Model, a built-in model name or a "
         "model file path",
         field="model",
     )

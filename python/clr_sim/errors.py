@@ -24,7 +24,7 @@ __all__ = [
 class PlausibilityWarning(UserWarning):
     """A finding of clr's plausibility checks (an initial penetration, units that look wrong,
     energy created by the run); the same findings are in ``Result.warnings``. Turn them into
-    errors with ``clr.simulate(..., strict=True)`` (or Python's ``warnings.simplefilter``)."""
+    errors with ``clr_sim.simulate(..., strict=True)`` (or Python's ``warnings.simplefilter``)."""
 
 
 class ClrError(Exception):
@@ -44,7 +44,7 @@ class ModelError(ClrError, ValueError):
     """A model, built-in parameter or override that cannot be used (a ``ValueError``).
 
     ``file``, ``line`` and ``column`` place it in a model file or TOML text when known; for a
-    model built with :class:`clr.Model` the field path alone names the place (``body[0].mass``
+    model built with :class:`clr_sim.Model` the field path alone names the place (``body[0].mass``
     is the first ``m.body(...)``).
     """
 
@@ -59,7 +59,7 @@ class ModelError(ClrError, ValueError):
         self.file = file
         # a model built in Python has no text of its own: its lines would be those of the
         # generated TOML, which the user never sees
-        built = file is not None and file.startswith("<clr.Model")
+        built = file is not None and file.startswith("<clr_sim.Model")
         self.line = None if built else line
         self.column = None if built else column
         super().__init__(message, field)
@@ -68,14 +68,14 @@ class ModelError(ClrError, ValueError):
         place = ""
         if self.file == "--set":
             place = "set: "
-        elif self.file and not self.file.startswith("<clr.Model"):
+        elif self.file and not self.file.startswith("<clr_sim.Model"):
             place = self.file
             if self.line is not None:
                 place += f":{self.line}"
                 if self.column is not None:
                     place += f":{self.column}"
             place += ": "
-        elif self.file and self.file.startswith("<clr.Model"):
+        elif self.file and self.file.startswith("<clr_sim.Model"):
             place = f"{self.file[1:-1]}: "
         return place + super()._render()
 
@@ -101,8 +101,8 @@ class ContactError(ClrError, ValueError):
 
 class SimulationError(ClrError, RuntimeError):
     """The integrator failed (``field == "solver"``: the message names the ``[solver]`` setting
-    to change). ``result`` keeps what was computed up to the failure (a :class:`clr.Result`,
-    or for :func:`clr.run_model` the dict it returns)."""
+    to change). ``result`` keeps what was computed up to the failure (a :class:`clr_sim.Result`,
+    or for :func:`clr_sim.run_model` the dict it returns)."""
 
     def __init__(self, message: str, result: Any = None, field: str = "solver"):
         self.result = result

@@ -1,15 +1,15 @@
-"""Geometries of contact shapes (``[[shape]]``, :meth:`clr.Model.shape`): each function returns
+"""Geometries of contact shapes (``[[shape]]``, :meth:`clr_sim.Model.shape`): each function returns
 the ``geometry`` table of the model file as a plain dict (``{"type": "ball", "radius": 0.01}``),
 written in the shape's own frame (its origin at the shape's ``at``, turned by its ``angle``).
 
-Lengths in m, angles in rad. As everywhere in :mod:`clr.model`, nothing is checked here: the
+Lengths in m, angles in rad. As everywhere in :mod:`clr_sim.model`, nothing is checked here: the
 model-file reader checks the geometry when the model is used and refuses a bad value with a
-:class:`clr.errors.FieldError` naming it (``shape[1].geometry.radius``). An argument left at
+:class:`clr_sim.errors.FieldError` naming it (``shape[1].geometry.radius``). An argument left at
 ``None`` is not written (the file's default applies).
 
 >>> import clr
->>> m = clr.Model("ball_drop", gravity=(0.0, -9.81))
->>> m.shape("floor", at=clr.at("ground", 0.0, -0.05), geometry=clr.shapes.cuboid(0.5, 0.05))
+>>> m = clr_sim.Model("ball_drop", gravity=(0.0, -9.81))
+>>> m.shape("floor", at=clr_sim.at("ground", 0.0, -0.05), geometry=clr_sim.shapes.cuboid(0.5, 0.05))
 """
 
 from __future__ import annotations
@@ -144,7 +144,7 @@ def beam_face(beam: str, face: str, *, samples_per_element: Optional[int] = None
     """The deformed ``face`` (``"upper"`` or ``"lower"``) of the flexible beam ``beam`` (a
     ``[[beam]]`` or ``[[flexible_body]]``): segments through ``samples_per_element`` samples per
     element (default 4) of the face, rebuilt at every evaluation. Give it without ``at`` and
-    ``angle`` (it follows the beam), and only as the first shape of :meth:`clr.Model.contact`,
+    ``angle`` (it follows the beam), and only as the first shape of :meth:`clr_sim.Model.contact`,
     against a rigid shape."""
     return _table("beam_face", beam=beam, face=face, samples_per_element=samples_per_element)
 

@@ -46,7 +46,7 @@ class Result:
       ``joint``, ``onset_s``, ``impact_velocity_m_per_s``, ``peak_force_N``, ...);
     - ``warnings``: the plausibility checks' findings (dicts of ``field`` and ``message``: an
       initial penetration, units that look wrong, energy created; also issued through Python's
-      :mod:`warnings` as :class:`clr.PlausibilityWarning`);
+      :mod:`warnings` as :class:`clr_sim.PlausibilityWarning`);
     - ``notes``: what the run changed or chose on its own; ``initial_conditions``: the
       assembly report (dict, as in summary.json); ``parameters``: the resolved parameters;
     - ``error``: ``None``, or the solver's message when the results stop early;
@@ -120,7 +120,7 @@ class Result:
         status = "ok" if self.ok else f"failed: {self.error}"
         span = f"t = {self.time[0]:g}…{self.time[-1]:g} s" if len(self.time) else "no rows"
         return (
-            f"<clr.Result {self.model!r}: {len(self.time)} rows, {span}, "
+            f"<clr_sim.Result {self.model!r}: {len(self.time)} rows, {span}, "
             f"{len(self.columns) - 1} columns, {len(self.metrics)} metrics, "
             f"{len(self.impacts)} impacts, {status}>"
         )
@@ -198,7 +198,7 @@ class SweepResult:
 
     def __repr__(self) -> str:
         return (
-            f"<clr.SweepResult {len(self.points)} points over {', '.join(self.names)}; "
+            f"<clr_sim.SweepResult {len(self.points)} points over {', '.join(self.names)}; "
             f"{len(self.failed)} failed>"
         )
 

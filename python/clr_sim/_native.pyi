@@ -1,5 +1,5 @@
-# Type stubs of the Rust extension module clr._native (python/src/*.rs). The public API is the
-# Python layer (clr, clr.contact, clr.model, clr.result); these stubs let editors and type
+# Type stubs of the Rust extension module clr_sim._native (python/src/*.rs). The public API is the
+# Python layer (clr, clr_sim.contact, clr_sim.model, clr_sim.result); these stubs let editors and type
 # checkers follow it into the extension.
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple
 

@@ -1,5 +1,5 @@
 """Contact force laws, friction laws and the planar revolute clearance joint of clr-contact
-(``clr.contact``; also importable under its former name ``clr_contact``).
+(``clr_sim.contact``; also importable under its former name ``clr_contact``).
 
 Every law is evaluated in Rust; the functions and methods here accept scalars or numpy arrays
 (anything ``numpy.asarray`` takes), broadcast them against each other with numpy's rules, and
