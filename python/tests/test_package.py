@@ -1,4 +1,4 @@
-"""The `clr` package: models built in Python, from dicts and from TOML; simulate and sweep;
+"""The `clr_sim` package: models built in Python, from dicts and from TOML; simulate and sweep;
 typed errors with their field paths.
 
 References (independent formulations, docs/verification.md):
@@ -119,11 +119,11 @@ def test_builtin_models_and_files_run_by_name():
 
 def test_every_error_type_carries_its_field_path():
     m = slider_crank_in_python()
-    m.body("bad", mass=-1.0, inertia=1.0)
     with pytest.raises(clr_sim.FieldError) as e:
-        m.check()
+        m.body("bad", mass=-1.0, inertia=1.0)  # refused at the call (test_errors_at_call.py)
     assert e.value.field == "body[3].mass" and "positive" in str(e.value)
     assert e.value.line is None  # no line numbers of a generated text
+    assert e.value.element == "body 'bad'" and e.value.where.startswith(__file__)
 
     m = clr_sim.Model.from_dict({"body": [{"name": "rod", "mas": 1.0, "inertia": 1.0}]})
     with pytest.raises(clr_sim.FieldError) as e:
