@@ -379,7 +379,12 @@ class Model:
             builder.pop(section, None)
         return self
 
-    def _add(self, section: str, kind: Optional[str], name: str, **fields: Any) -> "Model":
+    def _add(
+        self, section: str, kind: Optional[str], name: Any = None, /, **fields: Any
+    ) -> "Model":
+        # positional-only: `section` is also a field (a beam's cross-section), and the methods
+        # that pass their locals() give `name` as a keyword
+        name = fields.pop("name", name)
         item: Dict[str, Any] = {"name": name}
         if kind is not None:
             item["type"] = kind
