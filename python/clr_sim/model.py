@@ -496,9 +496,9 @@ class Model:
     ) -> "Model":
         """``[[beam]]``: a ground-fixed planar Euler–Bernoulli beam from ``start`` to ``end``
         (m) with ``elements`` elements; ``material`` ``{youngs_modulus (Pa), density (kg/m³)}``,
-        ``section`` (e.g. ``{type = "rectangle", width, height}`` in m), ``supports``
-        (``[{node, kind}]``), ``rayleigh`` damping [α (1/s), β (s)], ``mass`` (``consistent`` or
-        ``lumped``)."""
+        ``section`` (e.g. ``{"shape": "rectangular", "width": m, "depth": m}``), ``supports``
+        (``[{"node": 0, "type": "clamped"}]``), ``rayleigh`` damping [α (1/s), β (s)],
+        ``mass`` (``consistent`` or ``lumped``); as in tests/data/cantilever.toml."""
         return self._add("beam", None, **{k: v for k, v in locals().items() if k != "self"})
 
     def flexible_body(
