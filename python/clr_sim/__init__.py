@@ -115,7 +115,15 @@ def simulate(
     integrating as a :class:`ModelError`, after the run as a :class:`SimulationError` whose
     ``result`` is complete.
     """
-    result = Result(dict(_job(model, set, t_end, rtol).run(strict)))
+    job = _job(model, set, t_end, rtol)
+    try:
+        raw = job.run(strict)
+    except FieldError as e:
+        # found by the run (the assembly of the initial conditions): name the element
+        if isinstance(model, Model):
+            raise model._named(e) from None
+        raise
+    result = Result(dict(raw))
     for w in result.warnings:
         _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     if check and result.error is not None:

@@ -3,6 +3,11 @@
 (``clearance.B.journal_radius``), ``model`` for an unknown built-in name, ``parameters`` for the
 parameters of a built-in model, a law argument (``delta[3]``), or ``solver`` for a failed
 integration. The message says what to change.
+
+An error about an element of a model built in Python also names the element
+(``element == "clearance 'B'"``) and the line of the script that wrote it: ``where``
+(``"script.py:12"``) when the method call itself is refused, ``added_at`` when the error is
+found only when the model is used (``simulate()``, ``check()``).
 """
 
 from __future__ import annotations
@@ -44,8 +49,9 @@ class ModelError(ClrError, ValueError):
     """A model, built-in parameter or override that cannot be used (a ``ValueError``).
 
     ``file``, ``line`` and ``column`` place it in a model file or TOML text when known; for a
-    model built with :class:`clr_sim.Model` the field path alone names the place (``body[0].mass``
-    is the first ``m.body(...)``).
+    model built with :class:`clr_sim.Model`, ``element`` names the element (``"body 'crank'"``)
+    and ``where`` (refused at the call) or ``added_at`` (found when the model is used) the
+    script line (``"script.py:12"``) that wrote it.
     """
 
     def __init__(
@@ -55,7 +61,16 @@ class ModelError(ClrError, ValueError):
         file: Optional[str] = None,
         line: Optional[int] = None,
         column: Optional[int] = None,
+        element: Optional[str] = None,
+        where: Optional[str] = None,
+        added_at: Optional[str] = None,
     ):
+        #: the element of a model built in Python (``"clearance 'B'"``, ``"[solver]"``)
+        self.element = element
+        #: ``file:line`` of the script line whose call was refused (errors at the call)
+        self.where = where
+        #: ``file:line`` of the script line that added the element (errors found at the run)
+        self.added_at = added_at
         self.file = file
         # a model built in Python has no text of its own: its lines would be those of the
         # generated TOML, which the user never sees
@@ -65,6 +80,15 @@ class ModelError(ClrError, ValueError):
         super().__init__(message, field)
 
     def _render(self) -> str:
+        element = ""
+        if self.element:
+            added = f" (added at {self.added_at})" if self.added_at else ""
+            element = f"{self.element}{added}: "
+        if self.where:
+            return f"{self.where}: {element}{super()._render()}"
+        return self._place() + element + super()._render()
+
+    def _place(self) -> str:
         place = ""
         if self.file == "--set":
             place = "set: "
@@ -77,7 +101,7 @@ class ModelError(ClrError, ValueError):
             place += ": "
         elif self.file and self.file.startswith("<clr_sim.Model"):
             place = f"{self.file[1:-1]}: "
-        return place + super()._render()
+        return place
 
 
 class FieldError(ModelError):

@@ -7,6 +7,16 @@ SI units everywhere (m, kg, s, N, Pa, J), angles in rad, angular rates in rad/s.
 left at ``None`` is not written (the file's default applies); every argument given is used or
 refused with a :class:`clr_sim.errors.FieldError` naming its field (``joint[1].axis``).
 
+Each method checks its element when it is called, with the model-file reader, in the context
+of the model so far, and refuses it (the element is not added) with a
+:class:`clr_sim.errors.FieldError` that names the element (``clearance 'B'``), the field and
+the script line of the call (``script.py:12``). A name of a body, point, beam or shape that is
+not defined yet is accepted (a model file may define its items in any order) and checked when
+the model is used (:meth:`Model.check`, :func:`clr_sim.simulate`); errors found then name the
+element and the line that added it. ``None`` for a required value, or a value of the wrong type
+(a string where a number is required), is a :class:`clr_sim.errors.FieldError` naming the field,
+in the helpers (:func:`at`, :func:`normal`, ...) as in the methods.
+
 Attachment points (``a``, ``b``, ``bearing``, ``journal``, ``guide``, ``slider``, ``at``) are a
 point name (``"O"``), a body and local coordinates (:func:`at`) or a beam node (:func:`node`).
 Laws and time functions are dicts as in the file; :func:`normal`, :func:`friction`,
@@ -17,11 +27,14 @@ contact shapes (:meth:`Model.shape`).
 from __future__ import annotations
 
 import copy
+import numbers
 import os
+import re
+import sys
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native
-from .errors import ModelError
+from .errors import FieldError, ModelError
 
 __all__ = ["Model", "at", "node", "material", "normal", "friction", "motion"]
 
@@ -39,19 +52,77 @@ _LISTS = (
 _TABLES = ("model", "solver", "output")
 
 
+_PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
+
+
+def _caller() -> Optional[str]:
+    """``file:line`` of the innermost frame outside the clr_sim package: the user's line."""
+    f = sys._getframe(1)
+    while f is not None:
+        name = os.path.abspath(f.f_code.co_filename)
+        if os.path.dirname(name) != _PACKAGE_DIR:
+            return f"{f.f_code.co_filename}:{f.f_lineno}"
+        f = f.f_back
+    return None
+
+
+def _refuse(field: str, message: str) -> FieldError:
+    return FieldError(message, field=field, where=_caller())
+
+
+def _number(field: str, v: Any, what: str) -> float:
+    """``v`` as a float, or a FieldError naming ``field`` for None, a bool, a string, ..."""
+    if v is None:
+        raise _refuse(field, f"missing value: give {what} (a number), not None")
+    if getattr(v, "ndim", None) == 0:  # a 0-d numpy array
+        v = v.item()
+    if isinstance(v, (bool, str, bytes)) or not isinstance(v, numbers.Real):
+        raise _refuse(field, f"{v!r} is a {type(v).__name__}; give {what} as a number")
+    return float(v)
+
+
+def _integer(field: str, v: Any, what: str) -> int:
+    if v is None:
+        raise _refuse(field, f"missing value: give {what} (an integer), not None")
+    if getattr(v, "ndim", None) == 0:  # a 0-d numpy array
+        v = v.item()
+    if isinstance(v, bool) or not isinstance(v, numbers.Integral):
+        raise _refuse(field, f"{v!r} is a {type(v).__name__}; give {what} as an integer")
+    return int(v)
+
+
+def _text(field: str, v: Any, what: str) -> str:
+    if v is None:
+        raise _refuse(field, f"missing value: give {what} (a string), not None")
+    if not isinstance(v, str):
+        raise _refuse(field, f"{v!r} is a {type(v).__name__}; give {what} as a string")
+    return v
+
+
 def at(body: str, x: float = 0.0, y: float = 0.0) -> Dict[str, Any]:
     """The point (x, y) (m) in the frame of ``body`` (``"ground"`` for the fixed frame)."""
-    return {"body": body, "at": [float(x), float(y)]}
+    return {
+        "body": _text("at.body", body, "the body name (\"ground\" for the fixed frame)"),
+        "at": [_number("at.x", x, "x (m)"), _number("at.y", y, "y (m)")],
+    }
 
 
 def node(beam: str, k: int) -> Dict[str, Any]:
     """Node ``k`` (0 at the beam's start) of the beam or flexible body ``beam``."""
-    return {"beam": beam, "node": int(k)}
+    return {
+        "beam": _text("node.beam", beam, "the beam or flexible body name"),
+        "node": _integer("node.node", k, "the node index k (0 at the beam's start)"),
+    }
 
 
 def material(youngs_modulus: float, poisson_ratio: float) -> Dict[str, float]:
     """An elastic material: Young's modulus E (Pa) and Poisson's ratio ν (–)."""
-    return {"youngs_modulus": float(youngs_modulus), "poisson_ratio": float(poisson_ratio)}
+    return {
+        "youngs_modulus": _number(
+            "material.youngs_modulus", youngs_modulus, "Young's modulus E (Pa)"
+        ),
+        "poisson_ratio": _number("material.poisson_ratio", poisson_ratio, "Poisson's ratio ν"),
+    }
 
 
 def normal(law: str, restitution: float, **params: Any) -> Dict[str, Any]:
@@ -59,21 +130,53 @@ def normal(law: str, restitution: float, **params: Any) -> Dict[str, Any]:
     ``flores``, ``preset``, ...; docs/model-file.md), the coefficient of restitution c_e (–) and
     the law's parameters (``stiffness`` in N/m^n, ``exponent``, ``bearing_material`` and
     ``journal_material`` from :func:`material`, ``preset``, ``length`` in m, ...)."""
-    return {"law": law, "restitution": float(restitution), **params}
+    return {
+        "law": _text("normal.law", law, "the law (hertz, preset, ...; docs/model-file.md)"),
+        "restitution": _number(
+            "normal.restitution", restitution, "the coefficient of restitution c_e"
+        ),
+        **params,
+    }
 
 
 def friction(law: str = "none", **params: Any) -> Dict[str, Any]:
     """A friction law (``[clearance.friction]``): ``none``, ``coulomb`` (``mu``, ``v_reg`` in
     m/s), ``ambrosio`` (``mu``, ``v0``, ``v1`` in m/s), ``threlfall``, ``stribeck``, ``lugre``
     (``sigma0`` N/m, ``sigma1`` N·s/m, ``sigma2`` N·s/m, ...)."""
-    return {"law": law, **params}
+    return {"law": _text("friction.law", law, "the law (none, coulomb, ambrosio, ...)"), **params}
 
 
 def motion(kind: str, **params: Any) -> Dict[str, Any]:
     """A time function (drivers' ``motion``, actuators' ``force``, torques): ``constant``
     (``value``), ``linear`` (``initial``, ``rate``), ``ramp``, ``sine``, ``polynomial``,
     ``table``, ``sum``, ``product`` (docs/model-file.md, "Time functions")."""
-    return {"type": kind, **params}
+    return {"type": _text("motion.type", kind, "the kind (constant, linear, sine, ...)"), **params}
+
+
+def _element(doc: Mapping[str, Any], section: str, k: Optional[int]) -> str:
+    """``clearance 'B'`` for the item ``k`` of ``section`` in ``doc`` (``clearance[0]`` without
+    a name), ``[solver]`` for a table."""
+    if k is None:
+        return f"[{section}]"
+    items = doc.get(section)
+    item = items[k] if isinstance(items, list) and k < len(items) else None
+    name = item.get("name") if isinstance(item, Mapping) else None
+    if isinstance(name, str):
+        return f"{section} {name!r}"
+    return f"{section}[{k}]"
+
+
+def _without_name(message: str, section: str, element: str) -> str:
+    """The reader's message without its own ``body `crank`: `` prefix when the element is
+    named already."""
+    m = re.match(r"^(\w+) '(.*)'$", element)
+    if m is None:
+        return message
+    name = m.group(2)
+    for prefix in (f"{section} `{name}`: ", f"{name}: "):
+        if message.startswith(prefix):
+            return message[len(prefix):]
+    return message
 
 
 def _vec(v: Any) -> Any:
@@ -95,10 +198,13 @@ class Model:
     >>> m.revolute("O", a=at("ground"), b=at("rod", -0.5, 0.0))
     >>> m.output(t_end=1.0)
 
-    Every method returns the model, so calls can be chained. Nothing is checked until the model
-    is used (:meth:`check`, :meth:`to_toml`, :func:`clr_sim.simulate`); then every problem is a
-    :class:`clr_sim.errors.FieldError` with the path of its field (``body[0].mass``: the first
-    :meth:`body`).
+    Every method returns the model, so calls can be chained. Each call checks its element with
+    the model-file reader in the context of the model so far and refuses it with a
+    :class:`clr_sim.errors.FieldError` naming the element, the field and the script line
+    (``script.py:12: clearance 'B': field `clearance[0].normal.restitution`: ...``); a refused
+    element is not added. Names of bodies, points, beams and shapes not defined yet are checked
+    when the model is used (:meth:`check`, :meth:`to_toml`, :func:`clr_sim.simulate`), with the
+    element's name and the line that added it.
     """
 
     def __init__(
@@ -112,6 +218,9 @@ class Model:
         """``name`` and ``description`` for reports, ``gravity`` [g_x, g_y] (m/s²; default
         none), ``clearance_force_application`` (``common_point`` or ``contact_points``)."""
         self._doc: Dict[str, Any] = {}
+        # (section, index) → the script line that added the item
+        self._sites: Dict[Tuple[str, int], str] = {}
+        self._label = f"<clr_sim.Model {name!r}>" if name else "<clr_sim.Model>"
         self._set_table(
             "model",
             name=name,
@@ -119,7 +228,6 @@ class Model:
             gravity=gravity,
             clearance_force_application=clearance_force_application,
         )
-        self._label = f"<clr_sim.Model {name!r}>" if name else "<clr_sim.Model>"
 
     # ----- reading and writing -----------------------------------------------------------
 
@@ -129,6 +237,7 @@ class Model:
         e.g. ``tomllib.load`` of a file or :meth:`to_dict` of another model (copied)."""
         m = cls()
         m._doc = copy.deepcopy(dict(doc))
+        m._sites = {}
         name = m._doc.get("model", {}).get("name")
         m._label = f"<clr_sim.Model {name!r}>" if name else "<clr_sim.Model>"
         return m
@@ -189,7 +298,10 @@ class Model:
         sets = None if set is None else dict(set)
         src = self._source()
         if src is None:
-            return _native.JobCore.from_dict(self._doc, self._label, sets, t_end, rtol)
+            try:
+                return _native.JobCore.from_dict(self._doc, self._label, sets, t_end, rtol)
+            except FieldError as e:
+                raise self._named(e) from None
         kind, value = src
         if kind == "text":
             return _native.JobCore.from_text(value, self._label, sets, t_end, rtol)
@@ -215,21 +327,76 @@ class Model:
             )
         return self._doc
 
+    def _named(self, e: FieldError) -> FieldError:
+        """``e`` (from the reader, placed at ``clearance[0].…``) with the element's name and
+        the script line that added it."""
+        m = re.match(r"^(\w+)(?:\[(\d+)\])?(?:[.\[]|$)", e.field or "")
+        if m is None or e.element is not None or e.file != self._label:
+            return e
+        section, k = m.group(1), m.group(2)
+        index = None if k is None else int(k)
+        if index is None and section not in _TABLES:
+            return e
+        element = _element(self._doc, section, index)
+        return type(e)(
+            _without_name(e.message, section, element),
+            field=e.field,
+            file=e.file,
+            element=element,
+            added_at=self._sites.get((section, -1 if index is None else index)) or None,
+        )
+
+    def _check(self, doc: Dict[str, Any], section: str, k: Optional[int]) -> None:
+        """Check the element ``k`` of ``section`` (a table when ``k`` is None) in ``doc``, the
+        model so far with it (see :meth:`_native.JobCore._check_element`); raise its
+        FieldError with the element's name and the caller's line."""
+        path = section if k is None else f"{section}[{k}]"
+        try:
+            _native.JobCore._check_element(doc, path, self._label)
+        except FieldError as e:
+            element = _element(doc, section, k)
+            raise FieldError(
+                _without_name(e.message, section, element),
+                field=e.field,
+                file=e.file,
+                element=element,
+                where=_caller(),
+            ) from None
+
     def _set_table(self, section: str, **fields: Any) -> "Model":
-        table = self._builder().setdefault(section, {})
+        builder = self._builder()
+        table = dict(builder.get(section, {}))
         for k, v in fields.items():
             if v is not None:
                 table[k] = _vec(v)
-        if not table:
-            del self._doc[section]
+        doc = dict(builder)
+        if table:
+            doc[section] = table
+            self._check(doc, section, None)
+            builder[section] = table
+            self._sites[(section, -1)] = _caller() or ""  # "" when called from the package
+        else:
+            builder.pop(section, None)
         return self
 
-    def _add(self, section: str, kind: Optional[str], name: str, **fields: Any) -> "Model":
+    def _add(
+        self, section: str, kind: Optional[str], name: Any = None, /, **fields: Any
+    ) -> "Model":
+        # positional-only: `section` is also a field (a beam's cross-section), and the methods
+        # that pass their locals() give `name` as a keyword
+        name = fields.pop("name", name)
         item: Dict[str, Any] = {"name": name}
         if kind is not None:
             item["type"] = kind
         item.update({k: _vec(v) for k, v in fields.items() if v is not None})
-        self._builder().setdefault(section, []).append(item)
+        builder = self._builder()
+        items = list(builder.get(section, []))
+        items.append(item)
+        doc = dict(builder)
+        doc[section] = items
+        self._check(doc, section, len(items) - 1)
+        builder[section] = items
+        self._sites[(section, len(items) - 1)] = _caller() or ""
         return self
 
     # ----- [model], [solver], [output] ---------------------------------------------------
@@ -329,9 +496,9 @@ class Model:
     ) -> "Model":
         """``[[beam]]``: a ground-fixed planar Euler–Bernoulli beam from ``start`` to ``end``
         (m) with ``elements`` elements; ``material`` ``{youngs_modulus (Pa), density (kg/m³)}``,
-        ``section`` (e.g. ``{type = "rectangle", width, height}`` in m), ``supports``
-        (``[{node, kind}]``), ``rayleigh`` damping [α (1/s), β (s)], ``mass`` (``consistent`` or
-        ``lumped``)."""
+        ``section`` (e.g. ``{"shape": "rectangular", "width": m, "depth": m}``), ``supports``
+        (``[{"node": 0, "type": "clamped"}]``), ``rayleigh`` damping [α (1/s), β (s)],
+        ``mass`` (``consistent`` or ``lumped``); as in tests/data/cantilever.toml."""
         return self._add("beam", None, **{k: v for k, v in locals().items() if k != "self"})
 
     def flexible_body(

@@ -26,6 +26,10 @@ _META = (
 )
 
 
+#: The name results.csv (``clr run``) gives the time column, ``time`` here.
+_CSV_TIME = "t"
+
+
 def _pandas():
     try:
         import pandas  # noqa: WPS433 (optional dependency)
@@ -40,7 +44,10 @@ class Result:
     """One run: the numbers of ``clr run``'s results.csv, metrics and impacts, in memory.
 
     - ``time``: output times (s); ``result["B.normal_force"]`` or ``result.columns[...]``: any
-      column (float64 arrays of the same length); ``units[name]`` its unit;
+      column (float64 arrays of the same length); ``units[name]`` its unit. ``result[...]`` also
+      takes the names of results.csv: ``result["t"]`` is ``time``, and a whole header
+      (``result["crank.x [m]"]``) is its column; an unknown name raises ``KeyError`` with the
+      closest names;
     - ``metrics`` (name → float) with ``metric_units``;
     - ``impacts``: the located impacts (list of dicts with the columns of impacts.csv:
       ``joint``, ``onset_s``, ``impact_velocity_m_per_s``, ``peak_force_N``, ...);
@@ -70,18 +77,47 @@ class Result:
         self.columns: Dict[str, np.ndarray] = raw
         self.time: np.ndarray = raw["time"]
 
-    def __getitem__(self, name: str) -> np.ndarray:
-        try:
-            return self.columns[name]
-        except KeyError:
-            import difflib
+    def _key(self, name: Any) -> Optional[str]:
+        """The column ``name`` stands for: a column name (``time``), the name results.csv gives
+        it (``t`` for ``time``), or a whole results.csv header (``crank.x [m]``, ``t [s]``)."""
+        if not isinstance(name, str):
+            return None
+        if name in self.columns:
+            return name
+        if name == _CSV_TIME:
+            return "time"
+        base, sep, unit = name.rpartition(" [")
+        if sep and unit.endswith("]"):
+            key = self._key(base)
+            if key is not None and self.units.get(key) == unit[:-1]:
+                return key
+        return None
 
-            close = difflib.get_close_matches(name, self.columns, n=3)
-            hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
-            raise KeyError(f"no column {name!r} in this result{hint}") from None
+    def __getitem__(self, name: str) -> np.ndarray:
+        key = self._key(name)
+        if key is not None:
+            return self.columns[key]
+        import difflib
+
+        names = [*self.columns, _CSV_TIME]
+        close = difflib.get_close_matches(str(name), names, n=3, cutoff=0.5)
+        if not close:
+            close = [c for c in names if str(name).lower() in c.lower()][:3]
+        hint = (
+            f"; did you mean {', '.join(repr(c) for c in close)}?"
+            if close
+            else f"; the columns are {', '.join(repr(c) for c in names[:8])}"
+            + (", ..." if len(names) > 8 else "")
+            + " (column_names() lists them)"
+        )
+        raise KeyError(f"no column {name!r} in this result{hint}")
 
     def __contains__(self, name: str) -> bool:
-        return name in self.columns
+        return self._key(name) is not None
+
+    def csv_names(self) -> List[str]:
+        """Every column as results.csv names it (``t`` first; the header adds `` [unit]``)."""
+        return [_CSV_TIME if c == "time" else c for c in self.columns]
 
     def __len__(self) -> int:
         return len(self.time)

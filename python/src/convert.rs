@@ -5,7 +5,17 @@
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
-use crate::errors::override_error;
+use crate::errors::{field_error, override_error};
+
+/// The error of a value that cannot be a model value: a `FieldError` in a model built in
+/// Python (`as_text = false`), an `OverrideError` in `set=` and sweep values (`as_text = true`).
+fn refused(py: Python<'_>, path: &str, message: &str, as_text: bool) -> PyErr {
+    if as_text {
+        override_error(py, path, message)
+    } else {
+        field_error(py, path, message)
+    }
+}
 
 /// `v` as a TOML value; `path` names it in errors (`body[0].mass`). Strings are taken as they
 /// are (`as_text = false`) or read as `--set` reads them (`as_text = true`: `"1e-6"` is a float).
@@ -20,10 +30,11 @@ pub(crate) fn value(path: &str, v: &Bound<'_, PyAny>, as_text: bool) -> PyResult
     if v.is_instance_of::<PyInt>() || (!v.is_instance_of::<PyFloat>() && v.hasattr("__index__")?) {
         return match v.extract::<i64>() {
             Ok(i) => Ok(toml::Value::Integer(i)),
-            Err(_) => Err(override_error(
+            Err(_) => Err(refused(
                 py,
                 path,
                 "the integer does not fit in 64 bits",
+                as_text,
             )),
         };
     }
@@ -61,13 +72,16 @@ pub(crate) fn value(path: &str, v: &Bound<'_, PyAny>, as_text: bool) -> PyResult
     if let Ok(f) = v.extract::<f64>() {
         return Ok(toml::Value::Float(f));
     }
-    Err(override_error(
+    let what = if v.is_none() {
+        "None (not given) cannot stand in a list".to_string()
+    } else {
+        format!("a {} cannot be a model value", v.get_type().name()?)
+    };
+    Err(refused(
         py,
         path,
-        &format!(
-            "a {} cannot be a model value; give a number, bool, string, list or dict",
-            v.get_type().name()?
-        ),
+        &format!("{what}; give a number, bool, string, list or dict"),
+        as_text,
     ))
 }
 
@@ -81,10 +95,11 @@ pub(crate) fn table(
     let mut t = toml::map::Map::new();
     for (k, v) in d.iter() {
         let key: String = k.extract().map_err(|_| {
-            override_error(
+            refused(
                 d.py(),
                 path,
                 &format!("the key {k} is not a string; model keys are field names"),
+                as_text,
             )
         })?;
         if v.is_none() {

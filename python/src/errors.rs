@@ -30,6 +30,12 @@ pub(crate) fn override_error(py: Python<'_>, path: &str, message: &str) -> PyErr
     make(py, "OverrideError", message, &[("field", obj(py, path))])
 }
 
+/// `clr.errors.FieldError` at `path` (a field of a model built in Python whose value cannot be
+/// written to a model file).
+pub(crate) fn field_error(py: Python<'_>, path: &str, message: &str) -> PyErr {
+    make(py, "FieldError", message, &[("field", obj(py, path))])
+}
+
 /// A model-file error as `FieldError` (file, line, column and field), or `OverrideError` when it
 /// came from an override (`--set`/`set=`/a sweep value).
 pub(crate) fn spec_error(py: Python<'_>, e: &SpecError) -> PyErr {

@@ -14,7 +14,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
 use crate::convert;
-use crate::errors::{override_error, run_error};
+use crate::errors::{field_error, override_error, run_error, spec_error};
 
 /// Every built-in model as `(name, description)`.
 #[pyfunction]
@@ -191,6 +191,40 @@ impl JobCore {
         Self::from_text(py, &text, label, set, t_end, rtol)
     }
 
+    /// Check the element at `element` (`clearance[2]`, or a table: `solver`) of the model
+    /// being built, `doc` (the model so far with that element in it), with the model-file
+    /// reader in the context of the model so far: the same `clr_sim::spec::load_str` that reads
+    /// files and `simulate()` uses.
+    ///
+    /// Returns `None` when the element reads; raises the reader's `FieldError` when the error
+    /// is in the element itself (or its name is taken: a duplicate is placed at the item the
+    /// reader claims second, which may be an earlier one); returns the reader's message (the
+    /// check is left to the run) when the element names a body, point, beam or shape not yet
+    /// defined (a model file may define its items in any order), or when the reader stops at
+    /// another error first. Earlier elements still waiting for a name are left out of the
+    /// checked copy ([`check_in_context`]).
+    ///
+    /// Two stand-ins let a model under construction read: a probe body when nothing moves
+    /// yet, and `output.t_end` (1 s after the start) when it is not given yet; both are only
+    /// in the checked copy.
+    #[staticmethod]
+    fn _check_element(
+        py: Python<'_>,
+        doc: &Bound<'_, PyDict>,
+        element: &str,
+        label: &str,
+    ) -> PyResult<Option<String>> {
+        let mut root = convert::table("", doc, false)?;
+        probe_stand_ins(&mut root);
+        let label = label.to_string();
+        let element_owned = element.to_string();
+        match py.detach(move || check_in_context(root, &element_owned, &label)) {
+            Verdict::Reads => Ok(None),
+            Verdict::Deferred(message) => Ok(Some(message)),
+            Verdict::Refused(e) => Err(spec_error(py, &e)),
+        }
+    }
+
     /// `builtin` for a catalog model, `generic` for a model description.
     #[getter]
     fn kind(&self) -> &'static str {
@@ -255,7 +289,148 @@ impl JobCore {
 fn dict_to_toml(doc: &Bound<'_, PyDict>) -> PyResult<String> {
     let table = convert::table("", doc, false)?;
     toml::to_string(&toml::Value::Table(table))
-        .map_err(|e| override_error(doc.py(), "", &format!("cannot be written as TOML: {e}")))
+        .map_err(|e| field_error(doc.py(), "", &format!("cannot be written as TOML: {e}")))
+}
+
+/// The probe body of [`JobCore::_check_element`] (a name no model uses).
+const PROBE_BODY: &str = "__clr_sim_probe_body__";
+
+/// Stand-ins that let a model under construction read: a free body when nothing moves yet,
+/// and an end time when `[output]` has none yet (1 s after `t_start`).
+fn probe_stand_ins(root: &mut toml::Table) {
+    let moves = ["body", "beam", "flexible_body"].iter().any(|s| {
+        root.get(*s)
+            .and_then(toml::Value::as_array)
+            .is_some_and(|a| !a.is_empty())
+    });
+    if !moves {
+        let mut body = toml::Table::new();
+        body.insert("name".into(), PROBE_BODY.into());
+        body.insert("mass".into(), 1.0.into());
+        body.insert("inertia".into(), 1.0.into());
+        body.insert(
+            "position".into(),
+            toml::Value::Array(vec![0.0.into(), 0.0.into()]),
+        );
+        body.insert("angle".into(), 0.0.into());
+        root.insert(
+            "body".into(),
+            toml::Value::Array(vec![toml::Value::Table(body)]),
+        );
+    }
+    let output = root
+        .entry("output")
+        .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+    if let Some(out) = output.as_table_mut() {
+        if !out.contains_key("t_end") {
+            let start = match out.get("t_start") {
+                Some(toml::Value::Float(f)) if f.is_finite() => *f,
+                Some(toml::Value::Integer(i)) => *i as f64,
+                _ => 0.0,
+            };
+            out.insert("t_end".into(), (start + 1.0).into());
+        }
+    }
+}
+
+/// What the reader says of one element in the context of the model so far.
+enum Verdict {
+    /// The element reads.
+    Reads,
+    /// Left to the run, with the reader's message: the element names an item not defined yet,
+    /// or the reader stopped at another error first.
+    Deferred(String),
+    /// The element's own error, placed at its field.
+    Refused(clr_sim::spec::SpecError),
+}
+
+/// `section[k]` of a field path (`joint[1].b.body` → `("joint", 1)`).
+fn item_of(field: &str) -> Option<(String, usize)> {
+    let (section, rest) = field.split_once('[')?;
+    let (k, _) = rest.split_once(']')?;
+    Some((section.to_string(), k.parse().ok()?))
+}
+
+/// Whether `field` is the element at `element` (`clearance[2]`, `solver`) or inside it.
+fn within(field: &str, element: &str) -> bool {
+    field == element
+        || field.starts_with(&format!("{element}."))
+        || field.starts_with(&format!("{element}["))
+}
+
+/// Check the element at `element` of `root` (the model so far with it, stand-ins added) with
+/// the model-file reader. An earlier item that still names something not defined would stop
+/// the reader before this element's compiled checks: it is left out of the checked copy and
+/// the copy read again (an element naming a left-out item is then itself left to the run).
+fn check_in_context(mut root: toml::Table, element: &str, label: &str) -> Verdict {
+    let mut probe = element.to_string();
+    loop {
+        let text = match toml::to_string(&root) {
+            Ok(t) => t,
+            Err(e) => return Verdict::Deferred(format!("cannot be written as TOML: {e}")),
+        };
+        let Err(mut e) = clr_sim::spec::load_str(label, &text, &[]) else {
+            return Verdict::Reads;
+        };
+        let duplicate = item_name(&root, &probe)
+            .is_some_and(|n| e.message.starts_with(&format!("duplicate name `{n}`")));
+        let reference = names_an_undefined_item(root.clone(), &e.message);
+        if within(&e.field, &probe) || duplicate {
+            if reference {
+                return Verdict::Deferred(e.to_string());
+            }
+            if let Some(rest) = e.field.strip_prefix(probe.as_str()) {
+                e.field = format!("{element}{rest}");
+            }
+            return Verdict::Refused(e);
+        }
+        let earlier = item_of(&e.field);
+        let Some((section, k)) = earlier.filter(|_| reference) else {
+            return Verdict::Deferred(e.to_string());
+        };
+        let Some(items) = root.get_mut(&section).and_then(toml::Value::as_array_mut) else {
+            return Verdict::Deferred(e.to_string());
+        };
+        if k >= items.len() {
+            return Verdict::Deferred(e.to_string());
+        }
+        items.remove(k);
+        if let Some((s, j)) = item_of(&probe) {
+            if s == section && k < j {
+                probe = format!("{s}[{}]", j - 1);
+            }
+        }
+    }
+}
+
+/// The name of the item at `element` (`clearance[2]`) in `root`.
+fn item_name<'a>(root: &'a toml::Table, element: &str) -> Option<&'a str> {
+    let (section, rest) = element.split_once('[')?;
+    let k: usize = rest.strip_suffix(']')?.parse().ok()?;
+    root.get(section)?.as_array()?.get(k)?.get("name")?.as_str()
+}
+
+/// Whether the reader's error `message` for the description in `root` is that an item names a
+/// body, beam, point or shape that is not defined (the one kind of error a model under
+/// construction may have for now: the named item can still be added).
+fn names_an_undefined_item(root: toml::Table, message: &str) -> bool {
+    use clr_sim::mbd::MbdError as E;
+    let Ok(desc) = clr_sim::mbd::ModelDesc::from_toml_table(root) else {
+        return false;
+    };
+    let e = match desc.compile() {
+        Err(e) if e.to_string().ends_with(message) => e,
+        _ => return false,
+    };
+    match e {
+        E::UnknownBody { .. } | E::UnknownPoint { .. } => true,
+        E::Invalid { path, message } => {
+            (path.contains(".shapes[") && message.starts_with("no [[shape]] named"))
+                || (path.starts_with("output.nodes.")
+                    && message.contains("is not a flexible body or beam"))
+        }
+        _ => false,
+    }
 }
 
 /// The paper studies as `(name, model, description)`.

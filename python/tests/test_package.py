@@ -1,4 +1,4 @@
-"""The `clr` package: models built in Python, from dicts and from TOML; simulate and sweep;
+"""The `clr_sim` package: models built in Python, from dicts and from TOML; simulate and sweep;
 typed errors with their field paths.
 
 References (independent formulations, docs/verification.md):
@@ -119,11 +119,11 @@ def test_builtin_models_and_files_run_by_name():
 
 def test_every_error_type_carries_its_field_path():
     m = slider_crank_in_python()
-    m.body("bad", mass=-1.0, inertia=1.0)
     with pytest.raises(clr_sim.FieldError) as e:
-        m.check()
+        m.body("bad", mass=-1.0, inertia=1.0)  # refused at the call (test_errors_at_call.py)
     assert e.value.field == "body[3].mass" and "positive" in str(e.value)
     assert e.value.line is None  # no line numbers of a generated text
+    assert e.value.element == "body 'bad'" and e.value.where.startswith(__file__)
 
     m = clr_sim.Model.from_dict({"body": [{"name": "rod", "mas": 1.0, "inertia": 1.0}]})
     with pytest.raises(clr_sim.FieldError) as e:
@@ -261,3 +261,36 @@ def test_the_type_stubs_list_exactly_what_the_extension_has():
         if methods is not None:
             have = {m for m in dir(getattr(clr_sim._native, name)) if not m.startswith("_")}
             assert methods - {"__init__"} == have, (name, methods ^ have)
+
+
+def test_clr_sim_installs_beside_pythonnet():
+    """`import clr` is pythonnet's: with pythonnet installed, `clr` resolves to its module (not
+    to anything of this package) and `import clr_sim` works beside it. pythonnet's `clr` itself
+    is not imported (that needs a .NET runtime)."""
+    import importlib.util
+
+    if importlib.util.find_spec("pythonnet") is None:
+        pytest.skip("pythonnet is not installed (pip install pythonnet to run this check)")
+    spec = importlib.util.find_spec("clr")
+    assert spec is not None and spec.origin is not None, "pythonnet installed but no `clr`"
+    ours = pathlib.Path(clr_sim.__file__).resolve().parent
+    theirs = pathlib.Path(spec.origin).resolve()
+    assert ours not in theirs.parents, (theirs, ours)
+    pythonnet = pathlib.Path(importlib.util.find_spec("pythonnet").origin).resolve().parent
+    assert theirs.parent == pythonnet.parent, (theirs, pythonnet)  # both in one site-packages
+    import clr_sim as again
+
+    assert again.Model is clr_sim.Model and callable(again.simulate)
+
+
+def test_the_installed_package_has_no_top_level_clr():
+    """The files of the installed distribution `clr-sim` (its RECORD, the wheel's file list)
+    hold the packages clr_sim and clr_contact and no top-level `clr`."""
+    import importlib.metadata as md
+
+    files = md.files("clr-sim")
+    assert files, "clr-sim is not installed with a file list (RECORD)"
+    tops = {f.parts[0] for f in files}
+    assert not any(t == "clr" or t.startswith("clr.") for t in tops), sorted(tops)
+    if not any(t.endswith(".pth") for t in tops):  # not an editable install
+        assert {"clr_sim", "clr_contact"} <= tops, sorted(tops)
