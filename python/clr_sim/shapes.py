@@ -16,6 +16,8 @@ from __future__ import annotations
 
 from typing import Any, Dict, Mapping, Optional, Sequence, Union
 
+from .errors import FieldError
+
 __all__ = [
     "ball",
     "capsule",
@@ -91,8 +93,22 @@ def part(
         out["at"] = _plain(at)
     if angle is not None:
         out["angle"] = _plain(angle)
-    out["geometry"] = dict(geometry)
+    out["geometry"] = dict(_geometry("part.geometry", geometry))
     return out
+
+
+def _geometry(field: str, g: Any) -> Mapping[str, Any]:
+    """``g`` if it is a geometry table, else a FieldError naming ``field`` (None, a number, ...)."""
+    if not isinstance(g, Mapping):
+        from .model import _caller  # the user's line; model imports nothing from here
+
+        raise FieldError(
+            f"{g!r} is a {type(g).__name__}; give a geometry of clr_sim.shapes "
+            "(ball, capsule, cuboid or convex_polygon)",
+            field=field,
+            where=_caller(),
+        )
+    return g
 
 
 def compound(parts: Sequence[Geometry]) -> Dict[str, Any]:
@@ -101,9 +117,19 @@ def compound(parts: Sequence[Geometry]) -> Dict[str, Any]:
     Each item is a :func:`part` (``{"at", "angle", "geometry"}``) or a bare convex geometry,
     which is taken as a part at the shape origin (``part(geometry)``). Involute gears, polylines
     and compounds cannot be parts."""
+    if isinstance(parts, (str, bytes, Mapping)) or not hasattr(parts, "__iter__"):
+        from .model import _caller
+
+        raise FieldError(
+            f"{parts!r} is a {type(parts).__name__}; give compound.parts as a list of "
+            "part(...) items or convex geometries",
+            field="compound.parts",
+            where=_caller(),
+        )
     items = []
-    for p in parts:
-        if isinstance(p, Mapping) and "type" in p and "geometry" not in p:
+    for k, p in enumerate(parts):
+        p = _geometry(f"compound.parts[{k}]", p)
+        if "type" in p and "geometry" not in p:
             items.append(part(p))
         else:
             items.append(dict(p))

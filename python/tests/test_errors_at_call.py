@@ -97,6 +97,9 @@ def test_none_and_wrong_types_in_methods_are_field_errors_at_the_call():
         (lambda: at(None), "at.body"),
         (lambda: clr_sim.node("cant", 1.5), "node.node"),
         (lambda: clr_sim.node(3, 1), "node.beam"),
+        (lambda: clr_sim.shapes.compound(None), "compound.parts"),
+        (lambda: clr_sim.shapes.compound([None]), "compound.parts[0]"),
+        (lambda: clr_sim.shapes.part(None), "part.geometry"),
     ],
 )
 def test_none_or_a_wrong_type_in_a_helper_is_a_field_error(call, field):
