@@ -597,7 +597,9 @@ mod tests {
         );
         // a finished shard of an older clr: no provenance file
         std::fs::remove_file(DEF.provenance_file(&a)).unwrap();
-        let e = DEF.merge(&[a.clone()], &out, false).unwrap_err();
+        let e = DEF
+            .merge(std::slice::from_ref(&a), &out, false)
+            .unwrap_err();
         assert!(e.contains("--allow-unverified"), "{e}");
         assert!(DEF.merge(&[a], &out, true).is_ok());
         let _ = std::fs::remove_dir_all(&base);

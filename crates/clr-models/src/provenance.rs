@@ -46,38 +46,43 @@ pub struct Shard {
     pub recorded: Option<Recorded>,
 }
 
+/// A shard whose model hash or clr version differs from the first shard's.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error(
+    "{shard}: {what} {theirs} differs from {first}'s {ours}: the two shards were computed from \
+     {meaning}, so their points do not belong to one {kind}; re-run shard {spec} (`{rerun}`) \
+     with the {remedy} the other shards used, then merge again"
+)]
+pub struct Difference {
+    /// Folder of the differing shard.
+    pub shard: String,
+    /// Folder of the first shard (the reference).
+    pub first: String,
+    /// `model_hash` or `clr_version`.
+    pub what: &'static str,
+    /// The differing shard's value.
+    pub theirs: String,
+    /// The first shard's value.
+    pub ours: String,
+    /// What the difference means.
+    pub meaning: &'static str,
+    /// What was merged (`sweep`, `finding map`).
+    pub kind: &'static str,
+    /// The shard's `I/N`.
+    pub spec: String,
+    /// The command that re-runs it.
+    pub rerun: String,
+    /// What to keep the same when re-running it.
+    pub remedy: &'static str,
+}
+
 /// Why shards cannot be merged: something refutes, or nothing shows, that they were computed
 /// from one model by one clr version.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum ProvenanceError {
     /// A shard's model hash or clr version differs from the first shard's.
-    #[error(
-        "{shard}: {what} {theirs} differs from {first}'s {ours}: the two shards were computed \
-         from {meaning}, so their points do not belong to one {kind}; re-run shard {spec} \
-         (`{rerun}`) with the {remedy} the other shards used, then merge again"
-    )]
-    Differs {
-        /// Folder of the differing shard.
-        shard: String,
-        /// Folder of the first shard (the reference).
-        first: String,
-        /// `model_hash` or `clr_version`.
-        what: &'static str,
-        /// The differing shard's value.
-        theirs: String,
-        /// The first shard's value.
-        ours: String,
-        /// What the difference means.
-        meaning: &'static str,
-        /// What was merged (`sweep`, `finding map`).
-        kind: &'static str,
-        /// The shard's `I/N`.
-        spec: String,
-        /// The command that re-runs it.
-        rerun: String,
-        /// What to keep the same when re-running it.
-        remedy: &'static str,
-    },
+    #[error(transparent)]
+    Differs(Box<Difference>),
     /// Shards whose files record no provenance (written before clr recorded it).
     #[error(
         "{shards}: no model_hash or clr_version recorded (written by a clr that did not record \
@@ -120,17 +125,19 @@ pub fn check_shards(
         return Ok(unverified);
     };
     for (s, r) in verified {
-        let differs = |what, theirs: &str, ours: &str, meaning, remedy| ProvenanceError::Differs {
-            shard: s.folder.clone(),
-            first: s0.folder.clone(),
-            what,
-            theirs: theirs.to_string(),
-            ours: ours.to_string(),
-            meaning,
-            kind,
-            spec: s.spec.clone(),
-            rerun: s.rerun.clone(),
-            remedy,
+        let differs = |what, theirs: &str, ours: &str, meaning, remedy| {
+            ProvenanceError::Differs(Box::new(Difference {
+                shard: s.folder.clone(),
+                first: s0.folder.clone(),
+                what,
+                theirs: theirs.to_string(),
+                ours: ours.to_string(),
+                meaning,
+                kind,
+                spec: s.spec.clone(),
+                rerun: s.rerun.clone(),
+                remedy,
+            }))
         };
         if r.clr_version != r0.clr_version {
             return Err(differs(

@@ -338,7 +338,7 @@ pub fn run(
         ),
     );
     let revolutions = match p.transient_revolutions {
-        r if r == 1.0 => "the first crank revolution".to_string(),
+        1.0 => "the first crank revolution".to_string(),
         r => format!("the first {r} crank revolutions"),
     };
     let window = crate::output::window_after(t_from, &revolutions);
