@@ -347,6 +347,102 @@ fn sharded_sweep_merges_into_the_full_sweep() {
     assert!(stderr(&o).contains("[1, 3]"), "{}", stderr(&o));
 }
 
+/// Shards record the model they ran: two shards of one sweep run against different contents
+/// of the same model file are refused by `clr merge` (exit 2, naming the shard, both hashes and
+/// that shard's rerun); the same contents merge. A shard without provenance (sweep.json of an
+/// older clr) is refused unless `--allow-unverified`, which names it.
+#[test]
+fn merge_refuses_shards_of_different_model_contents() {
+    let dir = scratch("merge_provenance");
+    let model = dir.join("pendulum.toml");
+    let original = std::fs::read_to_string(data("pendulum.toml")).unwrap();
+    let shard = |i: usize, name: &str| {
+        let d = dir.join(name);
+        let s = format!("{i}/2");
+        let o = clr(&[
+            "sweep",
+            model.to_str().unwrap(),
+            "--t-end",
+            "0.05",
+            "--vary",
+            "body.rod.mass=1,2",
+            "--shard",
+            &s,
+            "--no-figures",
+            "--no-report",
+            "-q",
+            "--out",
+            d.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        d
+    };
+    let merge = |dirs: &[&PathBuf], extra: &[&str]| {
+        let mut a: Vec<&str> = vec!["merge"];
+        a.extend(dirs.iter().map(|d| d.to_str().unwrap()));
+        let out = dir.join("merged");
+        a.extend(["--out", out.to_str().unwrap()]);
+        a.extend(extra);
+        clr(&a)
+    };
+    std::fs::write(&model, &original).unwrap();
+    let a0 = shard(0, "a0");
+    let a1 = shard(1, "a1");
+    // the same file changed between the two shards: a stiffer-to-turn rod
+    let changed = original.replacen("inertia = 0.08333333333333333", "inertia = 0.1", 1);
+    assert_ne!(changed, original, "the test's edit must change the model");
+    std::fs::write(&model, &changed).unwrap();
+    let b1 = shard(1, "b1");
+    let meta = |d: &Path| -> serde_json::Value {
+        serde_json::from_str(&std::fs::read_to_string(d.join("sweep.json")).unwrap()).unwrap()
+    };
+    let (ha, hb) = (
+        meta(&a1)["model_hash"].clone(),
+        meta(&b1)["model_hash"].clone(),
+    );
+    assert!(ha.as_str().unwrap().starts_with("fnv1a64:"), "{ha}");
+    assert_eq!(meta(&a0)["model_hash"], ha, "one model, one hash");
+    assert_ne!(ha, hb);
+    assert_eq!(
+        meta(&a0)["clr_version"].as_str(),
+        Some(env!("CARGO_PKG_VERSION"))
+    );
+    let o = merge(&[&a0, &b1], &[]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    for part in [
+        b1.display().to_string(),
+        a0.display().to_string(),
+        ha.as_str().unwrap().to_string(),
+        hb.as_str().unwrap().to_string(),
+        "re-run shard 1/2".to_string(),
+    ] {
+        assert!(e.contains(&part), "`{part}` missing from: {e}");
+    }
+    let o = merge(&[&a0, &a1], &[]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(meta(&dir.join("merged"))["model_hash"], ha);
+    // a shard of an older clr: no provenance
+    let mut old = meta(&a1);
+    old.as_object_mut().unwrap().remove("model_hash");
+    old.as_object_mut().unwrap().remove("clr_version");
+    std::fs::write(a1.join("sweep.json"), old.to_string()).unwrap();
+    let o = merge(&[&a0, &a1], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(
+        e.contains(&a1.display().to_string()) && e.contains("--allow-unverified"),
+        "{e}"
+    );
+    let o = merge(&[&a0, &a1], &["--allow-unverified"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("without provenance"), "{}", stderr(&o));
+    assert_eq!(
+        meta(&dir.join("merged"))["unverified_shards"][0].as_str(),
+        Some(a1.display().to_string().as_str())
+    );
+}
+
 #[test]
 fn plot_draws_named_columns_and_rejects_unknown_ones() {
     let out = scratch("plot");

@@ -288,3 +288,130 @@ fn solver_settings_reach_the_run() {
         th(&other)
     );
 }
+
+fn data_text(name: &str) -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join(name)).unwrap()
+}
+
+/// A damping factor given as the normal law (`law = "lankarani-nikravesh"`, as papers name
+/// "Hertz with Lankarani–Nikravesh damping") is refused with how to write it: the damping
+/// factor's name in `damping` beside an elastic law, and the preset that is the same law.
+#[test]
+fn a_damping_factor_given_as_the_law_says_where_it_goes() {
+    let text = data_text("tests/data/slider_crank.toml");
+    assert!(text.contains("law = \"preset\"\npreset = \"LN\""));
+    for given in ["lankarani-nikravesh", "ln", "Lankarani_Nikravesh"] {
+        let t = text.replace(
+            "law = \"preset\"\npreset = \"LN\"",
+            &format!("law = \"{given}\""),
+        );
+        let e = match load_str("sc.toml", &t, &[]) {
+            Err(e) => e,
+            Ok(_) => panic!("law = {given:?} was accepted"),
+        };
+        let m = e.to_string();
+        assert_eq!(e.field, "clearance[0].normal.law", "{m}");
+        for part in [
+            "`lankarani-nikravesh` is a damping factor, not an elastic law",
+            "law = \"hertz\" with stiffness = K (N/m^1.5) and damping = \"lankarani-nikravesh\"",
+            "law = \"preset\" with preset = \"LN\"",
+        ] {
+            assert!(m.contains(part), "`{part}` missing from: {m}");
+        }
+        // the hint is exactly right: the law it names is accepted
+        let fixed = t.replace(
+            &format!("law = \"{given}\""),
+            "law = \"hertz-internal-cylinder\"\ndamping = \"lankarani-nikravesh\"",
+        );
+        assert!(load_str("sc.toml", &fixed, &[]).is_ok(), "{fixed}");
+    }
+}
+
+/// A value a `--set` brings is refused at that `--set`, not at the file's line of the value it
+/// replaced; the file's own errors keep their line whatever the overrides.
+#[test]
+fn set_errors_name_the_set_argument() {
+    use clr_sim::spec::parse_assignment;
+    let text = data_text("tests/data/slider_crank.toml");
+    let err = |sets: &[&str], t: &str| {
+        let a: Vec<_> = sets.iter().map(|s| parse_assignment(s).unwrap()).collect();
+        match load_str("sc.toml", t, &a) {
+            Err(e) => e,
+            Ok(_) => panic!("{sets:?} accepted"),
+        }
+    };
+    // a value of the wrong type, and one the model refuses when compiled
+    for (set, message) in [
+        ("clearance.B.bearing_radius=abc", "expected f64"),
+        (
+            "clearance.B.journal_radius=0.02",
+            "make journal_radius smaller",
+        ),
+    ] {
+        let e = err(&["solver.rtol=1e-8", set], &text);
+        let m = e.to_string();
+        assert_eq!(e.file, format!("--set '{set}'"), "{m}");
+        assert!(e.line.is_none() && m.contains(message), "{m}");
+        assert!(
+            m.starts_with(&format!("--set '{set}': field `clearance[0]")),
+            "{m}"
+        );
+    }
+    // the file's own error stays at its line
+    let broken = text.replace("journal_radius = 0.0095", "journal_radius = 0.02");
+    let e = err(&["solver.rtol=1e-8"], &broken);
+    assert_eq!(e.file, "sc.toml", "{e}");
+    assert!(e.line.is_some(), "{e}");
+}
+
+/// No note of a run has a run of spaces (a string continuation that kept the next line's
+/// indentation once put 18 in one): the shipped model files, the flexible slider–crank, and a
+/// pendulum whose given velocity the assembly corrects (the note that had them).
+#[test]
+fn notes_have_no_runs_of_spaces() {
+    use clr_sim::spec::run::{execute, resolve, resolve_text};
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<_> = std::fs::read_dir(root.join("models"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    files.push(root.join("tests/data/flexible_slider_crank.toml"));
+    let mut notes = Vec::new();
+    for f in &files {
+        let job = resolve(f.to_str().unwrap(), &[], Some(1e-4), None).unwrap();
+        let o = execute(&job, Some(1e-4), None, None).unwrap();
+        let warnings = o.results.warnings.iter().map(ToString::to_string);
+        notes.extend(
+            o.notes
+                .iter()
+                .cloned()
+                .chain(warnings)
+                .map(|n| (f.clone(), n)),
+        );
+    }
+    // a pendulum released with an angular velocity its pin does not allow with its given
+    // centre velocity: the assembly changes a given value and says so
+    let text = data_text("tests/data/pendulum.toml")
+        .replace("angular_velocity = 0.0", "angular_velocity = 1.0");
+    let job = resolve_text("pendulum.toml", &text, &[], Some(1e-3), None).unwrap();
+    let o = execute(&job, Some(1e-3), None, None).unwrap();
+    let corrected = o
+        .notes
+        .iter()
+        .find(|n| n.contains("given values changed"))
+        .unwrap_or_else(|| panic!("no correction note in {:?}", o.notes));
+    assert!(
+        corrected.contains("constraints (initial_conditions"),
+        "{corrected}"
+    );
+    notes.extend(o.notes.iter().map(|n| (root.join("pendulum"), n.clone())));
+    for (f, n) in &notes {
+        assert!(
+            !n.contains("  "),
+            "{}: note with a run of spaces: {n:?}",
+            f.display()
+        );
+    }
+}

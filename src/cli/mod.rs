@@ -146,6 +146,10 @@ enum Command {
         /// Output folder of the merged sweep.
         #[arg(long, default_value = "clr-sweep-merged")]
         out: PathBuf,
+        /// Merge shards whose sweep.json has no provenance (written before clr recorded the
+        /// model hash and version); they are named in a warning and in the merged sweep.json.
+        #[arg(long)]
+        allow_unverified: bool,
     },
     /// Run a paper study (see `clr list`): CSV per run, summary.csv and figures into --out.
     Study {
@@ -176,6 +180,11 @@ enum Command {
         /// what a point does, e.g. a larger step budget), instead of taking them as failed.
         #[arg(long, requires = "resume")]
         retry_failed: bool,
+        /// Finding maps only, with --merge: merge shard folders that record no provenance
+        /// (written before clr recorded its version and the map's hash); they are named in a
+        /// warning.
+        #[arg(long, requires = "merge")]
+        allow_unverified: bool,
     },
     /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
     Animate(animate::AnimateArgs),
@@ -260,7 +269,11 @@ pub(crate) fn main() -> ExitCode {
             shard,
             out,
         } => sweep::sweep_command(&args, &vary, jobs, shard.as_deref(), &out),
-        Command::Merge { dirs, out } => sweep::merge_command(&dirs, &out),
+        Command::Merge {
+            dirs,
+            out,
+            allow_unverified,
+        } => sweep::merge_command(&dirs, &out, allow_unverified),
         Command::View {
             target,
             set,
@@ -275,6 +288,7 @@ pub(crate) fn main() -> ExitCode {
             merge,
             resume,
             retry_failed,
+            allow_unverified,
         } => study_command(
             &name,
             out,
@@ -284,6 +298,7 @@ pub(crate) fn main() -> ExitCode {
                 merge: &merge,
                 resume: &resume,
                 retry_failed,
+                allow_unverified,
             },
         ),
         Command::Animate(a) => animate::animate_command(&a),
@@ -345,6 +360,7 @@ struct MapOptions<'a> {
     merge: &'a [PathBuf],
     resume: &'a [PathBuf],
     retry_failed: bool,
+    allow_unverified: bool,
 }
 
 impl MapOptions<'_> {
@@ -402,7 +418,7 @@ fn map_study(
             ));
         }
         let n = map
-            .merge(opts.merge, dir)
+            .merge(opts.merge, dir, opts.allow_unverified)
             .map_err(CliError::Input)?
             .points
             .len();

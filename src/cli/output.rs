@@ -127,27 +127,91 @@ pub(crate) fn read_csv(path: &Path) -> Result<Table, CliError> {
     Ok(Table { names, units, rows })
 }
 
-/// The summary of a run as JSON.
-pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> serde_json::Value {
+/// One metric of summary.json, its fields in the order a reader wants them.
+#[derive(serde::Serialize)]
+struct MetricOut<'a> {
+    name: &'a str,
+    value: Option<f64>,
+    unit: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    window: Option<&'a str>,
+    description: &'a str,
+}
+
+/// summary.json: a struct rather than a JSON map so that its keys keep this order (serde_json
+/// sorts the keys of a map): what a reader looks for first (status, metrics, the run's size and
+/// settings) before the long per-body blocks.
+#[derive(serde::Serialize)]
+struct Summary<'a> {
+    model: &'a str,
+    source: &'a str,
+    status: &'static str,
+    error: Option<&'a str>,
+    metrics: Vec<MetricOut<'a>>,
+    notes: &'a [String],
+    warnings: &'a [clr_mbd::plausible::Warning],
+    rows: usize,
+    t_last: Option<f64>,
+    simulated_time_s: Option<f64>,
+    wall_time_s: f64,
+    t_end_requested: Option<f64>,
+    rtol_requested: Option<f64>,
+    solver_settings: &'a serde_json::Value,
+    #[serde(skip_serializing_if = "no_defaults")]
+    builtin_defaults: &'a serde_json::Map<String, serde_json::Value>,
+    solver: serde_json::Value,
+    impacts: serde_json::Value,
+    parameters: &'a serde_json::Value,
+    flexible_bodies: serde_json::Value,
+    initial_conditions: serde_json::Value,
+}
+
+/// True when no built-in parameter was replaced (`builtin_defaults` is then left out).
+fn no_defaults(m: &&serde_json::Map<String, serde_json::Value>) -> bool {
+    m.is_empty()
+}
+
+/// The simulated span of a run (s): last minus first output time.
+pub(crate) fn simulated_time(rec: &Record) -> Option<f64> {
+    let t = rec.results.column("t")?;
+    Some(t.last()? - t.first()?)
+}
+
+/// The summary of a run as pretty JSON text (layout in docs/cli.md#summaryjson).
+fn summary_text(
+    rec: &Record,
+    t_end: Option<f64>,
+    rtol: Option<f64>,
+) -> Result<String, serde_json::Error> {
     let s = &rec.results.stats;
     let finite = |x: f64| if x.is_finite() { Some(x) } else { None };
-    let t_last = rec.results.column("t").and_then(|t| t.last().copied());
-    serde_json::json!({
-        "model": rec.model,
-        "source": rec.source,
-        "status": if rec.error.is_some() { "failed" } else { "ok" },
-        "error": rec.error,
-        "notes": rec.notes,
-        "warnings": rec.results.warnings,
-        "t_end_requested": t_end,
-        "rtol_requested": rtol,
-        "t_last": t_last,
-        "rows": rec.results.len(),
-        "wall_time_s": rec.wall_s,
-        "metrics": rec.metrics.iter().map(|m| serde_json::json!({
-            "name": m.name, "value": finite(m.value), "unit": m.unit, "description": m.description
-        })).collect::<Vec<_>>(),
-        "solver": {
+    let summary = Summary {
+        model: &rec.model,
+        source: &rec.source,
+        status: if rec.error.is_some() { "failed" } else { "ok" },
+        error: rec.error.as_deref(),
+        metrics: rec
+            .metrics
+            .iter()
+            .map(|m| MetricOut {
+                name: &m.name,
+                value: finite(m.value),
+                unit: &m.unit,
+                window: m.window.as_deref(),
+                description: &m.description,
+            })
+            .collect(),
+        notes: &rec.notes,
+        warnings: &rec.results.warnings,
+        rows: rec.results.len(),
+        t_last: rec.results.column("t").and_then(|t| t.last().copied()),
+        simulated_time_s: simulated_time(rec),
+        wall_time_s: rec.wall_s,
+        t_end_requested: t_end,
+        rtol_requested: rtol,
+        solver_settings: &rec.solver_settings,
+        builtin_defaults: &rec.builtin_defaults,
+        solver: serde_json::json!({
             "accepted_steps": s.accepted,
             "rejected_steps": s.rejected,
             "f_evals": s.f_evals,
@@ -158,14 +222,15 @@ pub(crate) fn summary(rec: &Record, t_end: Option<f64>, rtol: Option<f64>) -> se
             "contact_onsets": rec.results.onsets,
             "projections": rec.results.projections,
             "max_position_violation": finite(rec.results.max_position_violation),
-        },
-        "initial_conditions": clr_sim::spec::run::initial_conditions_json(
-            rec.results.initial_conditions.as_ref()
+        }),
+        impacts: impacts_summary(&rec.results.impacts),
+        parameters: &rec.parameters,
+        flexible_bodies: clr_sim::spec::run::flexible_json(&rec.flexible),
+        initial_conditions: clr_sim::spec::run::initial_conditions_json(
+            rec.results.initial_conditions.as_ref(),
         ),
-        "impacts": impacts_summary(&rec.results.impacts),
-        "flexible_bodies": clr_sim::spec::run::flexible_json(&rec.flexible),
-        "parameters": rec.parameters,
-    })
+    };
+    serde_json::to_string_pretty(&summary)
 }
 
 /// Header of `impacts.csv` (units in the names; docs/cli.md).
@@ -212,6 +277,7 @@ fn impacts_summary(impacts: &[clr_mbd::Impact]) -> serde_json::Value {
         per.insert(
             j.to_string(),
             serde_json::json!({
+                "window": clr_models::output::WHOLE_RUN,
                 "count": mine().count(),
                 "first_impact_s": first,
                 "largest_peak_force_N": peak.peak_force,
@@ -243,8 +309,8 @@ pub(crate) fn write_run(
     write_csv(&dir.join("results.csv"), rec)?;
     write_impacts(&dir.join("impacts.csv"), &rec.results.impacts)?;
     let p = dir.join("summary.json");
-    let text = serde_json::to_string_pretty(&summary(rec, t_end, rtol))
-        .map_err(|e| CliError::Input(format!("summary: {e}")))?;
+    let text =
+        summary_text(rec, t_end, rtol).map_err(|e| CliError::Input(format!("summary: {e}")))?;
     std::fs::write(&p, text + "\n").map_err(|e| io(&p, e))?;
     if figures {
         for w in run_figures(dir, rec) {

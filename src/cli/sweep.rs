@@ -4,6 +4,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
+use clr_models::provenance;
 use clr_plot::Figure;
 use clr_sim::report::{Report, SweepRow};
 use clr_sim::spec::overrides_value;
@@ -14,6 +15,11 @@ use super::job::{execute, resolve, Job};
 use super::output::{write_run, Record};
 use super::progress::Progress;
 use super::{assignments, CliError, RunArgs};
+
+/// What `model_hash` of sweep.json is computed from, in its own words (docs/scaling.md).
+const MODEL_HASH_OF: &str = "FNV-1a 64 of the canonical JSON of the resolved model before the \
+varied values: a model file's description as run (--set, --t-end, --rtol and solver options \
+applied), or a built-in's name, parameters and run description";
 
 /// One varied parameter.
 struct Vary {
@@ -150,6 +156,9 @@ pub(crate) fn sweep_command(
         "set": args.set,
         "vary": varies.iter().map(|v| serde_json::json!({"name": v.name, "values": v.values})).collect::<Vec<_>>(),
         "total_points": total,
+        "model_hash": provenance::model_hash(&base_job.resolved_model(args.t_end, args.rtol)),
+        "model_hash_of": MODEL_HASH_OF,
+        "clr_version": provenance::CLR_VERSION,
         "shard": [si, sn],
         "points": rows.iter().map(|r| r.point).collect::<Vec<_>>(),
     });
@@ -280,24 +289,74 @@ fn compare_figures(out: &Path, table: &str) {
     }
 }
 
-/// `clr merge DIR... --out DIR`.
-pub(crate) fn merge_command(dirs: &[PathBuf], out: &Path) -> Result<(), CliError> {
+/// What the shard in `dir` records about its provenance (its sweep.json `meta`), for
+/// `clr_models::provenance::check_shards`.
+fn shard_provenance(dir: &Path, meta: &serde_json::Value) -> provenance::Shard {
+    let text = |k: &str| meta[k].as_str().map(str::to_string);
+    let spec = format!("{}/{}", meta["shard"][0], meta["shard"][1]);
+    provenance::Shard {
+        folder: dir.display().to_string(),
+        rerun: format!(
+            "clr sweep {} ... --shard {spec} --out {}",
+            meta["target"].as_str().unwrap_or("<target>"),
+            dir.display()
+        ),
+        spec,
+        recorded: text("clr_version")
+            .zip(text("model_hash"))
+            .map(|(clr_version, model_hash)| provenance::Recorded {
+                clr_version,
+                model_hash,
+            }),
+    }
+}
+
+impl From<provenance::ProvenanceError> for CliError {
+    fn from(e: provenance::ProvenanceError) -> Self {
+        CliError::Input(e.to_string())
+    }
+}
+
+/// Read the sweep.json of the shard folder `d`.
+fn read_meta(d: &Path) -> Result<serde_json::Value, CliError> {
+    let p = d.join("sweep.json");
+    let text = std::fs::read_to_string(&p)
+        .map_err(|e| CliError::Input(format!("cannot read {}: {e}", p.display())))?;
+    let meta: serde_json::Value = serde_json::from_str(&text)
+        .map_err(|e| CliError::Input(format!("{}: {e}", p.display())))?;
+    if !meta.is_object() {
+        return Err(CliError::Input(format!(
+            "{}: not a sweep description (expected a JSON object written by clr sweep)",
+            p.display()
+        )));
+    }
+    Ok(meta)
+}
+
+/// `clr merge DIR... --out DIR [--allow-unverified]`.
+pub(crate) fn merge_command(
+    dirs: &[PathBuf],
+    out: &Path,
+    allow_unverified: bool,
+) -> Result<(), CliError> {
     let read = |p: PathBuf| {
         std::fs::read_to_string(&p)
             .map_err(|e| CliError::Input(format!("cannot read {}: {e}", p.display())))
     };
+    let metas: Vec<serde_json::Value> = dirs
+        .iter()
+        .map(|d| read_meta(d))
+        .collect::<Result<_, _>>()?;
+    let shards: Vec<provenance::Shard> = dirs
+        .iter()
+        .zip(&metas)
+        .map(|(d, m)| shard_provenance(d, m))
+        .collect();
+    let unverified = provenance::check_shards(&shards, "sweep", allow_unverified)?;
     let mut header: Option<String> = None;
     let mut meta0: Option<serde_json::Value> = None;
     let mut rows: BTreeMap<usize, (String, PathBuf)> = BTreeMap::new();
-    for d in dirs {
-        let meta: serde_json::Value = serde_json::from_str(&read(d.join("sweep.json"))?)
-            .map_err(|e| CliError::Input(format!("{}: {e}", d.join("sweep.json").display())))?;
-        if !meta.is_object() {
-            return Err(CliError::Input(format!(
-                "{}: not a sweep description (expected a JSON object written by clr sweep)",
-                d.join("sweep.json").display()
-            )));
-        }
+    for (d, meta) in dirs.iter().zip(metas) {
         match &meta0 {
             None => meta0 = Some(meta.clone()),
             Some(m0) => {
@@ -359,6 +418,15 @@ pub(crate) fn merge_command(dirs: &[PathBuf], out: &Path) -> Result<(), CliError
         .map_err(|e| CliError::Input(format!("cannot create {}: {e}", out.display())))?;
     write_text(&out.join("sweep.csv"), &text)?;
     let mut meta = meta0.clone();
+    if !unverified.is_empty() {
+        eprintln!(
+            "clr: warning: merged without provenance (--allow-unverified): {}; nothing shows \
+             that they ran the same model as the others",
+            unverified.join(", ")
+        );
+        // `model_hash` and `clr_version` then hold for the other shards only
+        meta["unverified_shards"] = serde_json::json!(unverified);
+    }
     meta["shard"] = serde_json::json!([0, 1]);
     meta["points"] = serde_json::json!(rows.keys().collect::<Vec<_>>());
     meta["merged_from"] = serde_json::json!(dirs

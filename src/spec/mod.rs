@@ -139,7 +139,25 @@ pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loade
     if let Some(name) = builtin::name(file, src, &root)? {
         return builtin::builtin(file, src, &root, &name, overrides);
     }
-    let mut notes = parse::upgrade(&mut root);
+    let notes = parse::upgrade(&mut root);
+    let spec = generic_with(file, src, &root, notes.clone(), overrides);
+    match spec {
+        Err(e) if !overrides.is_empty() => {
+            Err(blame_override(file, src, &root, notes, overrides, e))
+        }
+        other => other.map(|s| Loaded::Generic(Box::new(s))),
+    }
+}
+
+/// The generic model of the (upgraded) table `root` of the file with `overrides` applied.
+fn generic_with(
+    file: &str,
+    src: &str,
+    root: &toml::Table,
+    mut notes: Vec<String>,
+    overrides: &[Assignment],
+) -> Result<ModelSpec, SpecError> {
+    let mut root = root.clone();
     for a in overrides {
         overrides::set_toml(&mut root, a)?;
     }
@@ -159,6 +177,47 @@ pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loade
              (`clr list` names them)",
         ));
     }
-    let spec = ModelSpec::from_desc(file, src, desc, notes)?;
-    Ok(Loaded::Generic(Box::new(spec)))
+    ModelSpec::from_desc(file, src, desc, notes)
+}
+
+/// The error `e` of the file with `overrides` placed on the `--set` that causes it rather than
+/// on the file's line of the value it replaced: the first override whose addition gives the
+/// same error (the file alone reading without it). An error the file has without its
+/// overrides stays at its line.
+fn blame_override(
+    file: &str,
+    src: &str,
+    root: &toml::Table,
+    notes: Vec<String>,
+    overrides: &[Assignment],
+    e: SpecError,
+) -> SpecError {
+    let same = |r: Result<ModelSpec, SpecError>| {
+        r.err()
+            .is_some_and(|x| x.field == e.field && x.message == e.message)
+    };
+    if same(generic_with(file, src, root, notes.clone(), &[])) {
+        return e;
+    }
+    let culprit = (1..=overrides.len())
+        .find(|&k| {
+            same(generic_with(
+                file,
+                src,
+                root,
+                notes.clone(),
+                &overrides[..k],
+            ))
+        })
+        .map(|k| &overrides[k - 1]);
+    let place = match culprit {
+        Some(a) => format!("--set '{}={}'", a.path, a.value_text()),
+        None => "--set (these overrides together)".to_string(),
+    };
+    SpecError {
+        file: place,
+        line: None,
+        column: None,
+        ..e
+    }
 }

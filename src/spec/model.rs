@@ -131,7 +131,19 @@ impl ModelSpec {
         notes.extend(super::parse::upgrade(&mut root));
         // refused values are reported as for `--set` on the command line (no file line)
         let desc = super::parse::desc("--set", "", root)?;
-        let mut spec = Self::from_desc(&self.file, &self.src, desc, notes)?;
+        // this model compiled without them, so what the compiler refuses comes from them
+        let mut spec = Self::from_desc(&self.file, &self.src, desc, notes).map_err(|e| {
+            let sets: Vec<String> = overrides
+                .iter()
+                .map(|a| format!("{}={}", a.path, a.value_text()))
+                .collect();
+            SpecError {
+                file: format!("--set '{}'", sets.join("' --set '")),
+                line: None,
+                column: None,
+                ..e
+            }
+        })?;
         spec.name.clone_from(&self.name);
         Ok(spec)
     }

@@ -6,6 +6,7 @@
 
 use std::path::Path;
 
+use clr_models::output::WHOLE_RUN;
 use clr_models::{Metric, RunOutput, RunSettings};
 
 use super::{apply_json_override, Assignment, Loaded, ModelSpec, SpecError};
@@ -63,6 +64,14 @@ pub struct Outcome {
     /// The meaning, unit and mode frequencies of the elastic coordinates of every flexible
     /// body and beam of a model file (empty for built-in models).
     pub flexible: Vec<clr_mbd::node_output::FlexibleCoordinates>,
+    /// The `[solver]` settings the run used (`rtol`, `atol` in the units of q and q̇, `method`,
+    /// `max_steps`, …: with `--rtol`, `--atol` and the other knobs applied); `Null` when a
+    /// built-in's run cannot be written as a description.
+    pub solver_settings: serde_json::Value,
+    /// The built-in's own values of the parameters a run setting replaced in `parameters`
+    /// (`rtol` when `--rtol` is given), by name; empty for model files, whose `parameters`
+    /// already hold the values used.
+    pub builtin_defaults: serde_json::Map<String, serde_json::Value>,
 }
 
 /// Load a model with `load` (from a file or text, with the given overrides); a generic model
@@ -345,6 +354,28 @@ impl Job {
         }
     }
 
+    /// The resolved model this job runs, as JSON for its provenance hash
+    /// (`clr_models::provenance::model_hash`): a model file's description as run (every
+    /// default filled in, the `--set` values, `--t-end`, `--rtol` and solver options applied;
+    /// the file's path and comments are not part of it), or a built-in's name, resolved
+    /// parameters and the description of its run with the end time (s), tolerance and knobs.
+    pub fn resolved_model(&self, t_end: Option<f64>, rtol: Option<f64>) -> serde_json::Value {
+        match self {
+            Job::Generic(s) => serde_json::json!({ "model_file": s.resolved }),
+            Job::Builtin {
+                name,
+                parameters,
+                knobs,
+            } => {
+                let settings = run_settings(t_end, rtol, *knobs, None);
+                let run = clr_models::catalog::export(name, parameters, &settings)
+                    .ok()
+                    .and_then(|d| serde_json::to_value(d).ok());
+                serde_json::json!({ "builtin": name, "parameters": parameters, "run": run })
+            }
+        }
+    }
+
     /// The simulated span [t0, t_end] (s) of this job run with the `t_end` of [`resolve`]: a
     /// model file's output span, or for a built-in model [0, t_end] with the override or the
     /// model's duration (its `duration` parameter, or the guide's stroke over speed); `None`
@@ -395,6 +426,8 @@ impl Outcome {
             no_orbit: Vec::new(),
             notes,
             flexible: Vec::new(),
+            solver_settings: serde_json::Value::Null,
+            builtin_defaults: serde_json::Map::new(),
         }
     }
 
@@ -418,6 +451,8 @@ impl Outcome {
             metrics,
             parameters: s.resolved.clone(),
             error,
+            solver_settings: s.resolved["solver"].clone(),
+            builtin_defaults: serde_json::Map::new(),
             // translational clearances of a model file have no orbit
             no_orbit: s
                 .clearances
@@ -460,7 +495,27 @@ impl Outcome {
             no_orbit: Vec::new(),
             notes: Vec::new(),
             flexible: Vec::new(),
+            solver_settings: serde_json::Value::Null,
+            builtin_defaults: serde_json::Map::new(),
         }
+    }
+
+    /// This built-in outcome with the settings its run used: `solver_settings` from the
+    /// description of the run (`clr_models::catalog::export` with the same settings, what the
+    /// run compiles), and a `parameters.rtol` replaced by the tolerance `--rtol` gave, the
+    /// built-in's own value kept in `builtin_defaults`.
+    fn with_settings_used(mut self, name: &str, settings: &RunSettings) -> Self {
+        if let Ok(d) = clr_models::catalog::export(name, &self.parameters, settings) {
+            self.solver_settings = serde_json::to_value(&d.solver).unwrap_or_default();
+        }
+        let used = settings.rtol.map(serde_json::Value::from);
+        if let (Some(used), Some(own)) = (used, self.parameters.get_mut("rtol")) {
+            if *own != used {
+                self.builtin_defaults
+                    .insert("rtol".into(), std::mem::replace(own, used));
+            }
+        }
+        self
     }
 }
 
@@ -485,13 +540,10 @@ pub fn execute(
             parameters,
             knobs,
         } => {
-            let settings = RunSettings {
-                t_end,
-                rtol,
-                progress,
-                knobs: *knobs,
-            };
-            match clr_models::catalog::run(name, parameters, &settings) {
+            let settings = run_settings(t_end, rtol, *knobs, progress);
+            // the settings without the progress hook, to describe the run afterwards
+            let described = run_settings(t_end, rtol, *knobs, None);
+            let outcome = match clr_models::catalog::run(name, parameters, &settings) {
                 Ok(o) => Ok(Outcome::from_output(o, None)),
                 Err(clr_models::ModelsError::Simulation {
                     message, partial, ..
@@ -506,7 +558,8 @@ pub fn execute(
                     None => Ok(Outcome::empty(name, parameters.clone(), message)),
                 },
                 Err(e) => Err(RunError::Input(e.to_string())),
-            }
+            };
+            outcome.map(|o| o.with_settings_used(name, &described))
         }
         Job::Generic(s) => {
             let built = s.build()?;
@@ -552,6 +605,21 @@ pub fn execute(
     }
 }
 
+/// The run settings of a built-in: end time (s), tolerance, knobs and progress hook.
+fn run_settings(
+    t_end: Option<f64>,
+    rtol: Option<f64>,
+    knobs: clr_models::SolverKnobs,
+    progress: Option<Box<dyn Fn(f64) + Send + Sync>>,
+) -> RunSettings {
+    RunSettings {
+        t_end,
+        rtol,
+        progress,
+        knobs,
+    }
+}
+
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
 }
@@ -560,6 +628,7 @@ fn max_abs(v: &[f64]) -> f64 {
 fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
     let mut m = Vec::new();
     for (c, radial) in &s.clearances {
+        let start = m.len();
         let impacts = || r.impacts.iter().filter(|i| &i.joint == c);
         if let Some(f) = r.column(&format!("{c}.normal_force")) {
             m.push(Metric::new(
@@ -594,6 +663,10 @@ fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
                 "onset time of the first impact",
             ));
         }
+        // a model file's metrics skip no transient
+        for x in &mut m[start..] {
+            x.window = Some(WHOLE_RUN.to_string());
+        }
         if let Some(radial) = radial {
             m.push(Metric::new(
                 &format!("{c}.radial_clearance"),
@@ -603,51 +676,30 @@ fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
             ));
         }
         if let Some(f) = r.column(&format!("{c}.Fx")) {
-            m.push(Metric::new(
-                &format!("{c}.peak_reaction"),
-                max_abs(&f),
-                "N",
-                "",
-            ));
+            m.push(
+                Metric::new(&format!("{c}.peak_reaction"), max_abs(&f), "N", "").over(WHOLE_RUN),
+            );
         }
     }
-    if let Some(e) = r.column("energy.total") {
-        let e0 = e.first().copied().unwrap_or(0.0);
-        let drift = e.iter().fold(0.0f64, |a, &x| a.max((x - e0).abs()));
-        m.push(Metric::new(
-            "energy_change",
-            drift,
-            "J",
-            "largest |E(t) − E(0)| of the mechanical energy E = kinetic + gravitational + \
-             elastic (springs, beams, contact); it changes by the work of drivers and applied \
-             loads and by dissipation (dampers, contact damping, friction), which it does not \
-             subtract: see energy_balance_error",
-        ));
-    }
-    if let Some(b) = r.column("energy.balance") {
-        let b0 = b.first().copied().unwrap_or(0.0);
-        let err = b.iter().fold(0.0f64, |a, &x| a.max((x - b0).abs()));
-        m.push(Metric::new(
-            "energy_balance_error",
-            err,
-            "J",
-            "largest |B(t) − B(0)| of the energy balance B = E + dissipated − work in (work \
-             of drivers and applied loads): zero but for the integration error and the work of \
-             joint reactions through constraint violations",
-        ));
-    }
-    m.push(Metric::new(
-        "contact_onsets",
-        r.onsets as f64,
-        "-",
-        "contact onsets located as events",
-    ));
-    m.push(Metric::new(
-        "max_position_violation",
-        r.max_position_violation,
-        "m or rad",
-        "largest constraint violation after accepted steps",
-    ));
+    m.extend(clr_models::output::energy_metrics(r));
+    m.push(
+        Metric::new(
+            "contact_onsets",
+            r.onsets as f64,
+            "-",
+            "contact onsets located as events",
+        )
+        .over(WHOLE_RUN),
+    );
+    m.push(
+        Metric::new(
+            "max_position_violation",
+            r.max_position_violation,
+            "m or rad",
+            "largest constraint violation after accepted steps",
+        )
+        .over(WHOLE_RUN),
+    );
     m
 }
 

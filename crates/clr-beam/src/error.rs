@@ -80,6 +80,19 @@ pub enum BeamError {
         /// Number of free DOF.
         available: usize,
     },
+    /// More Craig–Bampton modes than interior degrees of freedom (free DOF not on an
+    /// interface node) were requested.
+    #[error(
+        "asked for {requested} Craig–Bampton modes but the model has only {available} interior \
+         DOF (free DOF not on an interface node); ask for at most {available}, or refine the \
+         mesh so that it has more interior nodes"
+    )]
+    TooManyInteriorModes {
+        /// Number requested.
+        requested: usize,
+        /// Number of interior DOF.
+        available: usize,
+    },
     /// Zero modes were requested.
     #[error("ask for at least one mode")]
     ZeroModes,

@@ -92,7 +92,7 @@ impl BeamModel {
             return Err(BeamError::NoInterface);
         }
         if n_modes > i.len() {
-            return Err(BeamError::TooManyModes {
+            return Err(BeamError::TooManyInteriorModes {
                 requested: n_modes,
                 available: i.len(),
             });

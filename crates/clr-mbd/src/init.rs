@@ -570,7 +570,8 @@ impl InitialConditions {
                 })
                 .collect();
             notes.push(format!(
-                "initial conditions: given values changed to satisfy the constraints                  (initial_conditions = \"exact\" refuses this): {}",
+                "initial conditions: given values changed to satisfy the constraints \
+                 (initial_conditions = \"exact\" refuses this): {}",
                 list.join(", ")
             ));
         }

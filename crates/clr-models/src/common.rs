@@ -680,6 +680,7 @@ pub(crate) fn output(
     mut metrics: Vec<crate::Metric>,
     parameters: serde_json::Value,
 ) -> RunOutput {
+    metrics.extend(crate::output::energy_metrics(&results));
     metrics.push(crate::Metric::new(
         "steps",
         results.stats.accepted as f64,
@@ -692,6 +693,11 @@ pub(crate) fn output(
         "-",
         "contact onsets located as events",
     ));
+    // a built-in's metrics are taken over the recorded run unless its model names a later
+    // window (a transient it skips), so every one says which
+    for m in metrics.iter_mut().filter(|m| m.window.is_none()) {
+        m.window = Some(crate::output::WHOLE_RUN.to_string());
+    }
     RunOutput {
         model: model.to_string(),
         units: units(&results),

@@ -994,24 +994,35 @@ fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
             spreads.push(s);
         }
     }
+    // every metric of the comparison skips the transient
+    let window = crate::output::window_after(t0, "the transient");
+    for x in &mut m {
+        x.window = Some(window.clone());
+    }
     let peak_f = m
         .iter()
         .filter(|x| x.name.ends_with("_peak_contact_force"))
         .map(|x| x.value)
         .fold(0.0, f64::max);
-    m.push(Metric::new(
-        "peak_contact_force",
-        peak_f,
-        "N",
-        "largest normal force over the clearance joints after the transient",
-    ));
+    m.push(
+        Metric::new(
+            "peak_contact_force",
+            peak_f,
+            "N",
+            "largest normal force over the clearance joints after the transient",
+        )
+        .over(window.clone()),
+    );
     if !spreads.is_empty() {
-        m.push(Metric::new(
-            "poincare_spread",
-            spreads.iter().cloned().fold(0.0, f64::max),
-            "-",
-            "largest Poincaré-section spread over the clearance joints (irregularity)",
-        ));
+        m.push(
+            Metric::new(
+                "poincare_spread",
+                spreads.iter().cloned().fold(0.0, f64::max),
+                "-",
+                "largest Poincaré-section spread over the clearance joints (irregularity)",
+            )
+            .over(window.clone()),
+        );
     }
     common::append_columns(
         res,

@@ -25,6 +25,7 @@ pub mod lyapunov;
 pub mod manipulator;
 pub mod map_study;
 pub mod output;
+pub mod provenance;
 pub mod slider_crank;
 pub mod studies;
 

@@ -44,7 +44,8 @@ pub struct MapDef {
     pub evaluate: fn(&[f64]) -> Result<Vec<f64>, String>,
 }
 
-/// First line of a checkpoint: which map its points belong to.
+/// First line of a checkpoint: which map its points belong to, and what computed them
+/// (absent from checkpoints of a clr that did not record it).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 struct CheckpointHeader {
     map: String,
@@ -52,6 +53,20 @@ struct CheckpointHeader {
     findings: Vec<FindingSpec>,
     seed: u32,
     design_size: usize,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    provenance: Option<MapProvenance>,
+}
+
+/// What computed a map's points: the clr version, the map's definition (hash of its name,
+/// parameters, findings and seed: what its points depend on besides the code) and the shard.
+/// In the checkpoint's header and, for a finished map, in `<name>_provenance.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct MapProvenance {
+    clr_version: String,
+    model_hash: String,
+    /// `[I, N]` of a shard; absent for the whole map.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    shard: Option<[usize; 2]>,
 }
 
 impl MapDef {
@@ -66,6 +81,12 @@ impl MapDef {
     /// File of a map's full result (every point, serde JSON), from which shards are merged.
     pub fn result_file(&self, dir: &Path) -> PathBuf {
         dir.join(format!("{}_result.json", self.name))
+    }
+
+    /// File of the provenance of a finished map (clr version, hash of the map's definition,
+    /// shard), which [`MapDef::merge`] compares across shards.
+    pub fn provenance_file(&self, dir: &Path) -> PathBuf {
+        dir.join(format!("{}_provenance.json", self.name))
     }
 
     /// File of the checkpoint written while a map runs.
@@ -130,7 +151,7 @@ impl MapDef {
                 reused = reused.len()
             );
         }
-        let checkpoint = self.open_checkpoint(dir, points)?;
+        let checkpoint = self.open_checkpoint(dir, points, shard)?;
         // The reused points go into the new checkpoint too, so that it alone holds everything
         // of this run when it is resumed in turn.
         if let Ok(mut f) = checkpoint.lock() {
@@ -160,6 +181,7 @@ impl MapDef {
             );
         });
         self.write(dir, &result)?;
+        self.write_provenance(dir, shard)?;
         if !result.points.is_empty() && result.failures().len() == result.points.len() {
             return Err(format!(
                 "every point failed, e.g. {:?}",
@@ -183,12 +205,34 @@ impl MapDef {
     /// Merge the results of shards run into `shard_dirs` and write the merged map into `out`.
     /// A folder without a finished result contributes the points of its checkpoint
     /// ([`MapDef::stopped_result`]), so the map of a stopped run can be summarized: its
-    /// summary then says how many of the design's points it has.
+    /// summary then says how many of the design's points it has. Shards computed by different
+    /// clr versions or map definitions are refused, and so are shards that record neither
+    /// (written by an older clr) unless `allow_unverified`, which names them on stderr.
     ///
     /// # Errors
     /// A folder with neither a result nor a checkpoint, an unreadable file, shards of
-    /// different maps, or an output error.
-    pub fn merge(&self, shard_dirs: &[PathBuf], out: &Path) -> Result<MapResult, String> {
+    /// different maps or provenance (`crate::provenance::ProvenanceError`'s message), or an
+    /// output error.
+    pub fn merge(
+        &self,
+        shard_dirs: &[PathBuf],
+        out: &Path,
+        allow_unverified: bool,
+    ) -> Result<MapResult, String> {
+        let shards = shard_dirs
+            .iter()
+            .map(|d| self.shard_provenance(d))
+            .collect::<Result<Vec<_>, String>>()?;
+        let unverified = crate::provenance::check_shards(&shards, "finding map", allow_unverified)
+            .map_err(|e| e.to_string())?;
+        if !unverified.is_empty() {
+            eprintln!(
+                "{}: merged without provenance (--allow-unverified): {}; nothing shows that \
+                 they ran the same map with the same clr as the others",
+                self.name,
+                unverified.join(", ")
+            );
+        }
         let parts = shard_dirs
             .iter()
             .map(|d| {
@@ -240,19 +284,85 @@ impl MapDef {
         })
     }
 
-    fn header(&self, design_size: usize) -> CheckpointHeader {
+    fn header(&self, design_size: usize, shard: Option<(usize, usize)>) -> CheckpointHeader {
         CheckpointHeader {
             map: self.name.to_string(),
             parameters: (self.parameters)(),
             findings: (self.findings)(),
             seed: self.seed,
             design_size,
+            provenance: Some(self.provenance(shard)),
         }
+    }
+
+    /// The provenance of this map's points computed now, as shard `shard`.
+    fn provenance(&self, shard: Option<(usize, usize)>) -> MapProvenance {
+        let definition = serde_json::json!({
+            "map": self.name,
+            "parameters": (self.parameters)(),
+            "findings": (self.findings)(),
+            "seed": self.seed,
+        });
+        MapProvenance {
+            clr_version: crate::provenance::CLR_VERSION.to_string(),
+            model_hash: crate::provenance::model_hash(&definition),
+            shard: shard.map(|(i, n)| [i, n]),
+        }
+    }
+
+    fn write_provenance(&self, dir: &Path, shard: Option<(usize, usize)>) -> Result<(), String> {
+        let path = self.provenance_file(dir);
+        let json =
+            serde_json::to_string_pretty(&self.provenance(shard)).map_err(|e| e.to_string())?;
+        std::fs::write(&path, json + "\n").map_err(|e| format!("{}: {e}", path.display()))
+    }
+
+    /// What the shard folder `dir` records about its provenance: `<name>_provenance.json` of a
+    /// finished map, else its checkpoint's header.
+    fn shard_provenance(&self, dir: &Path) -> Result<crate::provenance::Shard, String> {
+        let recorded: Option<MapProvenance> = if self.result_file(dir).exists() {
+            let path = self.provenance_file(dir);
+            match std::fs::read_to_string(&path) {
+                Ok(text) => Some(
+                    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))?,
+                ),
+                Err(e) if e.kind() == std::io::ErrorKind::NotFound => None,
+                Err(e) => return Err(format!("{}: {e}", path.display())),
+            }
+        } else {
+            let path = self.checkpoint_file(dir);
+            let mut first = String::new();
+            File::open(&path)
+                .and_then(|f| BufReader::new(f).read_line(&mut first))
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            let h: CheckpointHeader = serde_json::from_str(&first)
+                .map_err(|e| format!("{}: header: {e}", path.display()))?;
+            h.provenance
+        };
+        let shard = recorded.as_ref().and_then(|p| p.shard);
+        let (spec, option) = match shard {
+            Some([i, n]) => (format!("{i}/{n}"), format!(" --shard {i}/{n}")),
+            None => ("(the whole map)".to_string(), String::new()),
+        };
+        Ok(crate::provenance::Shard {
+            folder: dir.display().to_string(),
+            spec,
+            rerun: format!("clr study {}{option} --out {}", self.name, dir.display()),
+            recorded: recorded.map(|p| crate::provenance::Recorded {
+                clr_version: p.clr_version,
+                model_hash: p.model_hash,
+            }),
+        })
     }
 
     /// A fresh checkpoint in `dir` (an earlier one is renamed `.previous`: it may be the folder
     /// being resumed, whose points were read before this is called).
-    fn open_checkpoint(&self, dir: &Path, points: usize) -> Result<Mutex<File>, String> {
+    fn open_checkpoint(
+        &self,
+        dir: &Path,
+        points: usize,
+        shard: Option<(usize, usize)>,
+    ) -> Result<Mutex<File>, String> {
         std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let path = self.checkpoint_file(dir);
         if path.exists() {
@@ -265,7 +375,8 @@ impl MapDef {
             .truncate(true)
             .open(&path)
             .map_err(|e| format!("{}: {e}", path.display()))?;
-        let header = serde_json::to_string(&self.header(points)).map_err(|e| e.to_string())?;
+        let header =
+            serde_json::to_string(&self.header(points, shard)).map_err(|e| e.to_string())?;
         writeln!(f, "{header}").map_err(|e| format!("{}: {e}", path.display()))?;
         Ok(Mutex::new(f))
     }
@@ -279,7 +390,7 @@ impl MapDef {
     /// (and the checkpoint it replaced, `.previous`). Refuses results of another map.
     fn read_points(&self, dir: &Path) -> Result<Vec<PointResult>, String> {
         let result = self.result_file(dir);
-        let mine = self.header(0);
+        let mine = self.header(0, None);
         let same = |parameters: &[Parameter], findings: &[FindingSpec], seed: u32| {
             parameters == mine.parameters.as_slice()
                 && findings == mine.findings.as_slice()
@@ -430,7 +541,7 @@ mod tests {
         assert_eq!(lines, 17);
         // the stopped 8-point run, merged from its checkpoint alone, is the 8-point map
         let stopped = DEF
-            .merge(std::slice::from_ref(&small), &base.join("m"))
+            .merge(std::slice::from_ref(&small), &base.join("m"), false)
             .unwrap();
         assert_eq!(stopped.design_size, 8);
         assert_eq!(outcomes(&stopped), outcomes(&new)[..8].to_vec());
@@ -445,6 +556,52 @@ mod tests {
         let other = MapDef { seed: 8, ..DEF };
         let err = other.earlier_points(&[small], false).unwrap_err();
         assert!(err.contains("another map"), "{err}");
+        let _ = std::fs::remove_dir_all(&base);
+    }
+
+    // Shards record their provenance: two shards of one clr merge; a shard whose recorded
+    // definition hash differs is refused by name with its rerun, and one that records nothing
+    // (an older clr) is refused unless allowed. A stopped shard is read from its checkpoint.
+    #[test]
+    fn merge_refuses_shards_of_other_provenance() {
+        let base = std::env::temp_dir().join(format!("clr-map-prov-{}", std::process::id()));
+        let (a, b) = (base.join("a"), base.join("b"));
+        DEF.run(&a, 8, Some((0, 2)), &[]).unwrap();
+        DEF.run(&b, 8, Some((1, 2)), &[]).unwrap();
+        let out = base.join("m");
+        assert_eq!(
+            DEF.merge(&[a.clone(), b.clone()], &out, false)
+                .unwrap()
+                .points
+                .len(),
+            8
+        );
+        // the checkpoint records it too: b as if stopped
+        std::fs::remove_file(DEF.result_file(&b)).unwrap();
+        assert!(DEF.merge(&[a.clone(), b.clone()], &out, false).is_ok());
+        let cp = DEF.checkpoint_file(&b);
+        let text = std::fs::read_to_string(&cp).unwrap();
+        let hash = DEF.provenance(None).model_hash;
+        std::fs::write(&cp, text.replacen(&hash, "fnv1a64:0000000000000000", 1)).unwrap();
+        let e = DEF.merge(&[a.clone(), b.clone()], &out, false).unwrap_err();
+        assert!(
+            e.starts_with(&format!(
+                "{}: model_hash fnv1a64:0000000000000000",
+                b.display()
+            )),
+            "{e}"
+        );
+        assert!(
+            e.contains("re-run shard 1/2 (`clr study test_map --shard 1/2 --out"),
+            "{e}"
+        );
+        // a finished shard of an older clr: no provenance file
+        std::fs::remove_file(DEF.provenance_file(&a)).unwrap();
+        let e = DEF
+            .merge(std::slice::from_ref(&a), &out, false)
+            .unwrap_err();
+        assert!(e.contains("--allow-unverified"), "{e}");
+        assert!(DEF.merge(&[a], &out, true).is_ok());
         let _ = std::fs::remove_dir_all(&base);
     }
 }

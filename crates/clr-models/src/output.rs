@@ -110,18 +110,83 @@ pub struct Metric {
     pub unit: String,
     /// One-line description.
     pub description: String,
+    /// The part of the run the value is taken over, in words with its bounds in s (e.g.
+    /// [`WHOLE_RUN`], or `t ≥ 0.0120 s (after the first crank revolution)`); `None` for a value
+    /// that is not taken over time (a dimension of the model).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub window: Option<String>,
 }
 
+/// The window of a metric taken over every recorded row of the run.
+pub const WHOLE_RUN: &str = "whole run";
+
 impl Metric {
-    /// A metric with its unit and description.
+    /// A metric with its unit and description, without a window ([`Metric::over`] gives it).
     pub fn new(name: &str, value: f64, unit: &str, description: &str) -> Self {
         Self {
             name: name.into(),
             value,
             unit: unit.into(),
             description: description.into(),
+            window: None,
         }
     }
+
+    /// This metric taken over `window` (see [`Metric::window`]).
+    #[must_use]
+    pub fn over(mut self, window: impl Into<String>) -> Self {
+        self.window = Some(window.into());
+        self
+    }
+}
+
+/// The window `t ≥ t_from` (s) of metrics that skip a transient, `what` saying what the
+/// transient is (e.g. `the first crank revolution`); [`WHOLE_RUN`] when `t_from` ≤ 0.
+pub fn window_after(t_from: f64, what: &str) -> String {
+    if t_from > 0.0 {
+        format!("t ≥ {t_from:.4} s (after {what})")
+    } else {
+        WHOLE_RUN.to_string()
+    }
+}
+
+/// The energy metrics of a run from its `energy.total` and `energy.balance` columns (J), over
+/// the whole run: the same for built-in models and model files.
+pub fn energy_metrics(r: &clr_mbd::Results) -> Vec<Metric> {
+    let mut m = Vec::new();
+    // the largest distance from the first row's value; NaN rows are skipped by `max`
+    let drift = |v: &[f64]| {
+        let v0 = v.first().copied().unwrap_or(0.0);
+        v.iter().fold(0.0f64, |a, &x| a.max((x - v0).abs()))
+    };
+    if let Some(e) = r.column("energy.total") {
+        m.push(
+            Metric::new(
+                "energy_change",
+                drift(&e),
+                "J",
+                "largest |E(t) − E(0)| of the mechanical energy E = kinetic + gravitational + \
+                 elastic (springs, beams, contact); it changes by the work of drivers and applied \
+                 loads and by dissipation (dampers, contact damping, friction), which it does not \
+                 subtract: see energy_balance_error",
+            )
+            .over(WHOLE_RUN),
+        );
+    }
+    if let Some(b) = r.column("energy.balance") {
+        m.push(
+            Metric::new(
+                "energy_balance_error",
+                drift(&b),
+                "J",
+                "largest |B(t) − B(0)| of the energy balance B = E + dissipated − work in (work \
+                 of drivers and applied loads): zero but for the integration error and the work \
+                 of joint reactions through constraint violations",
+            )
+            .over(WHOLE_RUN),
+        );
+    }
+    m
 }
 
 /// The outcome of one run of a model.

@@ -337,7 +337,12 @@ pub fn run(
             common::peak_max(&t, &col(&res, "B.penetration"), t_from),
         ),
     );
-    let metrics = vec![
+    let revolutions = match p.transient_revolutions {
+        1.0 => "the first crank revolution".to_string(),
+        r => format!("the first {r} crank revolutions"),
+    };
+    let window = crate::output::window_after(t_from, &revolutions);
+    let mut metrics = vec![
         Metric::new(
             "peak_contact_force",
             peak_f,
@@ -368,8 +373,13 @@ pub fn run(
             common::peak_abs(&t, &dev, 0.0),
             "m",
             "largest |x − x_ideal| of the slider over the run (bounded by clearance + penetration)",
-        ),
+        )
+        .over(crate::output::WHOLE_RUN),
     ];
+    // the first four skip the transient
+    for m in &mut metrics[..4] {
+        m.window = Some(window.clone());
+    }
     common::append_columns(&mut res, vec![("slider.error".into(), dev)]);
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))

@@ -89,6 +89,36 @@ pub const NORMAL_LAWS: [&str; 11] = [
     "area",
 ];
 
+/// How to write a damping factor given as `law` (`lankarani-nikravesh`, `ln`, `flores`, …): a
+/// user reading "Hertz law with Lankarani–Nikravesh damping" in a paper often names the damping
+/// as the law, and the list of laws alone does not say where it goes.
+fn damping_as_law(law: &str) -> Option<String> {
+    let d = DampingFactor::from_name(law).ok()?;
+    let name = d.name();
+    // the flap paper's presets are the internal-cylinder Hertz law with these dampings
+    let preset = match d {
+        DampingFactor::LankaraniNikravesh => {
+            " (law = \"preset\" with preset = \"LN\" and the \
+                                              two materials is the same law)"
+        }
+        DampingFactor::Gonthier => {
+            " (law = \"preset\" with preset = \"Gonthier\" and the two \
+                                    materials is the same law)"
+        }
+        DampingFactor::Flores => {
+            " (the rounded-edge law of a slider on a guide face is \
+                                  law = \"flores-line\")"
+        }
+        _ => "",
+    };
+    Some(format!(
+        "`{name}` is a damping factor, not an elastic law: keep an elastic law in `law` and name \
+         the damping factor in `damping`, e.g. law = \"hertz\" with stiffness = K (N/m^1.5) and \
+         damping = \"{name}\", or law = \"hertz-internal-cylinder\" with bearing_material, \
+         journal_material and damping = \"{name}\"{preset}"
+    ))
+}
+
 /// Journal–bearing geometry a revolute clearance joint gives its law: (R_bearing, R_journal), m.
 pub type Radii = Option<(f64, f64)>;
 
@@ -170,11 +200,14 @@ impl NormalLawDesc {
         let Some(law) = NORMAL_LAWS.iter().copied().find(|l| *l == norm) else {
             return Err(FieldError::new(
                 format!("{path}.law"),
-                format!(
-                    "unknown normal-force law `{}`; {}",
-                    self.law,
-                    suggestion(&self.law, NORMAL_LAWS)
-                ),
+                match damping_as_law(&self.law) {
+                    Some(hint) => format!("unknown normal-force law `{}`: {hint}", self.law),
+                    None => format!(
+                        "unknown normal-force law `{}`; {}",
+                        self.law,
+                        suggestion(&self.law, NORMAL_LAWS)
+                    ),
+                },
             ));
         };
         let c = Ctx { path, law };
