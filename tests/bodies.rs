@@ -277,3 +277,38 @@ fn a_guide_without_clearance_is_an_ideal_translational_joint() {
         o.results.columns
     );
 }
+
+/// What needs a clearance is refused with clearance 0 (at its field), and a negative
+/// clearance stays refused.
+#[test]
+fn clearance_0_refuses_what_needs_a_clearance() {
+    let zero = HAND.replace("journal_radius = 0.0099", "journal_radius = 0.01");
+    let with = |extra: &str| {
+        zero.replace(
+            "friction = { law = \"coulomb\", mu = 0.1 }\n",
+            &format!("friction = {{ law = \"coulomb\", mu = 0.1 }}\n{extra}\n"),
+        )
+    };
+    for (extra, field) in [
+        (
+            "initial_eccentricity = [1e-5, 0.0]",
+            "clearance[0].initial_eccentricity",
+        ),
+        (
+            "lubrication = { model = \"short_bearing\", viscosity = 0.04, length = 0.02, \
+             film_threshold = 1e-6 }",
+            "clearance[0].lubrication",
+        ),
+    ] {
+        let e = refused(&with(extra));
+        assert!(
+            e.contains(field) && e.contains("ideal revolute joint"),
+            "{e}"
+        );
+    }
+    let e = refused(&HAND.replace("journal_radius = 0.0099", "journal_radius = 0.0101"));
+    assert!(
+        e.contains("clearance[0].journal_radius") && e.contains("must be positive"),
+        "{e}"
+    );
+}
