@@ -156,7 +156,7 @@ fn sweep_points_clone_the_description_without_reading_the_file() {
     std::fs::remove_file(&file).unwrap();
     let set = |text: &str| -> Vec<Assignment> { vec![parse_assignment(text).unwrap()] };
     let mass = |j: &Job| match j {
-        Job::Generic(s) => s.desc().bodies[0].mass,
+        Job::Generic(s) => s.desc().bodies[0].mass.unwrap_or(f64::NAN),
         _ => panic!("a model file resolves to a generic job"),
     };
     let a = base

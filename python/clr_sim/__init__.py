@@ -15,7 +15,7 @@ import os
 import warnings as _warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import _native, contact, errors, shapes
+from . import _native, contact, errors, inertia, shapes
 from .contact import FrictionLaw, NormalLaw, RevoluteJoint
 from .errors import (
     ClrError,

@@ -454,8 +454,12 @@ class Model:
         self,
         name: str,
         *,
-        mass: float,
-        inertia: float,
+        mass: Optional[float] = None,
+        inertia: Optional[float] = None,
+        shape: Optional[Table] = None,
+        material: Optional[str] = None,
+        density: Optional[float] = None,
+        between: Optional[Sequence[Vec2]] = None,
         position: Optional[Vec2] = None,
         angle: Optional[float] = None,
         velocity: Optional[Vec2] = None,
@@ -466,7 +470,10 @@ class Model:
         of mass); its frame at ``position`` (m) and ``angle`` (rad) moving with ``velocity``
         (m/s) and ``angular_velocity`` (rad/s); ``centre_of_mass`` (m) in the body frame. An
         initial coordinate left out is solved by the assembly of consistent initial
-        conditions; one given is kept (docs/model-file.md, "Initial conditions")."""
+        conditions; one given is kept (docs/model-file.md, "Initial conditions"). Instead of
+        ``mass`` and ``inertia``: ``shape`` (``{"bar": {...}}``) with ``material`` or ``density``
+        (kg/m³); instead of ``position`` and ``angle``: ``between`` two points (m); see
+        :mod:`clr_sim.inertia`."""
         return self._add("body", None, **{k: v for k, v in locals().items() if k != "self"})
 
     def point(

@@ -22,6 +22,7 @@ use pyo3::types::PyDict;
 
 mod convert;
 mod errors;
+mod inertia;
 mod models;
 mod sweep;
 
@@ -556,5 +557,6 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models::run_study, m)?)?;
     m.add_function(wrap_pyfunction!(models::element_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(models::kind_fields, m)?)?;
+    inertia::register(m)?;
     Ok(())
 }

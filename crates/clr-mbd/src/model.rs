@@ -153,14 +153,11 @@ impl ModelBuilder {
     /// A rigid body named `name` (frame at its centre of mass).
     pub fn body(&mut self, name: &str, body: RigidBody) -> &mut Self {
         self.desc.bodies.push(Body {
-            name: name.into(),
-            mass: body.mass,
-            inertia: body.inertia,
             position: Some(body.position),
             angle: Some(body.angle),
             velocity: Some(body.velocity),
             angular_velocity: Some(body.angular_velocity),
-            centre_of_mass: [0.0, 0.0],
+            ..Body::new(name, body.mass, body.inertia)
         });
         self
     }

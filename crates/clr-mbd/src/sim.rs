@@ -247,7 +247,7 @@ impl Model {
 
     /// The automatic choices of a run with `opts`, in words ([`Results::notes`]).
     pub(crate) fn run_notes(&self, opts: &SimOptions) -> Vec<String> {
-        let mut notes = Vec::new();
+        let mut notes = self.notes.clone();
         if opts.solver == SolverKind::Ndf
             && opts.jacobian == JacobianMode::Analytic
             && self.n_bristle_states() > 0

@@ -99,6 +99,9 @@ pub struct Model {
     /// revolute journal centre from the bearing centre in the bearing body's frame, or the
     /// translational slider centre across the guide (y), m ([`crate::ideal`]).
     pub(crate) initial_offsets: std::collections::HashMap<String, Vector2<f64>>,
+    /// What compiling the description computed or decided, in words (in every run's notes,
+    /// after those of the initial conditions).
+    pub(crate) notes: Vec<String>,
     /// Findings of the plausibility checks of the description's values (materials, laws),
     /// reported by every run ([`crate::plausible`]).
     pub(crate) input_warnings: Vec<crate::initial_data::Warning>,

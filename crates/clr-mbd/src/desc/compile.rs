@@ -1,12 +1,13 @@
 //! Compiling a description: names claimed in one namespace, the compiler's inputs, every
-//! section's elements in order (joints, drivers, forces, clearances), then assembly.
+//! section's elements in order (joints, clearance joints of clearance 0 as ideal joints,
+//! drivers, forces, clearances), then assembly.
 
 use std::collections::HashMap;
 
 use nalgebra::Vector2;
 
 use super::ModelDesc;
-use crate::element::{Compiler, Inputs};
+use crate::element::{Clearance, Compiler, Inputs};
 use crate::error::MbdError;
 use crate::runtime::GROUND;
 use crate::system::Model;
@@ -35,6 +36,15 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     for j in &desc.joints {
         j.compile(&mut c)?;
     }
+    // a clearance joint of clearance 0 is its ideal joint: its rows follow the joints' (so a
+    // file that writes it as the last `[[joint]]` has the same rows in the same order)
+    for cl in &desc.clearances {
+        match cl {
+            Clearance::Revolute(r) if r.is_ideal() => r.compile_ideal(&mut c)?,
+            Clearance::Translational(t) if t.is_ideal() => t.compile_ideal(&mut c)?,
+            _ => {}
+        }
+    }
     for d in &desc.drivers {
         d.compile(&mut c)?;
     }
@@ -44,7 +54,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     for s in &desc.shapes {
         s.compile(&mut c)?;
     }
-    for cl in &desc.clearances {
+    for cl in desc.clearances.iter().filter(|cl| !is_ideal(cl)) {
         cl.compile(&mut c)?;
     }
     let g = desc.model.gravity;
@@ -63,6 +73,15 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     model.input_warnings = super::checks::description_warnings(desc);
     model.set_output_nodes(&desc.output.nodes)?;
     Ok(model)
+}
+
+/// A clearance joint of clearance 0 (compiled as its ideal joint).
+fn is_ideal(cl: &Clearance) -> bool {
+    match cl {
+        Clearance::Revolute(r) => r.is_ideal(),
+        Clearance::Translational(t) => t.is_ideal(),
+        _ => false,
+    }
 }
 
 /// A blank name cannot be referred to and would leave errors about its item without a place

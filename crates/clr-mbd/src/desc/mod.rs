@@ -10,6 +10,7 @@
 pub mod beam;
 pub mod checks;
 mod compile;
+pub mod inertia;
 pub mod laws;
 pub mod parts;
 mod settings;
@@ -20,7 +21,7 @@ pub use beam::{
     BeamMaterial, BeamMesh, MassKindDesc, Reduction, SectionDesc, SupportDesc, SupportKind,
 };
 pub use laws::{FrictionLawDesc, MaterialDesc, NormalLawDesc};
-pub use parts::{Body, ForceApplicationDesc, ModelInfo, Point};
+pub use parts::{Body, ForceApplicationDesc, ModelInfo, Point, ResolvedBody};
 pub use settings::{
     unused_solver_fields, AllNodes, NodeSelection, OutputSettings, SolverMethod, SolverSettings,
     ATOL_PER_RTOL,

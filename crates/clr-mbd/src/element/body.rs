@@ -6,14 +6,16 @@ use crate::desc::parts::Body;
 use crate::error::MbdError;
 use crate::runtime::{rot, RigidBody};
 
-/// Check `b` and return its runtime form (pose and velocity of the centre of mass) and the
-/// centre-of-mass offset in the body frame.
-pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>), MbdError> {
+/// Check `b` and return its runtime form (pose and velocity of the centre of mass), the
+/// centre-of-mass offset in the body frame and what was computed from its shape and `between`
+/// points, in words ([`Body::resolve`]).
+pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>, Option<String>), MbdError> {
+    let r = b.resolve()?;
     for (what, v) in [
-        ("mass (kg)", b.mass),
+        ("mass (kg)", r.mass),
         (
             "moment of inertia about the centre of mass (kg·m²)",
-            b.inertia,
+            r.inertia,
         ),
     ] {
         if !(v.is_finite() && v > 0.0) {
@@ -24,14 +26,14 @@ pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>), MbdError> {
             });
         }
     }
-    let position = b.position.unwrap_or_default();
-    let angle = b.angle.unwrap_or_default();
+    let position = r.position.unwrap_or_default();
+    let angle = r.angle.unwrap_or_default();
     let velocity = b.velocity.unwrap_or_default();
     let omega = b.angular_velocity.unwrap_or_default();
     let finite = position
         .iter()
         .chain(velocity.iter())
-        .chain(b.centre_of_mass.iter())
+        .chain(r.centre_of_mass.iter())
         .all(|v| v.is_finite())
         && angle.is_finite()
         && omega.is_finite();
@@ -43,15 +45,16 @@ pub(crate) fn compile(b: &Body) -> Result<(RigidBody, Vector2<f64>), MbdError> {
             requirement: "every component must be finite",
         });
     }
-    let com = Vector2::new(b.centre_of_mass[0], b.centre_of_mass[1]);
+    let com = Vector2::new(r.centre_of_mass[0], r.centre_of_mass[1]);
     // r_G = r_O + A c,  v_G = v_O + ω Ĩ A c
     let arm = rot(angle, com);
     let p = Vector2::new(position[0], position[1]) + arm;
     let v = Vector2::new(velocity[0] - omega * arm.y, velocity[1] + omega * arm.x);
     Ok((
-        RigidBody::new(b.mass, b.inertia)
+        RigidBody::new(r.mass, r.inertia)
             .at(p.x, p.y, angle)
             .moving(v.x, v.y, omega),
         com,
+        r.note,
     ))
 }

@@ -50,6 +50,10 @@ pub(crate) struct Compiler {
     /// Initial offsets of contact elements given in the description, by element name (see
     /// [`crate::ideal`]).
     pub(crate) initial_offsets: HashMap<String, Vector2<f64>>,
+    /// What compiling computed or decided from the description, in words (mass properties of
+    /// shapes, placements from `between`, clearance joints of clearance 0 run as ideal joints),
+    /// for the run's notes.
+    pub(crate) notes: Vec<String>,
 }
 
 /// What the compiler needs of a description before its element sections: `[model]`, bodies,
@@ -96,13 +100,15 @@ impl Compiler {
             clearances: Vec::new(),
             shapes: HashMap::new(),
             initial_offsets: HashMap::new(),
+            notes: Vec::new(),
             force_application: match desc.model.clearance_force_application {
                 Some(ForceApplicationDesc::ContactPoints) => ForceApplication::ContactPoints,
                 _ => ForceApplication::CommonPoint,
             },
         };
         for (k, b) in desc.bodies.iter().enumerate() {
-            let (rb, com) = crate::element::body::compile(b)?;
+            let (rb, com, note) = crate::element::body::compile(b)?;
+            c.notes.extend(note);
             c.body_ids.insert(b.name.clone(), k);
             c.bodies.push((b.name.clone(), rb));
             c.fixed.push(b.fixed_coordinates());
@@ -328,6 +334,7 @@ impl Compiler {
             forces,
             mut clearances,
             initial_offsets,
+            notes,
             ..
         } = self;
         let mut m = 0;
@@ -387,6 +394,7 @@ impl Compiler {
             forces,
             clearances,
             initial_offsets,
+            notes,
             input_warnings: Vec::new(),
             gravity,
             memory,

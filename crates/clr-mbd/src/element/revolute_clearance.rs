@@ -10,6 +10,7 @@ use super::{positive_length, Anchor, Compiler, Element};
 use crate::clearance::{Clearance as Runtime, ClearanceKind};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
+use crate::runtime::Con;
 
 /// `type = "revolute"` (files of older versions without `type` are read as this, with a
 /// note).
@@ -150,6 +151,55 @@ impl RevoluteClearance {
     }
 }
 
+impl RevoluteClearance {
+    /// Whether the joint has no clearance (journal_radius = bearing_radius): it is then the
+    /// ideal revolute joint ([`RevoluteClearance::compile_ideal`]).
+    pub fn is_ideal(&self) -> bool {
+        self.journal_radius == self.bearing_radius
+    }
+
+    /// A joint of clearance 0 as the ideal revolute joint between the same points, the rule of
+    /// the flap built-in (`clr-models` flap.rs: a clearance of 0 makes the joint ideal): the
+    /// journal centre on the bearing centre (2 equations, Nikravesh 1988, eq. 5.11), with the
+    /// reaction columns `C.Fx`, `C.Fy`, `C.M` of a `[[joint]]`. Its `normal` and `friction`
+    /// laws act on nothing (said in the run's notes); the friction law is still checked, and a
+    /// film, a worn bearing or an eccentricity, which need a clearance, are refused.
+    pub(crate) fn compile_ideal(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let name = &self.name;
+        let (i, si) = c.anchor(name, "bearing", &self.bearing)?;
+        let (j, sj) = c.anchor(name, "journal", &self.journal)?;
+        c.distinct(name, i, j)?;
+        positive_length(name, "bearing_radius", self.bearing_radius)?;
+        let refuse = |field: &str, what: &str| MbdError::Invalid {
+            path: format!("{name}.{field}"),
+            message: format!(
+                "journal_radius = bearing_radius makes this an ideal revolute joint, which has \
+                 no {what}: remove `{field}`, or give the joint a clearance"
+            ),
+        };
+        if self.lubrication.is_some() {
+            return Err(refuse("lubrication", "oil film"));
+        }
+        if self.bearing_wear.is_some() {
+            return Err(refuse("bearing_wear", "bearing surface to wear"));
+        }
+        if let Some(e) = &self.initial_eccentricity {
+            if e.vector() != [0.0, 0.0] {
+                return Err(refuse("initial_eccentricity", "eccentricity"));
+            }
+        }
+        self.friction.build_contact(&format!("{name}.friction"))?;
+        c.cons.push(Con::coincide(name, i, si, j, sj));
+        c.notes.push(format!(
+            "clearance `{name}` is 0 (journal_radius = bearing_radius = {} m): run as an ideal \
+             revolute joint (columns {name}.Fx, {name}.Fy, {name}.M, no contact columns); its \
+             normal and friction laws are not used",
+            self.bearing_radius
+        ));
+        Ok(())
+    }
+}
+
 impl Element for RevoluteClearance {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
         let name = &self.name;
@@ -164,7 +214,8 @@ impl Element for RevoluteClearance {
                 path: format!("{name}.journal_radius"),
                 message: format!(
                     "the radial clearance bearing_radius − journal_radius = {:e} m must be \
-                     positive: make journal_radius smaller than bearing_radius = {rb} m",
+                     positive: make journal_radius smaller than bearing_radius = {rb} m (or equal \
+                     to it for an ideal revolute joint)",
                     rb - rj
                 ),
             });
@@ -176,7 +227,8 @@ impl Element for RevoluteClearance {
                 return Err(MbdError::Invalid {
                     path: format!("{name}.initial_eccentricity"),
                     message: format!(
-                        "the initial eccentricity {size:e} m must be finite and at most the                          radial clearance bearing_radius − journal_radius = {:e} m (the journal \
+                        "the initial eccentricity {size:e} m must be finite and at most the \
+                         radial clearance bearing_radius − journal_radius = {:e} m (the journal \
                          would start inside the bearing wall); it is a length in m",
                         rb - rj
                     ),

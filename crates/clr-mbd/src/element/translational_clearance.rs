@@ -9,6 +9,7 @@ use super::{positive_length, slider_shape, Anchor, Compiler, Element};
 use crate::clearance::{Clearance as Runtime, ClearanceKind};
 use crate::desc::laws::{FrictionSpec, NormalSpec};
 use crate::error::MbdError;
+use crate::runtime::{rot, Con};
 
 /// `type = "translational"`.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -46,8 +47,13 @@ pub struct TranslationalClearance {
     pub initial_offset: Option<f64>,
 }
 
-impl Element for TranslationalClearance {
-    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+impl TranslationalClearance {
+    /// The guide's and the slider's frame and arm (validated anchors on two bodies), with the
+    /// guide width and slider size checked positive.
+    fn ends(
+        &self,
+        c: &Compiler,
+    ) -> Result<(usize, nalgebra::Vector2<f64>, usize, nalgebra::Vector2<f64>), MbdError> {
         let name = &self.name;
         let (i, gi) = c.anchor(name, "guide", &self.guide)?;
         let (j, sj) = c.anchor(name, "slider", &self.slider)?;
@@ -59,6 +65,72 @@ impl Element for TranslationalClearance {
         ] {
             positive_length(name, field, v)?;
         }
+        Ok((i, gi, j, sj))
+    }
+
+    /// Whether the guide has no clearance (slider_height = guide_width): it is then the ideal
+    /// translational joint ([`TranslationalClearance::compile_ideal`]).
+    pub fn is_ideal(&self) -> bool {
+        self.slider_height == self.guide_width
+    }
+
+    /// A guide of clearance 0 as the ideal translational joint, the rule of the flap built-in
+    /// for revolute joints (a clearance of 0 makes the joint ideal): the slider centre on the
+    /// guide's centre line and the slider axis along the guide axis, θ_j + slider_angle =
+    /// θ_i + guide_angle (2 equations, Nikravesh 1988, eq. 5.15; the rows of the assembly's
+    /// ideal counterpart, [`crate::ideal`], with no offset). Reaction columns `C.Fx`, `C.Fy`,
+    /// `C.M` as a `[[joint]]`; the `normal` and `friction` laws act on nothing (said in the
+    /// run's notes); the friction law is still checked and an offset is refused.
+    ///
+    /// Unlike a `[[joint]]` of type `translational`, which keeps the relative angle the bodies
+    /// start with, a guide without clearance holds the slider aligned with it.
+    pub(crate) fn compile_ideal(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let name = &self.name;
+        let (i, gi, j, sj) = self.ends(c)?;
+        for (field, v) in [
+            ("guide_angle", self.guide_angle),
+            ("slider_angle", self.slider_angle),
+        ] {
+            if !v.is_finite() {
+                return Err(MbdError::Invalid {
+                    path: format!("{name}.{field}"),
+                    message: format!("the angle {v} rad must be finite"),
+                });
+            }
+        }
+        if self.initial_offset.is_some_and(|e| e != 0.0) {
+            return Err(MbdError::Invalid {
+                path: format!("{name}.initial_offset"),
+                message: "slider_height = guide_width makes this an ideal translational joint, \
+                          which has no room for an offset: remove `initial_offset`, or give \
+                          the guide a clearance"
+                    .into(),
+            });
+        }
+        self.friction.build_contact(&format!("{name}.friction"))?;
+        let normal = rot(self.guide_angle, nalgebra::Vector2::y());
+        c.cons.push(Con::project(name, i, gi, j, sj, normal, None));
+        c.cons.push(Con::angle(
+            name,
+            i,
+            j,
+            self.guide_angle - self.slider_angle,
+            None,
+        ));
+        c.notes.push(format!(
+            "clearance `{name}` is 0 (slider_height = guide_width = {} m): run as an ideal \
+             translational joint, the slider aligned with the guide (columns {name}.Fx, \
+             {name}.Fy, {name}.M, no contact columns); its normal and friction laws are not used",
+            self.guide_width
+        ));
+        Ok(())
+    }
+}
+
+impl Element for TranslationalClearance {
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let name = &self.name;
+        let (i, gi, j, sj) = self.ends(c)?;
         if let Some(e) = self.initial_offset {
             let half = 0.5 * (self.guide_width - self.slider_height);
             if !(e.is_finite() && e.abs() <= half) {
@@ -78,7 +150,8 @@ impl Element for TranslationalClearance {
                 path: format!("{name}.slider_height"),
                 message: format!(
                     "the clearance guide_width − slider_height = {:e} m must be positive: make \
-                     slider_height smaller than guide_width = {} m",
+                     slider_height smaller than guide_width = {} m (or equal to it for an ideal \
+                     translational joint)",
                     self.guide_width - self.slider_height,
                     self.guide_width
                 ),
