@@ -174,7 +174,7 @@ fn what_a_body_may_not_combine_is_refused_at_its_field() {
         ),
         (
             format!(
-                "shape = {{ bar = {{ length = 0.11, width = 0.02, thickness = 0.01 }} }}\n\
+                "shape = {{ bar = {{ length = 0.12, width = 0.02, thickness = 0.01 }} }}\n\
                  material = \"steel\"\n{between}"
             ),
             ["body[0].shape.bar.length", "differs from the distance"],

@@ -114,6 +114,48 @@ fn every_toml_block_of_the_docs_is_read_by_the_reader() {
     assert!(failures.is_empty(), "{}", failures.join("\n\n"));
 }
 
+/// The README's "Your first mechanism" commands, each `clr …` line run with the built binary
+/// (output folders moved to a scratch folder).
+#[test]
+fn the_readme_first_mechanism_path_runs_as_written() {
+    let readme = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let start = readme
+        .find("## Your first mechanism")
+        .expect("README has a \"Your first mechanism\" section");
+    let section = &readme[start..];
+    let end = section[3..].find("\n## ").map_or(section.len(), |e| e + 3);
+    let scratch = common::scratch_in("docs_examples", "first_mechanism");
+    let mut ran = 0;
+    for (_, block) in blocks(&section[..end], "sh") {
+        for line in block.lines().map(str::trim) {
+            let Some(args) = line.strip_prefix("clr ") else {
+                continue;
+            };
+            let args: Vec<String> = args
+                .split_whitespace()
+                .take_while(|a| !a.starts_with('#'))
+                .map(|a| match a.strip_prefix("out/") {
+                    Some(rest) => scratch.join(rest).display().to_string(),
+                    None if a.ends_with(".toml") => root().join(a).display().to_string(),
+                    None => a.to_string(),
+                })
+                .collect();
+            let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+            let o = common::clr(&refs);
+            assert!(
+                o.status.success(),
+                "README command `{line}` failed:\n{}",
+                common::stderr(&o)
+            );
+            ran += 1;
+        }
+    }
+    assert!(
+        ran >= 3,
+        "only {ran} commands in the README's first-mechanism path"
+    );
+}
+
 /// The model file that documents each section's fields in the tests: a complete file holding an
 /// item of that section (and type).
 fn base_for(section: &str, kind: Option<&str>) -> Option<&'static str> {

@@ -184,14 +184,20 @@ impl Scene {
             gravity: desc.model.gravity,
         };
         for b in &desc.bodies {
+            // The pose as the description gives it or computes it (`between`); a body the
+            // reader refuses is drawn from its given fields (the run reports the error).
+            let (position, angle) = match b.resolve() {
+                Ok(r) => (r.position, r.angle),
+                Err(_) => (b.position, b.angle),
+            };
             s.parts.push(Part {
                 name: b.name.clone(),
                 kind: "rigid",
                 com: b.centre_of_mass,
                 pose0: [
-                    b.position.map_or(0.0, |p| p[0]),
-                    b.position.map_or(0.0, |p| p[1]),
-                    b.angle.unwrap_or(0.0),
+                    position.map_or(0.0, |p| p[0]),
+                    position.map_or(0.0, |p| p[1]),
+                    angle.unwrap_or(0.0),
                 ],
                 points: vec![b.centre_of_mass],
             });

@@ -338,9 +338,15 @@ pub struct Disc {
     pub thickness: f64,
 }
 
-/// Relative tolerance between a given length and the distance of the `between` points (both
-/// written to ~15 digits agree far better; a different link is off by much more).
+/// Relative difference between a given length and the distance of the `between` points below
+/// which the two are the same number (both written to ~15 digits agree far better).
 pub const LENGTH_TOLERANCE: f64 = 1e-9;
+
+/// Largest relative difference between a given length and the distance of the `between`
+/// points that is accepted: ends read off a drawing to a few digits differ by 1e-4 or so, and
+/// the given length is then used (with a note) while the assembly of the initial conditions
+/// corrects the pose. Beyond it the points belong to another link, or the length is wrong.
+pub const LENGTH_DRAWING_TOLERANCE: f64 = 0.05;
 
 impl Shape {
     /// The kind as written in a file (`bar`).
@@ -367,8 +373,8 @@ impl Shape {
     }
 
     /// The length used: the given one, checked against the distance `span` of the `between`
-    /// points (m) to [`LENGTH_TOLERANCE`] relative, or `span` when left out. `None` for a box
-    /// or disc.
+    /// points (m) to [`LENGTH_DRAWING_TOLERANCE`] relative, or `span` when left out. `None`
+    /// for a box or disc.
     ///
     /// # Errors
     /// [`InertiaError`] at `length` when it is left out without `between` or disagrees with it.
@@ -377,15 +383,17 @@ impl Shape {
             return Ok(None);
         };
         match (given, span) {
-            (Some(l), Some(d)) if (l - d).abs() > LENGTH_TOLERANCE * d => Err(InertiaError::new(
-                "length",
-                format!(
-                    "the length {l} m differs from the distance {d:e} m of the `between` \
-                         points by {:.3e} relative (more than {LENGTH_TOLERANCE:e}): correct \
-                         one of them, or leave `length` out to take the distance",
-                    (l - d).abs() / d
-                ),
-            )),
+            (Some(l), Some(d)) if (l - d).abs() > LENGTH_DRAWING_TOLERANCE * d => {
+                Err(InertiaError::new(
+                    "length",
+                    format!(
+                        "the length {l} m differs from the distance {d:e} m of the `between` \
+                         points by {:.3e} relative (more than {LENGTH_DRAWING_TOLERANCE}): \
+                         correct one of them, or leave `length` out to take the distance",
+                        (l - d).abs() / d
+                    ),
+                ))
+            }
             (Some(l), _) => Ok(Some(l)),
             (None, Some(d)) => Ok(Some(d)),
             (None, None) => Err(InertiaError::new(
@@ -583,11 +591,16 @@ mod tests {
         assert_eq!(p.position, [0.0, 0.05]);
         assert_eq!(p.angle, std::f64::consts::FRAC_PI_2);
         assert_eq!(p.length, 0.1);
-        let s = Shape::Bar(Prism {
-            length: Some(0.1 * (1.0 + 2e-9)),
-            width: 0.02,
-            thickness: 0.01,
-        });
-        assert_eq!(s.length(Some(0.1)).unwrap_err().field, "length");
+        let bar = |l: f64| {
+            Shape::Bar(Prism {
+                length: Some(l),
+                width: 0.02,
+                thickness: 0.01,
+            })
+        };
+        // ends read off a drawing (within 5 %): the given length is used
+        assert_eq!(bar(0.1004).length(Some(0.1)).unwrap(), Some(0.1004));
+        // another link's points (6 % off): refused at `length`
+        assert_eq!(bar(0.106).length(Some(0.1)).unwrap_err().field, "length");
     }
 }

@@ -232,6 +232,16 @@ impl Body {
             }
         };
         let mut words: Vec<String> = computed.into_iter().collect();
+        if let (Some(l), Some(d)) = (length, span) {
+            if (l - d).abs() > inertia::LENGTH_TOLERANCE * d {
+                words.push(format!(
+                    "the given length {l} m is used, while the `between` points are {d:e} m \
+                     apart ({:.2e} relative): the assembly of the initial conditions corrects \
+                     the pose to the joints",
+                    (l - d).abs() / d
+                ));
+            }
+        }
         if let Some(p) = placement {
             words.push(format!(
                 "position = [{:e}, {:e}] m (midpoint of `between`), angle = {:e} rad, \
@@ -239,7 +249,7 @@ impl Body {
                 p.position[0],
                 p.position[1],
                 p.angle,
-                0.5 * p.length
+                0.5 * length.unwrap_or(p.length)
             ));
         }
         Ok(ResolvedBody {
