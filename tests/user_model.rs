@@ -326,6 +326,37 @@ fn shipped_models_give_no_warning() {
     }
 }
 
+/// The post-run checks need whole runs: every example file (models/examples, a few seconds in
+/// all) runs to its end without a warning. The gear pair once warned of a peak force 5.6e48
+/// times the loads, its bodies' extent being taken from their anchors alone (all at the gear
+/// centres) instead of their tip circles.
+#[test]
+fn shipped_examples_give_no_warning_over_their_whole_run() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/examples");
+    let dir = scratch("examples_whole");
+    let mut files: Vec<PathBuf> = std::fs::read_dir(&root)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    assert!(files.len() >= 5);
+    for f in files {
+        let out = dir.join(f.file_stem().unwrap());
+        let o = clr(&[
+            "run",
+            f.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--no-figures",
+            "--no-report",
+        ]);
+        let err = common::stderr(&o);
+        assert!(o.status.success(), "{}: {err}", f.display());
+        assert!(!err.contains("warning"), "{}: {err}", f.display());
+    }
+}
+
 /// A step-budget failure gives advice that fits the run: under NDF it does not suggest the
 /// stiff solver again (it names what the last state shows instead); under Dormand–Prince it
 /// suggests NDF.

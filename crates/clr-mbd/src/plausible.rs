@@ -138,6 +138,17 @@ impl Model {
         for k in 0..self.bodies.len() {
             add(Vector2::new(q[3 * k], q[3 * k + 1]));
         }
+        // A contact shape reaches beyond its anchor: a gear turning about its centre has all
+        // its anchors at the centre, and its extent is its tip radius.
+        for c in &self.clearances {
+            if let ClearanceKind::Shapes(p) = &c.kind {
+                for (frame, side) in [(c.i, &p.a), (c.j, &p.b)] {
+                    if let Some(e) = extent.get_mut(frame) {
+                        *e = e.max(side.reach);
+                    }
+                }
+            }
+        }
         let size = if lo.x.is_finite() {
             (hi - lo).norm()
         } else {
