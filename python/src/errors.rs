@@ -37,9 +37,10 @@ pub(crate) fn field_error(py: Python<'_>, path: &str, message: &str) -> PyErr {
 }
 
 /// A model-file error as `FieldError` (file, line, column and field), or `OverrideError` when it
-/// came from an override (`--set`/`set=`/a sweep value).
+/// came from an override (`--set`/`set=`/a sweep value: its `file` is `--set` or names the
+/// override, `--set 'path=value'`).
 pub(crate) fn spec_error(py: Python<'_>, e: &SpecError) -> PyErr {
-    let class = if e.file == "--set" {
+    let class = if e.file.starts_with("--set") {
         "OverrideError"
     } else {
         "FieldError"
