@@ -227,6 +227,9 @@ fn a_sweep_with_clearance_0_holds_its_ideal_reference() {
     let outcome = |k: usize| {
         let (o, _) = runs[k].as_ref().unwrap().as_ref().expect("the point runs");
         assert!(o.error.is_none(), "{:?}", o.error);
+        // summary.json's derived values name the contact law only where a contact acts
+        let derived = &o.parameters["derived"];
+        assert_eq!(derived.get("B.normal").is_some(), k == 1, "{derived}");
         o.results.clone()
     };
     let (zero, clearance) = (outcome(0), outcome(1));
