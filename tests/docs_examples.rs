@@ -69,11 +69,11 @@ fn check_block(name: &str, text: &str) -> Result<(), String> {
         return check_clearance_keys(name, text);
     }
     // A fragment: read as the sections of a model description (field names and types).
-    let framed = format!("{text}\n[output]\nt_end = 1.0\n");
+    // `[output] t_end` is the one required table: before a fragment's `[output.nodes]`, else after
     let framed = if text.contains("[output") {
         format!("[output]\nt_end = 1.0\n{text}")
     } else {
-        framed
+        format!("{text}\n[output]\nt_end = 1.0\n")
     };
     toml::from_str::<clr_sim::mbd::ModelDesc>(&framed)
         .map(|_| ())

@@ -288,23 +288,25 @@ fn modulus_in_gpa_warns() {
     );
 }
 
+/// The model files (`*.toml`) of these folders of the repository, sorted.
+fn model_files(folders: &[&str]) -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<PathBuf> = folders
+        .iter()
+        .flat_map(|d| std::fs::read_dir(root.join(d)).unwrap())
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    files.sort();
+    files
+}
+
 /// Every shipped model file, example and test model runs without a plausibility warning (the
 /// thresholds are above all of them; docs/plausibility.md).
 #[test]
 fn shipped_models_give_no_warning() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    let mut files = Vec::new();
-    for d in ["models", "models/examples", "tests/data"] {
-        for e in std::fs::read_dir(root.join(d)).unwrap() {
-            let p = e.unwrap().path();
-            if p.extension().is_some_and(|x| x == "toml") {
-                files.push(p);
-            }
-        }
-    }
-    files.sort();
     let dir = scratch("shipped");
-    for f in files {
+    for f in model_files(&["models", "models/examples", "tests/data"]) {
         let out = dir.join(f.file_stem().unwrap());
         let o = clr(&[
             "run",
@@ -332,14 +334,8 @@ fn shipped_models_give_no_warning() {
 /// centres) instead of their tip circles.
 #[test]
 fn shipped_examples_give_no_warning_over_their_whole_run() {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("models/examples");
     let dir = scratch("examples_whole");
-    let mut files: Vec<PathBuf> = std::fs::read_dir(&root)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    files.sort();
+    let files = model_files(&["models/examples"]);
     assert!(files.len() >= 5);
     for f in files {
         let out = dir.join(f.file_stem().unwrap());

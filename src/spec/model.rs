@@ -362,11 +362,9 @@ fn derived(desc: &ModelDesc) -> serde_json::Value {
             }),
         );
     }
-    for c in &desc.clearances {
+    // a clearance of 0 runs as the ideal joint: its normal law acts on nothing
+    for c in desc.clearances.iter().filter(|c| !c.is_ideal()) {
         let (normal, radii) = match c {
-            // a clearance of 0 runs as the ideal joint: its normal law acts on nothing
-            Clearance::Revolute(r) if r.is_ideal() => continue,
-            Clearance::Translational(t) if t.is_ideal() => continue,
             Clearance::Revolute(r) => (&r.normal, Some((r.bearing_radius, r.journal_radius))),
             Clearance::Translational(t) => (&t.normal, None),
             Clearance::SliderOnBeam(s) => (&s.normal, None),

@@ -54,7 +54,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     for s in &desc.shapes {
         s.compile(&mut c)?;
     }
-    for cl in desc.clearances.iter().filter(|cl| !is_ideal(cl)) {
+    for cl in desc.clearances.iter().filter(|cl| !cl.is_ideal()) {
         cl.compile(&mut c)?;
     }
     let g = desc.model.gravity;
@@ -73,15 +73,6 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     model.input_warnings = super::checks::description_warnings(desc);
     model.set_output_nodes(&desc.output.nodes)?;
     Ok(model)
-}
-
-/// A clearance joint of clearance 0 (compiled as its ideal joint).
-fn is_ideal(cl: &Clearance) -> bool {
-    match cl {
-        Clearance::Revolute(r) => r.is_ideal(),
-        Clearance::Translational(t) => t.is_ideal(),
-        _ => false,
-    }
 }
 
 /// A blank name cannot be referred to and would leave errors about its item without a place

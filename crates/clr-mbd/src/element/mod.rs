@@ -214,6 +214,19 @@ section! {
     }
 }
 
+impl Clearance {
+    /// True for a revolute or translational clearance joint of clearance 0, which compiles as
+    /// its ideal joint (its contact laws act on nothing); a slider on a beam or a shape contact
+    /// with no gap is touching, not ideal.
+    pub fn is_ideal(&self) -> bool {
+        match self {
+            Clearance::Revolute(r) => r.is_ideal(),
+            Clearance::Translational(t) => t.is_ideal(),
+            Clearance::SliderOnBeam(_) | Clearance::Contact(_) => false,
+        }
+    }
+}
+
 /// A clr-contact slider rectangle (length, height in m) centred at `centre` on its body.
 pub(crate) fn slider_shape(
     item: &str,
