@@ -727,42 +727,9 @@ pub(crate) fn point_law(
     }
 }
 
-/// Elastic energy ∫₀^δ F_e(s) ds of a normal law (J): exact for power laws K δ^{n+1}/(n+1),
-/// 16-point Gauss–Legendre quadrature otherwise.
+/// Elastic energy ∫₀^δ F_e(s) ds of a normal law (J; [`NormalLaw::elastic_energy`]).
 fn elastic_energy(law: &NormalLaw, delta: f64) -> f64 {
-    if delta <= 0.0 || !delta.is_finite() {
-        return 0.0;
-    }
-    if let Some((k, e)) = law.elastic().power_parameters() {
-        return k * delta.powf(e + 1.0) / (e + 1.0);
-    }
-    // Gauss–Legendre nodes and weights on [-1, 1] (Abramowitz & Stegun, Table 25.4, n = 16).
-    const X: [f64; 8] = [
-        0.095_012_509_837_637_44,
-        0.281_603_550_779_258_9,
-        0.458_016_777_657_227_4,
-        0.617_876_244_402_643_8,
-        0.755_404_408_355_003,
-        0.865_631_202_387_831_7,
-        0.944_575_023_073_232_6,
-        0.989_400_934_991_649_9,
-    ];
-    const W: [f64; 8] = [
-        0.189_450_610_455_068_5,
-        0.182_603_415_044_923_6,
-        0.169_156_519_395_002_5,
-        0.149_595_988_816_576_7,
-        0.124_628_971_255_533_9,
-        0.095_158_511_682_492_8,
-        0.062_253_523_938_647_9,
-        0.027_152_459_411_754_1,
-    ];
-    let h = 0.5 * delta;
-    let mut s = 0.0;
-    for (x, w) in X.iter().zip(W.iter()) {
-        s += w * (law.elastic_force(h * (1.0 - x)) + law.elastic_force(h * (1.0 + x)));
-    }
-    s * h
+    law.elastic_energy(delta)
 }
 
 /// Power dissipated by the contact force pair `jf` of a revolute clearance joint, W: minus the

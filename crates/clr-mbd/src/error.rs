@@ -290,6 +290,23 @@ impl From<crate::field::FieldError> for MbdError {
 }
 
 impl MbdError {
+    /// The same error with `f` applied to the partial results of a failed run (other errors
+    /// unchanged).
+    pub(crate) fn map_partial(self, f: impl FnOnce(crate::Results) -> crate::Results) -> Self {
+        match self {
+            MbdError::Failed {
+                partial,
+                source,
+                cause,
+            } => MbdError::Failed {
+                partial: Box::new(f(*partial)),
+                source,
+                cause,
+            },
+            e => e,
+        }
+    }
+
     /// The results recorded up to an integrator failure ([`MbdError::Failed`]); `None` for
     /// every other error (nothing was integrated).
     pub fn partial(&self) -> Option<&Results> {

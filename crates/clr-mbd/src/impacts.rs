@@ -80,6 +80,40 @@ pub(crate) struct Probe {
     force: f64,
 }
 
+impl Probe {
+    /// Penetration δ (m), its rate (m/s) and the normal force (N) of one joint.
+    pub(crate) fn new(pen: f64, rate: f64, force: f64) -> Self {
+        Self { pen, rate, force }
+    }
+}
+
+/// What the tracker reads from a model, planar ([`Model`]) or spatial
+/// ([`SpatialModel`](crate::spatial::SpatialModel)).
+pub(crate) trait ContactProbe {
+    /// The joints whose impacts are located: (index in the model, name).
+    fn tracked(&self) -> Vec<(usize, String)>;
+    /// Largest signed penetration δ of joint `k` at y, m (> 0 in contact).
+    fn joint_gap(&mut self, k: usize, y: &[f64]) -> f64;
+    /// Penetration, rate and normal force of joint `k` at y with the current contact memory,
+    /// without assembling or committing anything.
+    fn joint_probe(&mut self, k: usize, y: &[f64]) -> Probe;
+}
+
+impl ContactProbe for Model {
+    fn tracked(&self) -> Vec<(usize, String)> {
+        (0..self.clearances.len())
+            .filter(|&k| self.clearances[k].event_points() > 0)
+            .map(|k| (k, self.clearances[k].name.clone()))
+            .collect()
+    }
+    fn joint_gap(&mut self, k: usize, y: &[f64]) -> f64 {
+        Model::joint_gap(self, k, y)
+    }
+    fn joint_probe(&mut self, k: usize, y: &[f64]) -> Probe {
+        Model::joint_probe(self, k, y)
+    }
+}
+
 /// Sample intervals per step: the step is sampled at SAMPLES + 1 equally spaced times to find
 /// crossings and to bracket the extrema (the steps of a resolved contact are short against it).
 const SAMPLES: usize = 4;
@@ -106,15 +140,13 @@ pub(crate) struct ImpactTracker {
 
 impl ImpactTracker {
     /// A tracker for the located clearance joints of `model`, starting at (t0, y0).
-    pub(crate) fn new(model: &mut Model, t0: f64, y0: &[f64]) -> Self {
-        let tracked: Vec<usize> = (0..model.clearances.len())
-            .filter(|&k| model.clearances[k].event_points() > 0)
-            .collect();
-        let joints = tracked
+    pub(crate) fn new(model: &mut impl ContactProbe, t0: f64, y0: &[f64]) -> Self {
+        let joints = model
+            .tracked()
             .into_iter()
-            .map(|k| JointTrack {
+            .map(|(k, name)| JointTrack {
                 clearance: k,
-                name: model.clearances[k].name.clone(),
+                name,
                 open: None,
                 last_gap: model.joint_gap(k, y0),
             })
@@ -123,6 +155,15 @@ impl ImpactTracker {
             joints,
             impacts: Vec::with_capacity(16),
             t_prev: t0,
+        }
+    }
+
+    /// A tracker of no joint.
+    pub(crate) fn empty() -> Self {
+        Self {
+            joints: Vec::new(),
+            impacts: Vec::new(),
+            t_prev: 0.0,
         }
     }
 
@@ -137,7 +178,7 @@ impl ImpactTracker {
     /// `scratch` a buffer of the state's length. Call before the contact memory is committed.
     pub(crate) fn step(
         &mut self,
-        model: &mut Model,
+        model: &mut impl ContactProbe,
         (tb, yb): (f64, &[f64]),
         interp: &dyn Fn(f64, &mut [f64]),
         scratch: &mut [f64],

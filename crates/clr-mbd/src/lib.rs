@@ -58,6 +58,7 @@ pub mod results;
 mod runtime;
 mod shape_pair;
 pub mod sim;
+pub mod spatial;
 pub mod system;
 pub mod timefn;
 

@@ -6,6 +6,27 @@ use std::path::Path;
 
 use clr_ode::Stats;
 
+/// The energy columns of every run, planar or spatial (J; see [`Results`]).
+pub(crate) const ENERGY_COLUMNS: [&str; 7] = [
+    "energy.kinetic",
+    "energy.potential",
+    "energy.elastic",
+    "energy.total",
+    "energy.dissipated",
+    "energy.work_in",
+    "energy.balance",
+];
+
+/// The first columns of every clearance joint `C`, planar or spatial: `C.<name>` (m, m/s, N, N,
+/// 1/0; see [`Results`]).
+pub(crate) const CONTACT_COLUMNS: [&str; 5] = [
+    "penetration",
+    "rate",
+    "normal_force",
+    "friction_force",
+    "contact",
+];
+
 /// Recorded output: one row per output point, named columns; arrays via [`Results::column`].
 ///
 /// Columns, in order: `t`; per body `B.x B.y B.theta B.vx B.vy B.omega B.ax B.ay B.alpha`; per

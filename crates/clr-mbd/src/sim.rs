@@ -166,7 +166,8 @@ impl SimOptions {
     }
 }
 
-struct StopEachStep;
+/// An observer that hands control back after every accepted step.
+pub(crate) struct StopEachStep;
 
 impl Observer for StopEachStep {
     fn observe(&mut self, _t: f64, _y: &[f64]) -> Control {
@@ -174,9 +175,67 @@ impl Observer for StopEachStep {
     }
 }
 
-enum AnySolver {
+/// The integrator chosen by [`SolverKind`].
+pub(crate) enum AnySolver {
     Ndf(Box<Ndf>),
     Dopri5(Box<Dopri5>),
+}
+
+impl AnySolver {
+    /// The integrator of `opts` with the clr-ode options every model uses (tolerances, step
+    /// bounds, order, output times); `tune` adds the model's own.
+    pub(crate) fn new(opts: &SimOptions, tune: impl FnOnce(Options) -> Options) -> Self {
+        let ode = tune(
+            Options::default()
+                .rtol(opts.rtol)
+                .atol(opts.atol)
+                .h_max(opts.h_max)
+                .max_steps(opts.max_steps)
+                .max_order(opts.max_order)
+                .newton_rate_reuse(opts.newton_rate_reuse)
+                .output(Output::Times(opts.times.clone())),
+        );
+        match opts.solver {
+            SolverKind::Ndf => AnySolver::Ndf(Box::new(Ndf::new(ode))),
+            SolverKind::Dopri5 => AnySolver::Dopri5(Box::new(Dopri5::new(ode))),
+        }
+    }
+}
+
+/// Check the span, output times and order of `opts` for a state of `dim` components
+/// (`expected` says what the model's state holds).
+pub(crate) fn check_options(
+    opts: &SimOptions,
+    y0_len: usize,
+    dim: usize,
+    expected: impl FnOnce() -> String,
+) -> Result<(), MbdError> {
+    if opts.t_end <= opts.t0 || !opts.t0.is_finite() || !opts.t_end.is_finite() {
+        return Err(MbdError::Options(format!(
+            "t_end = {} must be finite and after t0 = {}",
+            opts.t_end, opts.t0
+        )));
+    }
+    if opts.times.windows(2).any(|w| w[1] < w[0])
+        || opts.times.iter().any(|&t| t < opts.t0 || t > opts.t_end)
+    {
+        return Err(MbdError::Options(
+            "output times must be increasing and inside [t0, t_end]".into(),
+        ));
+    }
+    if y0_len != dim {
+        return Err(MbdError::Options(format!(
+            "the initial state has {y0_len} components; the model needs {}",
+            expected()
+        )));
+    }
+    if !(1..=5).contains(&opts.max_order) {
+        return Err(MbdError::Options(format!(
+            "max_order = {} must be 1 to 5 (the NDF orders)",
+            opts.max_order
+        )));
+    }
+    Ok(())
 }
 
 macro_rules! with_solver {
@@ -187,6 +246,7 @@ macro_rules! with_solver {
         }
     };
 }
+pub(crate) use with_solver;
 
 impl Model {
     /// The output column names (see [`Results`]).
@@ -210,15 +270,7 @@ impl Model {
             }
         }
         for cl in &self.clearances {
-            for s in [
-                "penetration",
-                "rate",
-                "normal_force",
-                "friction_force",
-                "contact",
-                "ex",
-                "ey",
-            ] {
+            for s in crate::results::CONTACT_COLUMNS.iter().chain(&["ex", "ey"]) {
                 c.push(format!("{}.{s}", cl.name));
             }
             if cl.lugre.is_some() {
@@ -229,19 +281,8 @@ impl Model {
                 c.push(format!("{}.film_thickness", cl.name));
             }
         }
-        for s in [
-            "energy.kinetic",
-            "energy.potential",
-            "energy.elastic",
-            "energy.total",
-            "energy.dissipated",
-            "energy.work_in",
-            "energy.balance",
-            "violation.position",
-            "violation.velocity",
-        ] {
-            c.push(s.to_string());
-        }
+        c.extend(crate::results::ENERGY_COLUMNS.map(String::from));
+        c.extend(["violation.position", "violation.velocity"].map(String::from));
         c
     }
 
@@ -400,16 +441,7 @@ impl Model {
                 }
                 Ok(r)
             }
-            Err(MbdError::Failed {
-                partial,
-                source,
-                cause,
-            }) => Err(MbdError::Failed {
-                partial: Box::new(with_report(self, *partial)),
-                source,
-                cause,
-            }),
-            Err(e) => Err(e),
+            Err(e) => Err(e.map_partial(|r| with_report(self, r))),
         }
     }
 
@@ -434,54 +466,24 @@ impl Model {
         y0: &[f64],
         progress: &dyn Fn(f64),
     ) -> Result<Results, MbdError> {
-        if opts.t_end <= opts.t0 || !opts.t0.is_finite() || !opts.t_end.is_finite() {
-            return Err(MbdError::Options(format!(
-                "t_end = {} must be finite and after t0 = {}",
-                opts.t_end, opts.t0
-            )));
-        }
-        if opts.times.windows(2).any(|w| w[1] < w[0])
-            || opts.times.iter().any(|&t| t < opts.t0 || t > opts.t_end)
-        {
-            return Err(MbdError::Options(
-                "output times must be increasing and inside [t0, t_end]".into(),
-            ));
-        }
-        if y0.len() != self.dim() {
-            return Err(MbdError::Options(format!(
-                "the initial state has {} components; the model needs 2n + 2 + m = {} (q, q̇, \
-                 dissipated energy, input work, {} LuGre bristle states)",
-                y0.len(),
+        check_options(opts, y0.len(), self.dim(), || {
+            format!(
+                "2n + 2 + m = {} (q, q̇, dissipated energy, input work, {} LuGre bristle states)",
                 self.dim(),
                 self.n_bristle_states()
-            )));
-        }
-        if !(1..=5).contains(&opts.max_order) {
-            return Err(MbdError::Options(format!(
-                "max_order = {} must be 1 to 5 (the NDF orders)",
-                opts.max_order
-            )));
-        }
+            )
+        })?;
         self.events_on = opts.contact_events;
         self.set_linear_solver(opts.linear_solver);
-        let mut ode = Options::default()
-            .rtol(opts.rtol)
-            .atol(opts.atol)
-            .h_max(opts.h_max)
-            .max_steps(opts.max_steps)
-            .max_order(opts.max_order)
-            .newton_rate_reuse(opts.newton_rate_reuse)
-            .output(Output::Times(opts.times.clone()));
-        if opts.scale_velocity_error {
-            ode = ode.h_scaled_error(self.n..2 * self.n);
-        }
-        if let Some(atol) = self.bristle_atol(opts.atol, opts.rtol) {
-            ode = ode.atol_vec(atol);
-        }
-        let mut solver = match opts.solver {
-            SolverKind::Ndf => AnySolver::Ndf(Box::new(Ndf::new(ode))),
-            SolverKind::Dopri5 => AnySolver::Dopri5(Box::new(Dopri5::new(ode))),
-        };
+        let mut solver = AnySolver::new(opts, |mut ode| {
+            if opts.scale_velocity_error {
+                ode = ode.h_scaled_error(self.n..2 * self.n);
+            }
+            if let Some(atol) = self.bristle_atol(opts.atol, opts.rtol) {
+                ode = ode.atol_vec(atol);
+            }
+            ode
+        });
         let mut run = Run {
             data: Vec::new(),
             y: y0.to_vec(),

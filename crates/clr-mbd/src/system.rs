@@ -49,6 +49,21 @@ pub const DEFAULT_BAUMGARTE_ALPHA: f64 = 5.0;
 /// [`DEFAULT_BAUMGARTE_ALPHA`]).
 pub const DEFAULT_BAUMGARTE_BETA: f64 = 5.0;
 
+/// Check Baumgarte coefficients α, β (1/s): finite and not negative.
+pub(crate) fn check_baumgarte(alpha: f64, beta: f64) -> Result<(), MbdError> {
+    for (what, v) in [("Baumgarte α (1/s)", alpha), ("Baumgarte β (1/s)", beta)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(MbdError::InvalidParameter {
+                item: "model".into(),
+                what,
+                value: v,
+                requirement: "must be finite and not negative",
+            });
+        }
+    }
+    Ok(())
+}
+
 /// Energies at one state, J.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Energies {
@@ -173,16 +188,7 @@ impl Model {
     /// # Errors
     /// [`MbdError::InvalidParameter`] for negative or non-finite values.
     pub fn set_baumgarte(&mut self, alpha: f64, beta: f64) -> Result<(), MbdError> {
-        for (what, v) in [("Baumgarte α (1/s)", alpha), ("Baumgarte β (1/s)", beta)] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(MbdError::InvalidParameter {
-                    item: "model".into(),
-                    what,
-                    value: v,
-                    requirement: "must be finite and not negative",
-                });
-            }
-        }
+        check_baumgarte(alpha, beta)?;
         self.alpha = alpha;
         self.beta = beta;
         Ok(())

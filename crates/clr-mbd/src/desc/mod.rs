@@ -22,6 +22,7 @@ pub use beam::{
 };
 pub use laws::{FrictionLawDesc, MaterialDesc, NormalLawDesc};
 pub use parts::{Body, ForceApplicationDesc, ModelInfo, Point, ResolvedBody};
+pub(crate) use settings::sim_options as sim_options_of;
 pub use settings::{
     unused_solver_fields, AllNodes, NodeSelection, OutputSettings, SolverMethod, SolverSettings,
     ATOL_PER_RTOL,

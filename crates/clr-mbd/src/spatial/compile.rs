@@ -1,0 +1,968 @@
+//! Compile a [`SpatialDesc`] into a [`SpatialModel`]: validate every item (errors name the item
+//! and its field), resolve names, build the joints from constraint primitives and size the
+//! workspace.
+
+use std::collections::HashMap;
+
+use clr_contact::ContactMemory;
+use nalgebra::{Matrix3, Vector3};
+
+use super::constraint::{Prim, PrimKind};
+use super::desc::{
+    DriverKind, End, JointKind, Orientation, SpatialBody, SpatialDesc, SpatialForce,
+    SphericalClearance, VectorFrame,
+};
+use super::force::Force3;
+use super::frame::{exp_map, perpendicular, quaternion_of, rotation};
+use super::kin::GROUND;
+use super::model::{Inertia3, Owner, SpatialModel, Workspace};
+use super::sphere::Sphere;
+use crate::desc::laws::ContactFriction;
+use crate::error::MbdError;
+use crate::runtime::GROUND as GROUND_NAME;
+
+fn invalid(path: impl Into<String>, message: impl Into<String>) -> MbdError {
+    MbdError::Invalid {
+        path: path.into(),
+        message: message.into(),
+    }
+}
+
+/// Initial pose of a body: centre of mass and rotation, and the centre of mass in its frame.
+#[derive(Clone, Copy)]
+struct Pose {
+    r: Vector3<f64>,
+    a: Matrix3<f64>,
+    com: Vector3<f64>,
+}
+
+/// A resolved end: body index, point relative to the centre of mass (body frame), axis.
+struct REnd {
+    k: usize,
+    s: Vector3<f64>,
+    axis: Option<Vector3<f64>>,
+}
+
+struct Ctx {
+    names: HashMap<String, usize>,
+    poses: Vec<Pose>,
+    known: String,
+}
+
+impl Ctx {
+    fn pose(&self, k: usize) -> Pose {
+        if k == GROUND {
+            Pose {
+                r: Vector3::zeros(),
+                a: Matrix3::identity(),
+                com: Vector3::zeros(),
+            }
+        } else {
+            self.poses[k]
+        }
+    }
+
+    fn end(&self, path: &str, e: &End) -> Result<REnd, MbdError> {
+        let k = if e.body == GROUND_NAME {
+            GROUND
+        } else {
+            *self
+                .names
+                .get(&e.body)
+                .ok_or_else(|| MbdError::UnknownBody {
+                    item: format!("{path}.body"),
+                    body: e.body.clone(),
+                    known: self.known.clone(),
+                })?
+        };
+        let at = finite3(&format!("{path}.at"), e.at)?;
+        let axis = match e.axis {
+            Some(a) => Some(unit(&format!("{path}.axis"), a)?),
+            None => None,
+        };
+        Ok(REnd {
+            k,
+            s: at - self.pose(k).com,
+            axis,
+        })
+    }
+
+    /// The world direction of a body vector at the initial pose, expressed in body `k`.
+    fn carry(&self, from: usize, v: &Vector3<f64>, to: usize) -> Vector3<f64> {
+        self.pose(to).a.transpose() * (self.pose(from).a * v)
+    }
+}
+
+fn finite3(path: &str, v: [f64; 3]) -> Result<Vector3<f64>, MbdError> {
+    if v.iter().all(|x| x.is_finite()) {
+        Ok(Vector3::from(v))
+    } else {
+        Err(invalid(path, format!("{v:?} must be finite")))
+    }
+}
+
+fn unit(path: &str, v: [f64; 3]) -> Result<Vector3<f64>, MbdError> {
+    let u = finite3(path, v)?;
+    let n = u.norm();
+    if n > 0.0 {
+        Ok(u / n)
+    } else {
+        Err(invalid(path, "an axis must not be the zero vector"))
+    }
+}
+
+/// Inertia tensor of a body from `inertia` or `principal_inertia` (+ `principal_axes`).
+fn inertia_of(path: &str, b: &SpatialBody) -> Result<Matrix3<f64>, MbdError> {
+    let j = match (b.inertia, b.principal_inertia) {
+        (Some(_), Some(_)) => {
+            return Err(invalid(
+                format!("{path}.principal_inertia"),
+                "give either `inertia` (the tensor) or `principal_inertia`, not both",
+            ))
+        }
+        (None, None) => {
+            return Err(invalid(
+                format!("{path}.inertia"),
+                "missing: give `inertia` (3 × 3 tensor at the centre of mass, body frame, \
+                 kg·m²) or `principal_inertia` = [I1, I2, I3] (kg·m², with `principal_axes`)",
+            ))
+        }
+        (Some(t), None) => {
+            if b.principal_axes.is_some() {
+                return Err(invalid(
+                    format!("{path}.principal_axes"),
+                    "`principal_axes` goes with `principal_inertia`, not with the full tensor",
+                ));
+            }
+            let m = Matrix3::from_row_slice(&t.concat());
+            if (m - m.transpose()).abs().max() > 1e-9 * m.abs().max() {
+                return Err(invalid(
+                    format!("{path}.inertia"),
+                    "the inertia tensor must be symmetric (I_xy = I_yx, …)",
+                ));
+            }
+            m
+        }
+        (None, Some(p)) => {
+            let axes = match b.principal_axes {
+                Some(ax) => {
+                    let r = Matrix3::from_row_slice(&ax.concat());
+                    if (r * r.transpose() - Matrix3::identity()).abs().max() > 1e-6
+                        || r.determinant() < 0.0
+                    {
+                        return Err(invalid(
+                            format!("{path}.principal_axes"),
+                            "the rows must be orthonormal unit vectors forming a right-handed \
+                             set (to 1e-6)",
+                        ));
+                    }
+                    r
+                }
+                None => Matrix3::identity(),
+            };
+            // J = Σ I_k e_k e_kᵀ with e_k the rows of `axes`
+            axes.transpose() * Matrix3::from_diagonal(&Vector3::from(p)) * axes
+        }
+    };
+    let eig = j.symmetric_eigenvalues();
+    let (lo, hi) = (eig.min(), eig.max());
+    let sum = eig.sum();
+    if !(lo > 0.0 && lo.is_finite() && hi.is_finite()) {
+        return Err(invalid(
+            format!("{path}.inertia"),
+            format!(
+                "principal moments {eig:?} kg·m² must be positive (the tensor positive definite)"
+            ),
+        ));
+    }
+    // triangle inequality of principal moments: each ≤ the sum of the other two
+    if 2.0 * hi > sum * (1.0 + 1e-9) {
+        return Err(invalid(
+            format!("{path}.inertia"),
+            format!(
+                "principal moments {:?} kg·m² break the triangle inequality (each must be at \
+                 most the sum of the others): no real body has them; check the units and the axes",
+                eig.as_slice()
+            ),
+        ));
+    }
+    Ok(j)
+}
+
+/// Rotation matrix of an orientation.
+fn orientation(path: &str, o: &Orientation) -> Result<Matrix3<f64>, MbdError> {
+    match o {
+        Orientation::Quaternion { quaternion: q } => {
+            let n = q.iter().map(|c| c * c).sum::<f64>().sqrt();
+            if (n - 1.0).abs() > 1e-6 || n.is_nan() {
+                return Err(invalid(
+                    format!("{path}.quaternion"),
+                    format!("norm {n} is not 1 (to 1e-6): give a unit quaternion [w, x, y, z]"),
+                ));
+            }
+            Ok(rotation(q))
+        }
+        Orientation::Matrix { matrix } => {
+            let a = Matrix3::from_row_slice(&matrix.concat());
+            if (a * a.transpose() - Matrix3::identity()).abs().max() > 1e-6 || a.determinant() < 0.0
+            {
+                return Err(invalid(
+                    format!("{path}.matrix"),
+                    "must be a rotation: orthonormal rows to 1e-6, determinant +1",
+                ));
+            }
+            Ok(rotation(&quaternion_of(&a)))
+        }
+        Orientation::AxisAngle { axis, angle } => {
+            let u = unit(&format!("{path}.axis"), *axis)?;
+            if !angle.is_finite() {
+                return Err(invalid(format!("{path}.angle"), "must be finite (rad)"));
+            }
+            Ok(exp_map(&(u * *angle)))
+        }
+        Orientation::Euler { euler, sequence } => {
+            let seq: Vec<char> = sequence.to_ascii_lowercase().chars().collect();
+            let ok = seq.len() == 3
+                && seq.iter().all(|c| "xyz".contains(*c))
+                && seq[0] != seq[1]
+                && seq[1] != seq[2];
+            if !ok {
+                return Err(invalid(
+                    format!("{path}.sequence"),
+                    format!(
+                        "`{sequence}`: three letters of x, y, z with no two neighbours equal \
+                         (e.g. \"zyx\", \"zxz\"); the angles are about the moving axes"
+                    ),
+                ));
+            }
+            let mut a = Matrix3::identity();
+            for (c, ang) in seq.iter().zip(euler) {
+                let ax = match c {
+                    'x' => Vector3::x(),
+                    'y' => Vector3::y(),
+                    _ => Vector3::z(),
+                };
+                a *= exp_map(&(ax * *ang));
+            }
+            Ok(a)
+        }
+    }
+}
+
+/// The initial state of one body: (q = r, p; v = ṙ, ω_body), its pose and which of
+/// (position, orientation, velocity, angular velocity) were given.
+type BodyStart = ([f64; 7], [f64; 6], Pose, [bool; 4]);
+
+/// The initial state of one body ([`BodyStart`]).
+fn body_state(path: &str, b: &SpatialBody, com: Vector3<f64>) -> Result<BodyStart, MbdError> {
+    let a = match &b.orientation {
+        Some(o) => orientation(&format!("{path}.orientation"), o)?,
+        None => Matrix3::identity(),
+    };
+    let origin = finite3(&format!("{path}.position"), b.position.unwrap_or_default())?;
+    let r = origin + a * com;
+    let frame = |v: Option<[f64; 3]>, f: Option<VectorFrame>, field: &str| match (v, f) {
+        (None, Some(_)) => Err(invalid(
+            format!("{path}.{field}_frame"),
+            format!("given without `{field}`: remove it or give `{field}`"),
+        )),
+        (Some(_), None) => Err(invalid(
+            format!("{path}.{field}_frame"),
+            format!(
+                "missing: name the frame `{field}` is given in, \"world\" or \"body\" (a \
+                     guess would silently rotate it)"
+            ),
+        )),
+        (None, None) => Ok(Vector3::zeros()),
+        (Some(v), Some(f)) => {
+            let v = finite3(&format!("{path}.{field}"), v)?;
+            Ok(if f == VectorFrame::Body { a * v } else { v })
+        }
+    };
+    let w_world = frame(
+        b.angular_velocity,
+        b.angular_velocity_frame,
+        "angular_velocity",
+    )?;
+    let v_origin = frame(b.velocity, b.velocity_frame, "velocity")?;
+    let v = v_origin + w_world.cross(&(a * com));
+    let p = quaternion_of(&a);
+    let wb = a.transpose() * w_world;
+    let q = [r.x, r.y, r.z, p[0], p[1], p[2], p[3]];
+    let vel = [v.x, v.y, v.z, wb.x, wb.y, wb.z];
+    let given = [
+        b.position.is_some(),
+        b.orientation.is_some(),
+        b.velocity.is_some(),
+        b.angular_velocity.is_some(),
+    ];
+    Ok((q, vel, Pose { r, a, com }, given))
+}
+
+/// Compile a description (see [`SpatialDesc::compile`](super::SpatialDesc::compile)).
+pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
+    let mut names = HashMap::new();
+    let mut bodies = Vec::new();
+    let mut poses = Vec::new();
+    let mut fixed = Vec::new();
+    let (mut yq, mut yv) = (Vec::new(), Vec::new());
+    for (k, b) in d.bodies.iter().enumerate() {
+        let path = b.name.clone();
+        if b.name == GROUND_NAME || names.insert(b.name.clone(), k).is_some() {
+            return Err(MbdError::DuplicateName {
+                name: b.name.clone(),
+                first: "body",
+                second: "body",
+            });
+        }
+        if !(b.mass > 0.0 && b.mass.is_finite()) {
+            return Err(MbdError::InvalidInertia {
+                body: b.name.clone(),
+                what: "mass (kg)",
+                value: b.mass,
+            });
+        }
+        let j = inertia_of(&path, b)?;
+        let com = finite3(&format!("{path}.centre_of_mass"), b.centre_of_mass)?;
+        let (q, v, pose, given) = body_state(&path, b, com)?;
+        bodies.push(Inertia3 {
+            mass: b.mass,
+            j,
+            j_inv: j.try_inverse().unwrap_or_else(Matrix3::zeros),
+        });
+        poses.push(pose);
+        fixed.push(given);
+        yq.extend_from_slice(&q);
+        yv.extend_from_slice(&v);
+    }
+    let known = d
+        .bodies
+        .iter()
+        .map(|b| b.name.as_str())
+        .collect::<Vec<_>>()
+        .join(", ");
+    let cx = Ctx {
+        names,
+        poses,
+        known,
+    };
+    let mut prims = Vec::new();
+    let mut owners = Vec::new();
+    let mut row = 0;
+    let mut joint_frames = HashMap::new();
+    for j in &d.joints {
+        let frames = joint(&cx, j, owners.len(), &mut prims)?;
+        joint_frames.insert(j.name.clone(), (j.kind, frames));
+        push_owner(&mut owners, &mut prims, &mut row, &j.name, false)?;
+    }
+    let mut motions = Vec::new();
+    for dr in &d.drivers {
+        driver(
+            &cx,
+            dr,
+            &joint_frames,
+            owners.len(),
+            &mut prims,
+            &mut motions,
+        )?;
+        push_owner(&mut owners, &mut prims, &mut row, &dr.name, true)?;
+    }
+    let forces = d
+        .forces
+        .iter()
+        .map(|f| Ok((f.name().to_string(), force(&cx, f, &joint_frames)?)))
+        .collect::<Result<Vec<_>, MbdError>>()?;
+    let mut spheres = Vec::new();
+    let mut n_bristle = 0;
+    for (k, s) in d.clearances.iter().enumerate() {
+        let sp = sphere(&cx, s, k, &mut n_bristle)?;
+        spheres.push(sp);
+    }
+    let min_v = spheres
+        .iter()
+        .map(|s: &Sphere| s.law.min_impact_velocity())
+        .fold(f64::INFINITY, f64::min);
+    let memory = ContactMemory::new(spheres.len(), if min_v.is_finite() { min_v } else { 1e-4 })
+        .map_err(|e| invalid("clearance", e.to_string()))?;
+    let gravity = finite3("model.gravity", d.model.gravity)?;
+    let nb = bodies.len();
+    let m = row;
+    let mut ws = Workspace {
+        phi: vec![0.0; m],
+        g: vec![0.0; m * 6 * nb],
+        phit: vec![0.0; m],
+        gamma: vec![0.0; m],
+        qf: vec![0.0; 6 * nb],
+        y: vec![0.0; 6 * nb * m],
+        lambda: vec![0.0; m],
+        reports: vec![Default::default(); spheres.len()],
+        zdot: vec![0.0; n_bristle],
+        ..Default::default()
+    };
+    ws.w.resize(m);
+    let mut y_given = yq;
+    y_given.extend(yv);
+    y_given.extend([0.0; 2]);
+    y_given.extend(vec![0.0; n_bristle]);
+    Ok(SpatialModel {
+        names: d.bodies.iter().map(|b| b.name.clone()).collect(),
+        bodies,
+        fixed,
+        y_given,
+        prims,
+        owners,
+        motions,
+        forces,
+        spheres,
+        memory,
+        gravity,
+        alpha: d.solver.baumgarte_alpha,
+        beta: d.solver.baumgarte_beta,
+        events_on: d.solver.contact_events,
+        notes: Vec::new(),
+        m,
+        n_bristle,
+        ws,
+    })
+}
+
+fn push_owner(
+    owners: &mut Vec<Owner>,
+    prims: &mut [Prim],
+    row: &mut usize,
+    name: &str,
+    driver: bool,
+) -> Result<(), MbdError> {
+    let o = owners.len();
+    if owners.iter().any(|w| w.name == name) {
+        return Err(MbdError::DuplicateName {
+            name: name.into(),
+            first: "joint or driver",
+            second: if driver { "driver" } else { "joint" },
+        });
+    }
+    let first = *row;
+    let mut ends = (GROUND, GROUND);
+    for p in prims.iter_mut().filter(|p| p.owner == o) {
+        p.row = *row;
+        *row += p.rows();
+        ends = (p.i, p.j);
+    }
+    let (i, j) = ends;
+    owners.push(Owner {
+        name: name.into(),
+        driver,
+        i,
+        j,
+        rows: (first, *row),
+    });
+    Ok(())
+}
+
+/// Joint frames kept for drivers and rotational springs: (x_i, y_i, z_i on i; x_j on j;
+/// the points s_i, s_j), body frames.
+#[derive(Clone, Copy)]
+pub(crate) struct JointFrames {
+    i: usize,
+    j: usize,
+    xi: Vector3<f64>,
+    yi: Vector3<f64>,
+    zi: Vector3<f64>,
+    xj: Vector3<f64>,
+    si: Vector3<f64>,
+    sj: Vector3<f64>,
+}
+
+fn joint(
+    cx: &Ctx,
+    jd: &super::desc::SpatialJoint,
+    owner: usize,
+    prims: &mut Vec<Prim>,
+) -> Result<JointFrames, MbdError> {
+    let name = &jd.name;
+    let a = cx.end(&format!("{name}.a"), &jd.a)?;
+    let b = cx.end(&format!("{name}.b"), &jd.b)?;
+    if a.k == b.k {
+        return Err(MbdError::SameBody {
+            item: name.clone(),
+            body: jd.a.body.clone(),
+        });
+    }
+    let needs_a = !matches!(jd.kind, JointKind::Spherical | JointKind::Fixed);
+    let needs_b = jd.kind == JointKind::Universal;
+    let allows_b = matches!(jd.kind, JointKind::Universal | JointKind::Revolute);
+    match (needs_a, a.axis.is_some()) {
+        (true, false) => {
+            return Err(invalid(
+                format!("{name}.a.axis"),
+                format!("missing: a {:?} joint needs the axis on its a end", jd.kind)
+                    .to_lowercase(),
+            ))
+        }
+        (false, true) => {
+            return Err(invalid(
+                format!("{name}.a.axis"),
+                "not used by this joint kind: remove it",
+            ))
+        }
+        _ => {}
+    }
+    if needs_b && b.axis.is_none() {
+        return Err(invalid(
+            format!("{name}.b.axis"),
+            "missing: a universal joint needs its second axis on the b end (perpendicular to a's)",
+        ));
+    }
+    if !allows_b && b.axis.is_some() {
+        return Err(invalid(
+            format!("{name}.b.axis"),
+            "not used by this joint kind: remove it (the axis is a's, carried to b at the \
+             initial poses)",
+        ));
+    }
+    let zi = a.axis.unwrap_or_else(Vector3::z);
+    let xi = perpendicular(&zi);
+    let yi = zi.cross(&xi);
+    let zj = match (jd.kind, b.axis) {
+        (JointKind::Revolute, Some(z)) => z,
+        _ => cx.carry(a.k, &zi, b.k),
+    };
+    let xj = cx.carry(a.k, &xi, b.k);
+    let yj = cx.carry(a.k, &yi, b.k);
+    let mut push = |kind: PrimKind| {
+        prims.push(Prim {
+            owner,
+            i: a.k,
+            j: b.k,
+            kind,
+            row: 0,
+        })
+    };
+    let coincide = PrimKind::Coincide { si: a.s, sj: b.s };
+    let dot1 = |ai: Vector3<f64>, aj: Vector3<f64>| PrimKind::Dot1 { ai, aj };
+    let dot2 = |ai: Vector3<f64>| PrimKind::Dot2 {
+        ai,
+        si: a.s,
+        sj: b.s,
+        offset: 0.0,
+        motion: None,
+    };
+    match jd.kind {
+        JointKind::Spherical => push(coincide),
+        JointKind::Revolute => {
+            push(coincide);
+            push(dot1(xi, zj));
+            push(dot1(yi, zj));
+        }
+        JointKind::Universal => {
+            let zb = b.axis.unwrap_or_else(Vector3::z);
+            let ca = cx.pose(a.k).a * zi;
+            let cb = cx.pose(b.k).a * zb;
+            if ca.dot(&cb).abs() > 1e-6 {
+                return Err(invalid(
+                    format!("{name}.b.axis"),
+                    format!(
+                        "the two axes of a universal joint must be perpendicular at the initial \
+                         poses; their cosine is {:.3e}",
+                        ca.dot(&cb)
+                    ),
+                ));
+            }
+            push(coincide);
+            push(dot1(zi, zb));
+        }
+        JointKind::Cylindrical | JointKind::Prismatic => {
+            push(dot1(xi, zj));
+            push(dot1(yi, zj));
+            push(dot2(xi));
+            push(dot2(yi));
+            if jd.kind == JointKind::Prismatic {
+                push(dot1(xi, yj));
+            }
+        }
+        JointKind::Planar => {
+            push(dot1(xi, zj));
+            push(dot1(yi, zj));
+            push(dot2(zi));
+        }
+        JointKind::Fixed => {
+            push(coincide);
+            push(dot1(xi, yj));
+            push(dot1(yi, zj));
+            push(dot1(zi, xj));
+        }
+    }
+    Ok(JointFrames {
+        i: a.k,
+        j: b.k,
+        xi,
+        yi,
+        zi,
+        xj,
+        si: a.s,
+        sj: b.s,
+    })
+}
+
+fn driver(
+    cx: &Ctx,
+    dr: &super::desc::SpatialDriver,
+    joints: &HashMap<String, (JointKind, JointFrames)>,
+    owner: usize,
+    prims: &mut Vec<Prim>,
+    motions: &mut Vec<crate::TimeFn>,
+) -> Result<(), MbdError> {
+    let _ = cx;
+    let name = &dr.name;
+    let (kind, f) = *joints.get(&dr.joint).ok_or_else(|| {
+        invalid(
+            format!("{name}.joint"),
+            format!(
+                "unknown joint `{}`; {}",
+                dr.joint,
+                crate::field::suggestion(&dr.joint, joints.keys().map(String::as_str))
+            ),
+        )
+    })?;
+    dr.motion
+        .validate(&format!("{name}.motion"))
+        .map_err(|e| invalid(e.path, e.message))?;
+    let ok = match dr.kind {
+        DriverKind::RevoluteAngle => matches!(kind, JointKind::Revolute | JointKind::Cylindrical),
+        DriverKind::PrismaticDisplacement => {
+            matches!(kind, JointKind::Prismatic | JointKind::Cylindrical)
+        }
+    };
+    if !ok {
+        return Err(invalid(
+            format!("{name}.joint"),
+            format!(
+                "`{}` is a {kind:?} joint; a {:?} driver needs a {} joint",
+                dr.joint,
+                dr.kind,
+                if dr.kind == DriverKind::RevoluteAngle {
+                    "revolute or cylindrical"
+                } else {
+                    "prismatic or cylindrical"
+                }
+            )
+            .to_lowercase(),
+        ));
+    }
+    motions.push(dr.motion.clone());
+    let motion = motions.len() - 1;
+    let kind = match dr.kind {
+        DriverKind::RevoluteAngle => PrimKind::Angle {
+            xi: f.xi,
+            yi: f.yi,
+            xj: f.xj,
+            motion,
+        },
+        DriverKind::PrismaticDisplacement => {
+            // zero at the initial poses: d₀ = z_i·(r_j + A_j s_j − r_i − A_i s_i) there
+            let (pi, pj) = (cx.pose(f.i), cx.pose(f.j));
+            let d = pj.r + pj.a * f.sj - pi.r - pi.a * f.si;
+            PrimKind::Dot2 {
+                ai: f.zi,
+                si: f.si,
+                sj: f.sj,
+                offset: (pi.a * f.zi).dot(&d),
+                motion: Some(motion),
+            }
+        }
+    };
+    prims.push(Prim {
+        owner,
+        i: f.i,
+        j: f.j,
+        kind,
+        row: 0,
+    });
+    Ok(())
+}
+
+fn non_negative(path: &str, v: f64) -> Result<f64, MbdError> {
+    if v >= 0.0 && v.is_finite() {
+        Ok(v)
+    } else {
+        Err(invalid(
+            path,
+            format!("{v} must be finite and not negative"),
+        ))
+    }
+}
+
+fn force(
+    cx: &Ctx,
+    f: &SpatialForce,
+    joints: &HashMap<String, (JointKind, JointFrames)>,
+) -> Result<Force3, MbdError> {
+    let name = f.name();
+    let no_axis = |e: &End, field: &str| match e.axis {
+        Some(_) => Err(invalid(
+            format!("{name}.{field}.axis"),
+            "not used by a force element: remove it",
+        )),
+        None => Ok(()),
+    };
+    let two_ends = |a: &End, b: &End| -> Result<(REnd, REnd), MbdError> {
+        no_axis(a, "a")?;
+        no_axis(b, "b")?;
+        Ok((
+            cx.end(&format!("{name}.a"), a)?,
+            cx.end(&format!("{name}.b"), b)?,
+        ))
+    };
+    let fns = |fs: [&crate::TimeFn; 3], names: [&str; 3]| -> Result<[crate::TimeFn; 3], MbdError> {
+        for (g, n) in fs.iter().zip(names) {
+            g.validate(&format!("{name}.{n}"))
+                .map_err(|e| invalid(e.path, e.message))?;
+        }
+        Ok([fs[0].clone(), fs[1].clone(), fs[2].clone()])
+    };
+    Ok(match f {
+        SpatialForce::SpringDamper {
+            a,
+            b,
+            stiffness,
+            damping,
+            free_length,
+            ..
+        } => {
+            let (ea, eb) = two_ends(a, b)?;
+            Force3::Line {
+                i: ea.k,
+                si: ea.s,
+                j: eb.k,
+                sj: eb.s,
+                k: non_negative(&format!("{name}.stiffness"), *stiffness)?,
+                c: non_negative(&format!("{name}.damping"), *damping)?,
+                l0: non_negative(&format!("{name}.free_length"), *free_length)?,
+                push: None,
+            }
+        }
+        SpatialForce::Actuator { a, b, force, .. } => {
+            no_axis(a, "a")?;
+            no_axis(b, "b")?;
+            force
+                .validate(&format!("{name}.force"))
+                .map_err(|e| invalid(e.path, e.message))?;
+            let (ea, eb) = (
+                cx.end(&format!("{name}.a"), a)?,
+                cx.end(&format!("{name}.b"), b)?,
+            );
+            Force3::Line {
+                i: ea.k,
+                si: ea.s,
+                j: eb.k,
+                sj: eb.s,
+                k: 0.0,
+                c: 0.0,
+                l0: 0.0,
+                push: Some(force.clone()),
+            }
+        }
+        SpatialForce::RotationalSpringDamper {
+            joint,
+            stiffness,
+            damping,
+            free_angle,
+            ..
+        } => {
+            let (kind, fr) = joints.get(joint).copied().ok_or_else(|| {
+                invalid(format!("{name}.joint"), format!("unknown joint `{joint}`"))
+            })?;
+            if !matches!(kind, JointKind::Revolute | JointKind::Cylindrical) {
+                return Err(invalid(
+                    format!("{name}.joint"),
+                    "a rotational spring–damper acts about the axis of a revolute or \
+                     cylindrical joint",
+                ));
+            }
+            Force3::Rotational {
+                i: fr.i,
+                j: fr.j,
+                xi: fr.xi,
+                yi: fr.yi,
+                xj: fr.xj,
+                k: non_negative(&format!("{name}.stiffness"), *stiffness)?,
+                c: non_negative(&format!("{name}.damping"), *damping)?,
+                theta0: *free_angle,
+            }
+        }
+        SpatialForce::Bushing {
+            a,
+            b,
+            stiffness,
+            damping,
+            rotational_stiffness,
+            rotational_damping,
+            ..
+        } => {
+            let (ea, eb) = two_ends(a, b)?;
+            let nn = |field: &str, v: [f64; 3]| -> Result<Vector3<f64>, MbdError> {
+                for c in v {
+                    non_negative(&format!("{name}.{field}"), c)?;
+                }
+                Ok(Vector3::from(v))
+            };
+            Force3::Bushing {
+                i: ea.k,
+                si: ea.s,
+                j: eb.k,
+                sj: eb.s,
+                rel0: cx.pose(ea.k).a.transpose() * cx.pose(eb.k).a,
+                kt: nn("stiffness", *stiffness)?,
+                ct: nn("damping", *damping)?,
+                kr: nn("rotational_stiffness", *rotational_stiffness)?,
+                cr: nn("rotational_damping", *rotational_damping)?,
+            }
+        }
+        SpatialForce::Force {
+            at,
+            frame,
+            fx,
+            fy,
+            fz,
+            ..
+        } => {
+            no_axis(at, "at")?;
+            let e = cx.end(&format!("{name}.at"), at)?;
+            if e.k == GROUND {
+                return Err(invalid(
+                    format!("{name}.at.body"),
+                    "a load on the ground does nothing: name a body",
+                ));
+            }
+            Force3::Point {
+                i: e.k,
+                si: e.s,
+                body_frame: *frame == VectorFrame::Body,
+                f: fns([fx, fy, fz], ["fx", "fy", "fz"])?,
+            }
+        }
+        SpatialForce::Torque {
+            body,
+            frame,
+            mx,
+            my,
+            mz,
+            ..
+        } => {
+            let e = cx.end(
+                name,
+                &End {
+                    body: body.clone(),
+                    at: [0.0; 3],
+                    axis: None,
+                },
+            )?;
+            if e.k == GROUND {
+                return Err(invalid(
+                    format!("{name}.body"),
+                    "a load on the ground does nothing: name a body",
+                ));
+            }
+            Force3::Torque {
+                i: e.k,
+                body_frame: *frame == VectorFrame::Body,
+                m: fns([mx, my, mz], ["mx", "my", "mz"])?,
+            }
+        }
+    })
+}
+
+fn sphere(
+    cx: &Ctx,
+    s: &SphericalClearance,
+    k: usize,
+    n_bristle: &mut usize,
+) -> Result<Sphere, MbdError> {
+    let name = &s.name;
+    let a = cx.end(&format!("{name}.socket"), &s.socket)?;
+    let b = cx.end(&format!("{name}.ball"), &s.ball)?;
+    for (e, f) in [(&a, "socket"), (&b, "ball")] {
+        if e.axis.is_some() {
+            return Err(invalid(
+                format!("{name}.{f}.axis"),
+                "a ball or socket has no axis: remove it",
+            ));
+        }
+    }
+    if a.k == b.k {
+        return Err(MbdError::SameBody {
+            item: name.clone(),
+            body: s.ball.body.clone(),
+        });
+    }
+    let (rs, rb) = (s.socket_radius, s.ball_radius);
+    if !(rs > 0.0 && rs.is_finite()) {
+        return Err(invalid(
+            format!("{name}.socket_radius"),
+            format!("{rs} m must be positive"),
+        ));
+    }
+    if !(rb > 0.0 && rb < rs) {
+        return Err(invalid(
+            format!("{name}.ball_radius"),
+            format!(
+                "{rb} m must be positive and smaller than socket_radius = {rs} m (equal radii \
+                 are the ideal spherical joint: use a [[joint]] of type \"spherical\")"
+            ),
+        ));
+    }
+    let path = format!("{name}.normal");
+    let law_name = s.normal.law.trim().to_ascii_lowercase().replace('_', "-");
+    let normal = match law_name.as_str() {
+        "hertz" | "power" | "linear" => s.normal.build(&path, None),
+        // Hertz for a sphere in a concave sphere: the same K = (4/3)E*√(R_sR_b/(R_s − R_b))
+        // as clr-contact's internal-cylinder law, which is that sphere formula
+        "hertz-internal-sphere" => {
+            let mut d = s.normal.clone();
+            d.law = "hertz-internal-cylinder".into();
+            d.build(&path, Some((rs, rb)))
+        }
+        other => {
+            return Err(invalid(
+                format!("{path}.law"),
+                format!(
+                    "`{other}` is not available for a ball in a socket: the line-contact laws \
+                     (liu, bai-zhao, johnson, pereira, presets with length, flores-line, area) \
+                     are for cylinders; use hertz-internal-sphere (from the materials), hertz, \
+                     power or linear"
+                ),
+            ))
+        }
+    }
+    .map_err(|e| invalid(e.path, e.message))?;
+    let friction = match &s.friction {
+        None => None,
+        Some(f) => match f
+            .build_contact(&format!("{name}.friction"))
+            .map_err(|e| invalid(e.path, e.message))?
+        {
+            ContactFriction::Static(l) if l.mu_max() == 0.0 => None,
+            other => Some(other),
+        },
+    };
+    let bristle = match friction {
+        Some(ContactFriction::LuGre(_)) => {
+            *n_bristle += 3;
+            Some(*n_bristle - 3)
+        }
+        _ => None,
+    };
+    Ok(Sphere {
+        name: name.clone(),
+        i: a.k,
+        si: a.s,
+        j: b.k,
+        sj: b.s,
+        r_socket: rs,
+        r_ball: rb,
+        law: normal,
+        friction,
+        memory: k,
+        bristle,
+    })
+}

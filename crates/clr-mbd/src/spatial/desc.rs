@@ -1,0 +1,437 @@
+//! The spatial model description: plain data (serde), read from a model file with
+//! `[model] space = "spatial"` (docs/model-file.md "Spatial models"). Solver and output settings,
+//! time functions and contact laws are the planar description's own types.
+
+use serde::{Deserialize, Serialize};
+
+use crate::desc::{FrictionLawDesc, NormalLawDesc, OutputSettings, SolverSettings};
+use crate::timefn::TimeFn;
+
+/// Which engine a model file is for: `[model] space`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Space {
+    /// Bodies move in the x–y plane (x, y, θ per body); the default.
+    #[default]
+    Planar,
+    /// Bodies move in space (position and orientation quaternion per body).
+    Spatial,
+}
+
+/// `[model]` of a spatial model.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialInfo {
+    /// Model name (used in reports).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub name: Option<String>,
+    /// One-line description.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
+    /// `"spatial"`.
+    pub space: Space,
+    /// Gravitational acceleration (g_x, g_y, g_z), m/s² (default none).
+    #[serde(default)]
+    pub gravity: [f64; 3],
+}
+
+/// The frame a given vector is expressed in.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum VectorFrame {
+    /// The world (inertial) frame.
+    World,
+    /// The body's own frame (its axes at the current orientation).
+    Body,
+}
+
+/// An orientation in one of four forms; the engine stores the unit quaternion
+/// ([`Orientation::quaternion`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged, deny_unknown_fields)]
+pub enum Orientation {
+    /// `{ quaternion = [w, x, y, z] }`: scalar first, normalized on reading (a norm off 1 by
+    /// more than 1e-6 is refused as a likely typo).
+    Quaternion {
+        /// (w, x, y, z).
+        quaternion: [f64; 4],
+    },
+    /// `{ matrix = [[…], […], […]] }`: the rotation matrix body → world, rows; orthonormal to
+    /// 1e-6 with determinant +1.
+    Matrix {
+        /// Rows of A.
+        matrix: [[f64; 3]; 3],
+    },
+    /// `{ axis = [x, y, z], angle = θ }`: θ in rad about the axis (normalized).
+    AxisAngle {
+        /// Rotation axis (world), any length > 0.
+        axis: [f64; 3],
+        /// Angle, rad.
+        angle: f64,
+    },
+    /// `{ euler = [a, b, c], sequence = "zyx" }`: three angles in rad about the moving axes in
+    /// the order named (intrinsic; "zyx" is yaw–pitch–roll, "zxz" the classical Euler angles).
+    Euler {
+        /// The three angles, rad.
+        euler: [f64; 3],
+        /// Axis sequence: three letters of x, y, z, no two neighbours equal.
+        sequence: String,
+    },
+}
+
+/// A spatial rigid body. Its frame is at `position` with `orientation`; the centre of mass sits
+/// at `centre_of_mass` in that frame. Anchors on the body are given in this frame. Result
+/// columns are those of the centre of mass.
+///
+/// As for planar bodies, an initial-state field that is given is fixed (kept by the assembly of
+/// initial conditions unless the constraints forbid it, which is reported) and one left out is
+/// solved.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialBody {
+    /// Unique name.
+    pub name: String,
+    /// Mass, kg (> 0).
+    pub mass: f64,
+    /// Inertia tensor at the centre of mass in the body frame, kg·m², rows of a symmetric
+    /// positive definite 3 × 3 matrix (products of inertia with the sign of the tensor:
+    /// I_xy = −∫xy dm). Or give `principal_inertia`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub inertia: Option<[[f64; 3]; 3]>,
+    /// Principal moments of inertia at the centre of mass, kg·m² (satisfying the triangle
+    /// inequalities), along `principal_axes` (default the body axes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub principal_inertia: Option<[f64; 3]>,
+    /// The principal axes as rows (unit vectors in the body frame, right-handed).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub principal_axes: Option<[[f64; 3]; 3]>,
+    /// Centre of mass in the body frame, m (default the frame origin).
+    #[serde(default)]
+    pub centre_of_mass: [f64; 3],
+    /// Initial position of the body frame's origin, m (world).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub position: Option<[f64; 3]>,
+    /// Initial orientation (default: aligned with the world).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<Orientation>,
+    /// Initial velocity of the body frame's origin, m/s, in `velocity_frame`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity: Option<[f64; 3]>,
+    /// Frame of `velocity` (required with it): `world` or `body`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub velocity_frame: Option<VectorFrame>,
+    /// Initial angular velocity, rad/s, in `angular_velocity_frame`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angular_velocity: Option<[f64; 3]>,
+    /// Frame of `angular_velocity` (required with it): `world` or `body`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub angular_velocity_frame: Option<VectorFrame>,
+}
+
+/// Where a joint, force or contact attaches: a body (or `"ground"`) and a point in its frame, m;
+/// joints also take an `axis` (a direction in the same frame).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct End {
+    /// Body name, or `"ground"` (then `at` and `axis` are world).
+    pub body: String,
+    /// Point in the body frame, m.
+    #[serde(default)]
+    pub at: [f64; 3],
+    /// Axis direction in the body frame (normalized); which joints need it: [`JointKind`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axis: Option<[f64; 3]>,
+}
+
+/// Kinds of spatial ideal joints (`type` in `[[joint]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum JointKind {
+    /// The two ends coincide; `axis` refused (3 equations).
+    Spherical,
+    /// The ends coincide and b turns about `a.axis` (5 equations; `b.axis` defaults to a's
+    /// axis at the initial poses).
+    Revolute,
+    /// The ends coincide; `a.axis` on a and `b.axis` on b stay perpendicular (4 equations; the
+    /// cross of a Cardan joint).
+    Universal,
+    /// b slides along and turns about `a.axis` through a's point (4 equations).
+    Cylindrical,
+    /// b slides along `a.axis` without turning (5 equations).
+    Prismatic,
+    /// b moves in the plane through a's point with normal `a.axis` (3 equations).
+    Planar,
+    /// b is welded to a at the initial poses (6 equations); `axis` refused.
+    Fixed,
+}
+
+/// An ideal joint between two ends.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialJoint {
+    /// Unique name.
+    pub name: String,
+    /// Kind.
+    #[serde(rename = "type")]
+    pub kind: JointKind,
+    /// First end (the reference side: reactions are reported on b).
+    pub a: End,
+    /// Second end.
+    pub b: End,
+}
+
+/// What a driver prescribes (`type` in `[[driver]]`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum DriverKind {
+    /// The angle of a revolute or cylindrical joint, rad: b's turn about the axis relative to
+    /// a, zero at the initial poses.
+    RevoluteAngle,
+    /// The displacement of a prismatic or cylindrical joint along its axis, m, zero at the
+    /// initial poses.
+    PrismaticDisplacement,
+}
+
+/// A prescribed joint motion.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialDriver {
+    /// Unique name.
+    pub name: String,
+    /// Kind.
+    #[serde(rename = "type")]
+    pub kind: DriverKind,
+    /// The joint it drives.
+    pub joint: String,
+    /// The prescribed angle (rad) or displacement (m) as a function of time.
+    pub motion: TimeFn,
+}
+
+/// Force elements (`type` in `[[force]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SpatialForce {
+    /// Point-to-point spring–damper: tension k(ℓ − ℓ₀) + c ℓ̇ along the line between a and b.
+    SpringDamper {
+        /// Unique name.
+        name: String,
+        /// First end (`axis` refused).
+        a: End,
+        /// Second end.
+        b: End,
+        /// k, N/m.
+        #[serde(default)]
+        stiffness: f64,
+        /// c, N·s/m.
+        #[serde(default)]
+        damping: f64,
+        /// ℓ₀, m.
+        #[serde(default)]
+        free_length: f64,
+    },
+    /// Point-to-point actuator: force f(t) (N, positive pushing a and b apart).
+    Actuator {
+        /// Unique name.
+        name: String,
+        /// First end.
+        a: End,
+        /// Second end.
+        b: End,
+        /// Force, N.
+        force: TimeFn,
+    },
+    /// Rotational spring–damper about the axis of a revolute or cylindrical joint: torque
+    /// −k(θ − θ₀) − c θ̇ on b (and the opposite on a), θ the joint angle (zero at the initial
+    /// poses, in (−π, π]).
+    RotationalSpringDamper {
+        /// Unique name.
+        name: String,
+        /// The joint.
+        joint: String,
+        /// k, N·m/rad.
+        #[serde(default)]
+        stiffness: f64,
+        /// c, N·m·s/rad.
+        #[serde(default)]
+        damping: f64,
+        /// θ₀, rad.
+        #[serde(default)]
+        free_angle: f64,
+    },
+    /// Six-axis bushing between a's frame (a's body axes at its point) and b's point: force
+    /// −K_t Δx − C_t Δẋ and moment −K_r Δφ − C_r Δω, Δx the offset of b's point from a's and Δφ
+    /// the rotation vector of b relative to a since the initial poses, both in a's axes.
+    Bushing {
+        /// Unique name.
+        name: String,
+        /// First end.
+        a: End,
+        /// Second end.
+        b: End,
+        /// (k_x, k_y, k_z), N/m.
+        #[serde(default)]
+        stiffness: [f64; 3],
+        /// (c_x, c_y, c_z), N·s/m.
+        #[serde(default)]
+        damping: [f64; 3],
+        /// Rotational stiffness about a's x, y, z, N·m/rad.
+        #[serde(default)]
+        rotational_stiffness: [f64; 3],
+        /// Rotational damping, N·m·s/rad.
+        #[serde(default)]
+        rotational_damping: [f64; 3],
+    },
+    /// Applied force at a point, components f(t) in N in `frame`.
+    Force {
+        /// Unique name.
+        name: String,
+        /// Point of application.
+        at: End,
+        /// Frame of the components: `world` or `body`.
+        frame: VectorFrame,
+        /// x component, N.
+        #[serde(default = "zero")]
+        fx: TimeFn,
+        /// y component, N.
+        #[serde(default = "zero")]
+        fy: TimeFn,
+        /// z component, N.
+        #[serde(default = "zero")]
+        fz: TimeFn,
+    },
+    /// Applied torque on a body, components f(t) in N·m in `frame`.
+    Torque {
+        /// Unique name.
+        name: String,
+        /// Body.
+        body: String,
+        /// Frame of the components: `world` or `body`.
+        frame: VectorFrame,
+        /// x component, N·m.
+        #[serde(default = "zero")]
+        mx: TimeFn,
+        /// y component, N·m.
+        #[serde(default = "zero")]
+        my: TimeFn,
+        /// z component, N·m.
+        #[serde(default = "zero")]
+        mz: TimeFn,
+    },
+}
+
+fn zero() -> TimeFn {
+    TimeFn::Constant { value: 0.0 }
+}
+
+impl SpatialForce {
+    /// The element's name.
+    pub fn name(&self) -> &str {
+        match self {
+            Self::SpringDamper { name, .. }
+            | Self::Actuator { name, .. }
+            | Self::RotationalSpringDamper { name, .. }
+            | Self::Bushing { name, .. }
+            | Self::Force { name, .. }
+            | Self::Torque { name, .. } => name,
+        }
+    }
+}
+
+/// A spherical clearance joint (ball in socket, `type = "spherical"` in `[[clearance]]`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SphericalClearance {
+    /// Unique name.
+    pub name: String,
+    /// `"spherical"`.
+    #[serde(rename = "type")]
+    pub kind: ClearanceKind,
+    /// Centre of the socket (on its body).
+    pub socket: End,
+    /// Centre of the ball (on its body).
+    pub ball: End,
+    /// Socket radius R_s, m.
+    pub socket_radius: f64,
+    /// Ball radius R_b, m (R_b < R_s; R_b = R_s is the ideal spherical joint).
+    pub ball_radius: f64,
+    /// Normal-force law: `hertz`, `power`, `linear` with their stiffness, or
+    /// `hertz-internal-sphere` from `bearing_material` (socket) and `journal_material` (ball),
+    /// K = (4/3)E*√(R_sR_b/(R_s − R_b)); any damping factor.
+    pub normal: NormalLawDesc,
+    /// Friction law (default none): every law of the planar joints, the slip velocity being
+    /// the vector in the tangent plane; LuGre with a vector bristle state.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionLawDesc>,
+}
+
+/// Kinds of spatial clearance joints.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ClearanceKind {
+    /// Ball in socket.
+    Spherical,
+}
+
+/// A whole spatial model as data (`[model] space = "spatial"`). Sections: `[model]`,
+/// `[[body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`, `[output]`.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialDesc {
+    /// Name, description, space, gravity.
+    pub model: SpatialInfo,
+    /// Rigid bodies.
+    #[serde(default, rename = "body", skip_serializing_if = "Vec::is_empty")]
+    pub bodies: Vec<SpatialBody>,
+    /// Ideal joints.
+    #[serde(default, rename = "joint", skip_serializing_if = "Vec::is_empty")]
+    pub joints: Vec<SpatialJoint>,
+    /// Drivers.
+    #[serde(default, rename = "driver", skip_serializing_if = "Vec::is_empty")]
+    pub drivers: Vec<SpatialDriver>,
+    /// Force elements.
+    #[serde(default, rename = "force", skip_serializing_if = "Vec::is_empty")]
+    pub forces: Vec<SpatialForce>,
+    /// Clearance joints.
+    #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
+    pub clearances: Vec<SphericalClearance>,
+    /// Integrator settings (as planar models).
+    #[serde(default)]
+    pub solver: SolverSettings,
+    /// Time span and output times (as planar models).
+    #[serde(default)]
+    pub output: OutputSettings,
+}
+
+impl SpatialDesc {
+    /// Read a description from a parsed model file, with the path of the offending field on
+    /// error.
+    ///
+    /// # Errors
+    /// [`crate::FieldError`] at the offending field.
+    pub fn from_toml_table(table: toml::Table) -> Result<Self, crate::FieldError> {
+        serde_path_to_error::deserialize::<_, Self>(toml::Value::Table(table)).map_err(|e| {
+            crate::FieldError::new(e.path().to_string(), e.inner().message().to_string())
+        })
+    }
+
+    /// The simulation options of `solver` and `output`.
+    ///
+    /// # Errors
+    /// [`crate::FieldError`] for invalid settings.
+    pub fn sim_options(&self) -> Result<crate::SimOptions, crate::FieldError> {
+        crate::desc::sim_options_of(&self.solver, &self.output)
+    }
+
+    /// The description as TOML text.
+    ///
+    /// # Errors
+    /// The serializer's message.
+    pub fn to_toml(&self) -> Result<String, String> {
+        toml::to_string(self).map_err(|e| e.to_string())
+    }
+}
+
+const _: () = {
+    const fn assert_plain_data<T: Clone + Send + Sync + 'static>() {}
+    assert_plain_data::<SpatialDesc>();
+};

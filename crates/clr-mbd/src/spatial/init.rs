@@ -1,0 +1,303 @@
+//! Consistent initial conditions of a spatial model, as the planar assembly ([`crate::init`]):
+//! Newton's iteration on Φ = 0 with the weighted minimum-norm update
+//! Δ = −W Gᵀ(G W Gᵀ)⁻¹Φ in the velocity coordinates (translations and body-frame rotation
+//! increments, A ← A exp([Δφ]×)), W = M⁻¹ for given fields and 10⁸ M⁻¹ for solved ones, then
+//! one linear solve for the velocities. Spherical clearance joints are held as their ideal
+//! counterpart (ball centred in the socket). Redundant equations are found by modified
+//! Gram–Schmidt on the rows of G W^{1/2} before any solve.
+
+use nalgebra::Vector3;
+
+use super::constraint::{Prim, PrimKind, Rows};
+use super::frame::{exp_map, quaternion_of, rotation};
+use super::model::SpatialModel;
+use crate::error::MbdError;
+use crate::init::{RANK_TOL, SOLVED_WEIGHT};
+use crate::CORRECTION_TOL;
+
+const MAX_NEWTON: usize = 50;
+/// Position residual accepted by the assembly, m or rad.
+const POSITION_TOL: f64 = 1e-12;
+
+/// The assembly's rows: the model's constraints, then one coincidence per spherical clearance
+/// joint (its ideal counterpart).
+struct Assembly {
+    prims: Vec<Prim>,
+    labels: Vec<String>,
+    m: usize,
+}
+
+impl SpatialModel {
+    fn assembly_rows(&self) -> Assembly {
+        let mut prims = self.prims.clone();
+        let mut labels = Vec::new();
+        for o in &self.owners {
+            for r in o.rows.0..o.rows.1 {
+                labels.push(format!("{} (equation {})", o.name, r - o.rows.0 + 1));
+            }
+        }
+        let mut row = self.m;
+        for s in &self.spheres {
+            prims.push(Prim {
+                owner: usize::MAX,
+                i: s.i,
+                j: s.j,
+                kind: PrimKind::Coincide { si: s.si, sj: s.sj },
+                row,
+            });
+            for c in ["x", "y", "z"] {
+                labels.push(format!("{} (ideal counterpart, {c})", s.name));
+            }
+            row += 3;
+        }
+        Assembly {
+            prims,
+            labels,
+            m: row,
+        }
+    }
+
+    /// Weights W^{1/2} per velocity coordinate of the position (`phase` 0) or velocity (1)
+    /// assembly: kinetic, solved fields 10⁴ times larger.
+    fn weights(&self, phase: usize) -> Vec<f64> {
+        let mut w = Vec::with_capacity(self.n_v());
+        for (b, f) in self.bodies.iter().zip(&self.fixed) {
+            for c in 0..6 {
+                let kin = if c < 3 {
+                    1.0 / b.mass.sqrt()
+                } else {
+                    1.0 / b.j[(c - 3, c - 3)].sqrt()
+                };
+                let given = f[2 * phase + usize::from(c >= 3)];
+                w.push(if given {
+                    kin
+                } else {
+                    kin * SOLVED_WEIGHT.sqrt()
+                });
+            }
+        }
+        w
+    }
+
+    fn eval_rows(&mut self, asm: &Assembly, t: f64, y: &[f64], out: &mut AsmWs) {
+        let nv = self.n_v();
+        self.ws.kin.update(self.bodies.len(), y);
+        out.g.fill(0.0);
+        let mut rows = Rows {
+            phi: &mut out.phi,
+            g: &mut out.g,
+            phit: &mut out.phit,
+            gamma: &mut out.gamma,
+            nv,
+        };
+        for p in &asm.prims {
+            p.eval(&self.ws.kin, t, &self.motions, &mut rows);
+        }
+    }
+
+    /// The consistent initial state at t0 and the notes saying what was solved and changed.
+    ///
+    /// # Errors
+    /// [`MbdError::RedundantConstraints`] or [`MbdError::Assembly`].
+    pub fn initial_state(&mut self, t0: f64) -> Result<(Vec<f64>, Vec<String>), MbdError> {
+        let asm = self.assembly_rows();
+        let (nq, nv) = (self.n_q(), self.n_v());
+        let mut y = self.y_given.clone();
+        let mut ws = AsmWs::new(asm.m, nv);
+        let w = self.weights(0);
+        let mut iterations = 0;
+        loop {
+            self.eval_rows(&asm, t0, &y, &mut ws);
+            let res = ws.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if res <= POSITION_TOL {
+                break;
+            }
+            if iterations == 0 {
+                check_rank(&asm, &ws.g, &w)?;
+            }
+            if iterations == MAX_NEWTON || !res.is_finite() {
+                let k = (0..asm.m).fold(0, |b, r| {
+                    if ws.phi[r].abs() > ws.phi[b].abs() {
+                        r
+                    } else {
+                        b
+                    }
+                });
+                return Err(MbdError::Assembly {
+                    t: t0,
+                    residual: res,
+                    iterations,
+                    worst: asm.labels[k].clone(),
+                });
+            }
+            let rhs: Vec<f64> = ws.phi.iter().map(|v| -v).collect();
+            let dx = ws.min_norm(&w, &rhs)?;
+            apply_increment(&mut y[..nq], &dx);
+            iterations += 1;
+        }
+        // velocities: G v = −Φ_t with the least weighted change of the given ones
+        let wv = self.weights(1);
+        if asm.m > 0 {
+            check_rank(&asm, &ws.g, &wv)?;
+            let v = &y[nq..nq + nv];
+            let rhs: Vec<f64> = (0..asm.m)
+                .map(|r| {
+                    let gv: f64 = ws.g[r * nv..(r + 1) * nv]
+                        .iter()
+                        .zip(v)
+                        .map(|(a, b)| a * b)
+                        .sum();
+                    -(gv + ws.phit[r])
+                })
+                .collect();
+            let dv = ws.min_norm(&wv, &rhs)?;
+            for (c, d) in dv.iter().enumerate() {
+                y[nq + c] += d;
+            }
+        }
+        let notes = self.report(&self.y_given.clone(), &y, iterations);
+        Ok((y, notes))
+    }
+
+    /// Notes on the fields solved and the given fields changed by the assembly.
+    fn report(&self, given: &[f64], y: &[f64], iterations: usize) -> Vec<String> {
+        let (nq, _) = (self.n_q(), self.n_v());
+        let mut notes = Vec::new();
+        if iterations > 0 {
+            notes.push(format!(
+                "initial conditions: positions assembled in {iterations} Newton iteration(s), \
+                 spherical clearance joints held centred (their ideal counterparts)"
+            ));
+        }
+        for (k, name) in self.names.iter().enumerate() {
+            let fields: [(&str, &[f64], &[f64]); 4] = [
+                (
+                    "position (centre of mass, m)",
+                    &given[7 * k..7 * k + 3],
+                    &y[7 * k..7 * k + 3],
+                ),
+                (
+                    "orientation (quaternion)",
+                    &given[7 * k + 3..7 * k + 7],
+                    &y[7 * k + 3..7 * k + 7],
+                ),
+                (
+                    "velocity (m/s)",
+                    &given[nq + 6 * k..nq + 6 * k + 3],
+                    &y[nq + 6 * k..nq + 6 * k + 3],
+                ),
+                (
+                    "angular velocity (body frame, rad/s)",
+                    &given[nq + 6 * k + 3..nq + 6 * k + 6],
+                    &y[nq + 6 * k + 3..nq + 6 * k + 6],
+                ),
+            ];
+            for (f, (what, g, a)) in fields.iter().enumerate() {
+                let changed = g
+                    .iter()
+                    .zip(a.iter())
+                    .any(|(g, a)| (a - g).abs() > CORRECTION_TOL * g.abs().max(1.0));
+                if self.fixed[k][f] && changed {
+                    notes.push(format!(
+                        "initial conditions: {name}.{what} given {g:.9?} changed to {a:.9?} to meet \
+                         the joints"
+                    ));
+                } else if !self.fixed[k][f] {
+                    notes.push(format!("initial conditions: {name}.{what} solved: {a:.9?}"));
+                }
+            }
+        }
+        notes
+    }
+}
+
+/// p ← p ⊗ q(Δφ) and r += Δr per body, from the velocity-coordinate increment dx.
+fn apply_increment(q: &mut [f64], dx: &[f64]) {
+    for k in 0..q.len() / 7 {
+        for c in 0..3 {
+            q[7 * k + c] += dx[6 * k + c];
+        }
+        let a = rotation(&q[7 * k + 3..7 * k + 7])
+            * exp_map(&Vector3::new(dx[6 * k + 3], dx[6 * k + 4], dx[6 * k + 5]));
+        q[7 * k + 3..7 * k + 7].copy_from_slice(&quaternion_of(&a));
+    }
+}
+
+/// Storage of the assembly's rows.
+struct AsmWs {
+    phi: Vec<f64>,
+    g: Vec<f64>,
+    phit: Vec<f64>,
+    gamma: Vec<f64>,
+    nv: usize,
+}
+
+impl AsmWs {
+    fn new(m: usize, nv: usize) -> Self {
+        Self {
+            phi: vec![0.0; m],
+            g: vec![0.0; m * nv],
+            phit: vec![0.0; m],
+            gamma: vec![0.0; m],
+            nv,
+        }
+    }
+
+    /// x = W² Gᵀ (G W² Gᵀ)⁻¹ rhs with W = diag(w): the least weighted x with G x = rhs.
+    fn min_norm(&self, w: &[f64], rhs: &[f64]) -> Result<Vec<f64>, MbdError> {
+        let (m, nv) = (rhs.len(), self.nv);
+        let mut lu = clr_ode::linalg::DenseLu::default();
+        lu.resize(m);
+        let a = lu.matrix_mut();
+        for r in 0..m {
+            for s in 0..m {
+                a[s * m + r] = (0..nv)
+                    .map(|c| self.g[r * nv + c] * w[c] * w[c] * self.g[s * nv + c])
+                    .sum();
+            }
+        }
+        lu.factor().map_err(|_| MbdError::RedundantConstraints {
+            rank: m - 1,
+            rows: m,
+            involved: "the assembly matrix is singular".into(),
+        })?;
+        let mut l = rhs.to_vec();
+        lu.solve(&mut l);
+        Ok((0..nv)
+            .map(|c| w[c] * w[c] * (0..m).map(|r| self.g[r * nv + c] * l[r]).sum::<f64>())
+            .collect())
+    }
+}
+
+/// Modified Gram–Schmidt on the rows of G W: the rows that depend on earlier ones.
+fn check_rank(asm: &Assembly, g: &[f64], w: &[f64]) -> Result<(), MbdError> {
+    let nv = w.len();
+    let mut basis: Vec<Vec<f64>> = Vec::new();
+    let mut dependent = Vec::new();
+    for r in 0..asm.m {
+        let mut v: Vec<f64> = (0..nv).map(|c| g[r * nv + c] * w[c]).collect();
+        let n0 = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        for b in &basis {
+            let d: f64 = v.iter().zip(b).map(|(x, y)| x * y).sum();
+            v.iter_mut().zip(b).for_each(|(x, y)| *x -= d * y);
+        }
+        let n = v.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if n <= RANK_TOL * n0.max(f64::MIN_POSITIVE) {
+            dependent.push(asm.labels[r].clone());
+        } else {
+            basis.push(v.iter().map(|x| x / n).collect());
+        }
+    }
+    if dependent.is_empty() {
+        return Ok(());
+    }
+    Err(MbdError::RedundantConstraints {
+        rank: basis.len(),
+        rows: asm.m,
+        involved: format!(
+            "{} (in space, a closed loop of revolute joints is over-constrained: replace one \
+             revolute by a spherical or universal joint, as in models/examples/spatial_four_bar.toml)",
+            dependent.join(", ")
+        ),
+    })
+}

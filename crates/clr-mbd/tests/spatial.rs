@@ -1,0 +1,167 @@
+//! Spatial engine: closed-form checks of conservation, steady motions and the spherical
+//! clearance joint at rest (the verify cases `mbd.spatial.*` hold the long references).
+
+use clr_mbd::spatial::SpatialDesc;
+use clr_mbd::Results;
+
+fn desc(text: &str) -> SpatialDesc {
+    SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap()
+}
+
+fn col(r: &Results, name: &str) -> Vec<f64> {
+    r.column(name).unwrap_or_else(|| panic!("no column {name}"))
+}
+
+/// A free asymmetric body with a tilted inertia tensor and an offset centre of mass keeps its
+/// energy and its angular momentum (world) — Euler's equations conserve both exactly; the
+/// tolerance is the integration error at rtol 1e-10 over 2 s.
+#[test]
+fn torque_free_body_conserves_energy_and_momentum() {
+    let d = desc(
+        r#"
+[model]
+space = "spatial"
+[[body]]
+name = "b"
+mass = 2.0
+principal_inertia = [0.1, 0.2, 0.3]
+principal_axes = [[0.8, 0.6, 0.0], [-0.6, 0.8, 0.0], [0.0, 0.0, 1.0]]
+centre_of_mass = [0.05, -0.02, 0.1]
+position = [0.0, 0.0, 0.0]
+orientation = { axis = [1.0, 1.0, 0.0], angle = 0.3 }
+velocity = [0.1, 0.0, 0.0]
+velocity_frame = "world"
+angular_velocity = [0.05, 3.0, 0.1]
+angular_velocity_frame = "body"
+[output]
+t_end = 2.0
+intervals = 20
+"#,
+    );
+    let mut m = d.compile().unwrap();
+    let mut o = d.sim_options().unwrap();
+    o.rtol = 1e-10;
+    o.atol = 1e-12;
+    let r = m.simulate(&o).unwrap();
+    let e = col(&r, "energy.kinetic");
+    let rel = e
+        .iter()
+        .map(|x| (x - e[0]).abs() / e[0])
+        .fold(0.0, f64::max);
+    assert!(rel < 1e-8, "energy drift {rel:e}");
+    // angular momentum about the centre of mass, world: A J ω
+    let (_, j) = m.body_inertia(0);
+    let l = |k: usize| {
+        let q = [
+            col(&r, "b.qw")[k],
+            col(&r, "b.qx")[k],
+            col(&r, "b.qy")[k],
+            col(&r, "b.qz")[k],
+        ];
+        let w = nalgebra::Vector3::new(col(&r, "b.wx")[k], col(&r, "b.wy")[k], col(&r, "b.wz")[k]);
+        clr_mbd::spatial::frame::rotation(&q) * (j * w)
+    };
+    let l0 = l(0);
+    for k in 0..r.len() {
+        assert!(
+            (l(k) - l0).norm() < 1e-8 * l0.norm(),
+            "momentum drift at row {k}"
+        );
+    }
+}
+
+/// A spherical pendulum on an ideal spherical joint started on its steady cone keeps its cone
+/// angle: Ω² = m g l / ((I₁ − I₃) cos θ) with I₁, I₃ the transverse and axial moments about the
+/// pivot (the heavy top's steady precession without relative spin).
+#[test]
+fn conical_pendulum_keeps_its_cone() {
+    let (m, l, g, th) = (1.5f64, 0.4f64, 9.81f64, 0.5f64);
+    let (it, ia) = (0.002f64, 0.001f64); // about the centre of mass
+    let i1 = it + m * l * l;
+    let omega = (m * g * l / ((i1 - ia) * th.cos())).sqrt();
+    // body z along the rod, from the pivot down to the centre of mass; tilted by θ about x
+    let text = format!(
+        r#"
+[model]
+space = "spatial"
+gravity = [0.0, 0.0, -9.81]
+[[body]]
+name = "rod"
+mass = {m}
+principal_inertia = [{it}, {it}, {ia}]
+position = [0.0, 0.0, 0.0]
+orientation = {{ axis = [1.0, 0.0, 0.0], angle = {a} }}
+centre_of_mass = [0.0, 0.0, {cz}]
+angular_velocity = [0.0, 0.0, {omega}]
+angular_velocity_frame = "world"
+velocity = [0.0, 0.0, 0.0]
+velocity_frame = "world"
+[[joint]]
+name = "pivot"
+type = "spherical"
+a = {{ body = "ground", at = [0.0, 0.0, 0.0] }}
+b = {{ body = "rod", at = [0.0, 0.0, 0.0] }}
+[output]
+t_end = 2.0
+intervals = 40
+"#,
+        a = std::f64::consts::PI - th,
+        cz = l,
+    );
+    let d = desc(&text);
+    let mut model = d.compile().unwrap();
+    let mut o = d.sim_options().unwrap();
+    o.rtol = 1e-9;
+    o.atol = 1e-11;
+    let r = model.simulate(&o).unwrap();
+    let z = col(&r, "rod.z");
+    let expect = -l * th.cos();
+    for (k, zk) in z.iter().enumerate() {
+        assert!(
+            (zk - expect).abs() < 1e-6 * l,
+            "row {k}: z = {zk}, cone {expect}"
+        );
+    }
+}
+
+/// A ball resting in its socket under gravity settles at the Hertz penetration of its weight:
+/// K δ^{3/2} = m g (closed form), with K = (4/3)E*√(R_sR_b/(R_s − R_b)) for steel.
+#[test]
+fn ball_settles_at_the_hertz_penetration_of_its_weight() {
+    let d = desc(
+        r#"
+[model]
+space = "spatial"
+gravity = [0.0, 0.0, -9.81]
+[[body]]
+name = "ball"
+mass = 2.0
+principal_inertia = [1e-4, 1e-4, 1e-4]
+position = [0.0, 0.0, 0.0]
+[[clearance]]
+name = "S"
+type = "spherical"
+socket = { body = "ground", at = [0.0, 0.0, 0.0] }
+ball = { body = "ball", at = [0.0, 0.0, 0.0] }
+socket_radius = 0.010
+ball_radius = 0.0095
+normal = { law = "hertz-internal-sphere", damping = "lankarani-nikravesh", restitution = 0.5, bearing_material = { youngs_modulus = 207e9, poisson_ratio = 0.3 }, journal_material = { youngs_modulus = 207e9, poisson_ratio = 0.3 } }
+[output]
+t_end = 0.5
+intervals = 10
+"#,
+    );
+    let mut m = d.compile().unwrap();
+    let r = m.simulate(&d.sim_options().unwrap()).unwrap();
+    let e_star = 207e9 / (2.0 * (1.0 - 0.09));
+    let k = 4.0 / 3.0 * e_star * (0.010f64 * 0.0095 / 0.0005).sqrt();
+    let delta = (2.0 * 9.81 / k).powf(2.0 / 3.0);
+    let pen = *col(&r, "S.penetration").last().unwrap();
+    assert!(
+        (pen - delta).abs() < 1e-3 * delta,
+        "δ = {pen:e}, Hertz {delta:e}"
+    );
+    let ez = *col(&r, "S.ez").last().unwrap();
+    assert!((ez + 0.0005 + delta).abs() < 1e-3 * delta);
+    assert!(!r.impacts.is_empty(), "the first touch is an impact");
+}
