@@ -28,6 +28,11 @@ fn check(name: &str, text: &str) -> Result<(), String> {
             Err(e) if !e.message.is_empty() => Ok(()),
             Err(e) => Err(format!("empty build error {e:?}")),
         },
+        Ok(Loaded::Spatial(spec)) => match spec.build() {
+            Ok(_) => Ok(()),
+            Err(e) if !e.message.is_empty() => Ok(()),
+            Err(e) => Err(format!("empty build error {e:?}")),
+        },
         Ok(Loaded::Builtin { .. }) => Ok(()),
         Err(e) if e.line.is_some() && !e.message.is_empty() => Ok(()),
         Err(e) => Err(format!("error without a line: {e}")),

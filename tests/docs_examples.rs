@@ -60,6 +60,7 @@ fn check_block(name: &str, text: &str) -> Result<(), String> {
     if whole {
         return match load_str(name, text, &[]) {
             Ok(Loaded::Generic(spec)) => spec.build().map(|_| ()).map_err(|e| e.to_string()),
+            Ok(Loaded::Spatial(spec)) => spec.build().map(|_| ()).map_err(|e| e.to_string()),
             Ok(Loaded::Builtin { .. }) => Ok(()),
             Err(e) => Err(e.to_string()),
         };
@@ -75,9 +76,15 @@ fn check_block(name: &str, text: &str) -> Result<(), String> {
     } else {
         format!("{text}\n[output]\nt_end = 1.0\n")
     };
+    // the sections of a planar description, or else of a spatial one
     toml::from_str::<clr_sim::mbd::ModelDesc>(&framed)
         .map(|_| ())
-        .map_err(|e| e.to_string())
+        .or_else(|planar| {
+            let spatial = format!("[model]\nspace = \"spatial\"\n{framed}");
+            toml::from_str::<clr_sim::mbd::spatial::SpatialDesc>(&spatial)
+                .map(|_| ())
+                .map_err(|_| planar.to_string())
+        })
 }
 
 /// A block of bare keys (`lubrication = { … }`) documents fields of a revolute clearance joint:

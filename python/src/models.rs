@@ -231,6 +231,7 @@ impl JobCore {
         match self.job {
             Job::Builtin { .. } => "builtin",
             Job::Generic(_) => "generic",
+            Job::Spatial(_) => "spatial",
         }
     }
 
@@ -240,6 +241,7 @@ impl JobCore {
         match &self.job {
             Job::Builtin { name, .. } => name.clone(),
             Job::Generic(s) => s.name.clone(),
+            Job::Spatial(s) => s.name.clone(),
         }
     }
 
@@ -249,6 +251,7 @@ impl JobCore {
         match &self.job {
             Job::Builtin { .. } => Vec::new(),
             Job::Generic(s) => s.notes.clone(),
+            Job::Spatial(s) => s.notes.clone(),
         }
     }
 
@@ -257,6 +260,10 @@ impl JobCore {
     fn to_toml(&self, py: Python<'_>) -> PyResult<String> {
         match &self.job {
             Job::Generic(s) => s
+                .desc()
+                .to_toml()
+                .map_err(|m| run_error(py, &run::RunError::Input(m))),
+            Job::Spatial(s) => s
                 .desc()
                 .to_toml()
                 .map_err(|m| run_error(py, &run::RunError::Input(m))),

@@ -246,6 +246,7 @@ pub(crate) fn view_command(
         .map_err(|e| CliError::Input(format!("{target}: {e}")))?;
     let mut notes: Vec<String> = match &job {
         Job::Generic(s) => s.notes.clone(),
+        Job::Spatial(s) => s.notes.clone(),
         Job::Builtin { .. } => Vec::new(),
     };
     if let Some(ic) = &results.initial_conditions {

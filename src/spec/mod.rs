@@ -21,6 +21,7 @@ mod model;
 mod overrides;
 mod parse;
 pub mod run;
+mod spatial;
 pub mod sweep;
 
 use std::path::Path;
@@ -31,6 +32,7 @@ pub use model::{Built, ModelSpec};
 pub use overrides::{
     apply_json_override, parse_assignment, parse_value as overrides_value, Assignment,
 };
+pub use spatial::SpatialSpec;
 
 /// An error in a model file or a command-line override, with its place.
 #[derive(Debug, Clone, thiserror::Error)]
@@ -116,6 +118,8 @@ pub enum Loaded {
     },
     /// A generic model, validated.
     Generic(Box<ModelSpec>),
+    /// A spatial model (`[model] space = "spatial"`), validated.
+    Spatial(Box<SpatialSpec>),
 }
 
 /// Read, parse and validate a model file, applying `name=value` overrides (paths as in
@@ -139,6 +143,13 @@ pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loade
     if let Some(name) = builtin::name(file, src, &root)? {
         return builtin::builtin(file, src, &root, &name, overrides);
     }
+    if is_spatial(&root) {
+        for a in overrides {
+            overrides::set_toml(&mut root, a)?;
+        }
+        return SpatialSpec::from_table(file, src, root, Vec::new())
+            .map(|s| Loaded::Spatial(Box::new(s)));
+    }
     let notes = parse::upgrade(&mut root);
     let spec = generic_with(file, src, &root, notes.clone(), overrides);
     match spec {
@@ -147,6 +158,14 @@ pub fn load_str(file: &str, src: &str, overrides: &[Assignment]) -> Result<Loade
         }
         other => other.map(|s| Loaded::Generic(Box::new(s))),
     }
+}
+
+/// Whether the file says `[model] space = "spatial"`.
+fn is_spatial(root: &toml::Table) -> bool {
+    root.get("model")
+        .and_then(|m| m.get("space"))
+        .and_then(|s| s.as_str())
+        == Some("spatial")
 }
 
 /// The generic model of the (upgraded) table `root` of the file with `overrides` applied.

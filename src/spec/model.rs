@@ -148,20 +148,9 @@ impl ModelSpec {
         Ok(spec)
     }
 
-    /// A field path of a clr-mbd message (`joint[2].axis`, or `crank_drive.motion.rate` with
-    /// an item name first) as a path in the file.
+    /// A field path of a clr-mbd message as a path in the file ([`item_path`]).
     fn desc_path(&self, path: &str) -> FieldPath {
-        let (first, rest) = path.split_once('.').unwrap_or((path, ""));
-        let section = ITEM_SECTIONS.contains(&first)
-            || ["model", "solver", "output"].contains(&first)
-            || first.contains('[');
-        if !section {
-            // an item name first: its place in its section
-            if let Some(item) = self.path_of(first) {
-                return join(&item, rest);
-            }
-        }
-        parse_path(path)
+        item_path(&self.src, path)
     }
 
     /// Set the end time (s).
@@ -293,23 +282,39 @@ impl ModelSpec {
         };
         SpecError::at(&self.file, &self.src, &path, message)
     }
+}
 
-    /// `joint[2]` for the item named `name` (the last one when a name repeats: that is the
-    /// duplicate).
-    fn path_of(&self, name: &str) -> Option<FieldPath> {
-        let root: toml::Table = toml::from_str(&self.src).ok()?;
-        let mut found = None;
-        for sec in ITEM_SECTIONS {
-            if let Some(toml::Value::Array(a)) = root.get(sec) {
-                for (k, item) in a.iter().enumerate() {
-                    if item.get("name").and_then(|n| n.as_str()) == Some(name) {
-                        found = Some(FieldPath::root().key(sec).index(k));
-                    }
+/// A field path of a clr-mbd message (`joint[2].axis`, or `crank_drive.motion.rate` with an
+/// item name first) as a path in the file of text `src`.
+pub(crate) fn item_path(src: &str, path: &str) -> FieldPath {
+    let (first, rest) = path.split_once('.').unwrap_or((path, ""));
+    let section = ITEM_SECTIONS.contains(&first)
+        || ["model", "solver", "output"].contains(&first)
+        || first.contains('[');
+    if !section {
+        // an item name first: its place in its section
+        if let Some(item) = path_of(src, first) {
+            return join(&item, rest);
+        }
+    }
+    parse_path(path)
+}
+
+/// `joint[2]` for the item named `name` in the file of text `src` (the last one when a name
+/// repeats: that is the duplicate).
+fn path_of(src: &str, name: &str) -> Option<FieldPath> {
+    let root: toml::Table = toml::from_str(src).ok()?;
+    let mut found = None;
+    for sec in ITEM_SECTIONS {
+        if let Some(toml::Value::Array(a)) = root.get(sec) {
+            for (k, item) in a.iter().enumerate() {
+                if item.get("name").and_then(|n| n.as_str()) == Some(name) {
+                    found = Some(FieldPath::root().key(sec).index(k));
                 }
             }
         }
-        found
     }
+    found
 }
 
 /// `base` extended by a relative dotted path (`normal.restitution`).
@@ -390,7 +395,7 @@ fn derived(desc: &ModelDesc) -> serde_json::Value {
     serde_json::Value::Object(d)
 }
 
-fn strip_nulls(v: &mut serde_json::Value) {
+pub(crate) fn strip_nulls(v: &mut serde_json::Value) {
     match v {
         serde_json::Value::Object(o) => {
             o.retain(|_, x| !x.is_null());

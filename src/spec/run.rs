@@ -37,6 +37,8 @@ pub enum Job {
     },
     /// A validated generic model file.
     Generic(Box<ModelSpec>),
+    /// A validated spatial model file.
+    Spatial(Box<super::SpatialSpec>),
 }
 
 /// The outcome of one run, from a built-in model or a model file.
@@ -94,6 +96,12 @@ fn load_with(
     }
 }
 
+impl From<Loaded> for Job {
+    fn from(l: Loaded) -> Self {
+        loaded_job(l)
+    }
+}
+
 fn loaded_job(l: Loaded) -> Job {
     match l {
         Loaded::Builtin { name, parameters } => Job::Builtin {
@@ -102,6 +110,7 @@ fn loaded_job(l: Loaded) -> Job {
             knobs: Default::default(),
         },
         Loaded::Generic(s) => Job::Generic(s),
+        Loaded::Spatial(s) => Job::Spatial(s),
     }
 }
 
@@ -180,13 +189,24 @@ fn finish(mut job: Job, t_end: Option<f64>, rtol: Option<f64>) -> Result<Job, Ru
             return Err(SpecError::plain("--rtol", "", format!("{r} must be > 0")).into());
         }
     }
-    if let Job::Generic(s) = &mut job {
-        if let Some(t) = t_end {
-            s.set_t_end(t)?;
+    match &mut job {
+        Job::Generic(s) => {
+            if let Some(t) = t_end {
+                s.set_t_end(t)?;
+            }
+            if let Some(r) = rtol {
+                s.set_rtol(r)?;
+            }
         }
-        if let Some(r) = rtol {
-            s.set_rtol(r)?;
+        Job::Spatial(s) => {
+            if let Some(t) = t_end {
+                s.set_t_end(t)?;
+            }
+            if let Some(r) = rtol {
+                s.set_rtol(r)?;
+            }
         }
+        Job::Builtin { .. } => {}
     }
     Ok(job)
 }
@@ -249,6 +269,7 @@ impl Job {
         match &mut self {
             Job::Builtin { knobs, .. } => knobs.strict = true,
             Job::Generic(s) => s.set_strict(),
+            Job::Spatial(s) => s.set_strict(),
         }
         self
     }
@@ -281,6 +302,7 @@ impl Job {
                 *k = knobs;
             }
             Job::Generic(s) => s.set_knobs(&knobs)?,
+            Job::Spatial(s) => s.set_knobs(&knobs)?,
         }
         Ok(self)
     }
@@ -324,6 +346,10 @@ impl Job {
                 }
                 Job::Generic(Box::new(s))
             }
+            Job::Spatial(s) => {
+                let s = s.with_overrides(overrides)?;
+                finish(Job::Spatial(Box::new(s)), t_end, rtol)?
+            }
         })
     }
 
@@ -340,6 +366,9 @@ impl Job {
     ) -> Result<clr_mbd::ModelDesc, String> {
         match self {
             Job::Generic(s) => Ok(s.desc().clone()),
+            Job::Spatial(_) => {
+                Err("a spatial model is drawn in 3-D (the planar drawing does not apply)".into())
+            }
             Job::Builtin {
                 name, parameters, ..
             } => {
@@ -362,6 +391,7 @@ impl Job {
     pub fn resolved_model(&self, t_end: Option<f64>, rtol: Option<f64>) -> serde_json::Value {
         match self {
             Job::Generic(s) => serde_json::json!({ "model_file": s.resolved }),
+            Job::Spatial(s) => serde_json::json!({ "model_file": s.resolved }),
             Job::Builtin {
                 name,
                 parameters,
@@ -383,6 +413,7 @@ impl Job {
     pub fn time_span(&self, t_end: Option<f64>) -> Option<(f64, f64)> {
         match self {
             Job::Generic(s) => Some((s.options.t0, s.options.t_end)),
+            Job::Spatial(s) => Some((s.options.t0, s.options.t_end)),
             Job::Builtin {
                 name, parameters, ..
             } => {
@@ -399,6 +430,40 @@ impl Job {
                 })?;
                 (end.is_finite() && end > 0.0).then_some((0.0, end))
             }
+        }
+    }
+}
+
+/// What an outcome of a model file records of it (planar or spatial).
+#[derive(Clone, Copy)]
+struct Meta<'a> {
+    name: &'a String,
+    file: &'a String,
+    notes: &'a [String],
+    resolved: &'a serde_json::Value,
+    clearances: &'a [(String, Option<f64>)],
+}
+
+impl<'a> From<&'a ModelSpec> for Meta<'a> {
+    fn from(s: &'a ModelSpec) -> Self {
+        Self {
+            name: &s.name,
+            file: &s.file,
+            notes: &s.notes,
+            resolved: &s.resolved,
+            clearances: &s.clearances,
+        }
+    }
+}
+
+impl<'a> From<&'a super::SpatialSpec> for Meta<'a> {
+    fn from(s: &'a super::SpatialSpec) -> Self {
+        Self {
+            name: &s.name,
+            file: &s.file,
+            notes: &s.notes,
+            resolved: &s.resolved,
+            clearances: &s.clearances,
         }
     }
 }
@@ -432,7 +497,7 @@ impl Outcome {
     }
 
     fn from_results(
-        s: &ModelSpec,
+        s: Meta<'_>,
         results: clr_mbd::Results,
         metrics: Vec<Metric>,
         error: Option<String>,
@@ -561,6 +626,7 @@ pub fn execute(
             };
             outcome.map(|o| o.with_settings_used(name, &described))
         }
+        Job::Spatial(s) => Ok(execute_spatial(s, progress)?),
         Job::Generic(s) => {
             let built = s.build()?;
             let mut model = built.model;
@@ -572,8 +638,9 @@ pub fn execute(
             };
             match model.simulate_with(&built.options, &hook) {
                 Ok(res) => {
-                    let metrics = generic_metrics(&res, s);
-                    Ok(Outcome::from_results(s, res, metrics, None).with_flexible(flexible))
+                    let metrics = generic_metrics(&res, s.as_ref().into());
+                    Ok(Outcome::from_results(s.as_ref().into(), res, metrics, None)
+                        .with_flexible(flexible))
                 }
                 Err(clr_mbd::MbdError::Failed {
                     source,
@@ -584,9 +651,11 @@ pub fn execute(
                         "{source} (in the model file these are [solver] max_steps, rtol, atol, \
                          method){cause}"
                     );
-                    let metrics = generic_metrics(&partial, s);
-                    Ok(Outcome::from_results(s, *partial, metrics, Some(msg))
-                        .with_flexible(flexible))
+                    let metrics = generic_metrics(&partial, s.as_ref().into());
+                    Ok(
+                        Outcome::from_results(s.as_ref().into(), *partial, metrics, Some(msg))
+                            .with_flexible(flexible),
+                    )
                 }
                 Err(
                     e @ clr_mbd::MbdError::Implausible {
@@ -595,14 +664,46 @@ pub fn execute(
                 ) => {
                     let msg = e.to_string();
                     let partial = e.into_partial().unwrap_or_default();
-                    let metrics = generic_metrics(&partial, s);
-                    Ok(Outcome::from_results(s, partial, metrics, Some(msg))
-                        .with_flexible(flexible))
+                    let metrics = generic_metrics(&partial, s.as_ref().into());
+                    Ok(
+                        Outcome::from_results(s.as_ref().into(), partial, metrics, Some(msg))
+                            .with_flexible(flexible),
+                    )
                 }
                 Err(e) => Err(s.model_error(&e).into()),
             }
         }
     }
+}
+
+/// Run a spatial model file (as a generic one: a failed run is an [`Outcome`] with `error`).
+fn execute_spatial(
+    s: &super::SpatialSpec,
+    progress: Option<Box<dyn Fn(f64) + Send + Sync>>,
+) -> Result<Outcome, RunError> {
+    let (mut model, options) = s.build()?;
+    let hook = |t: f64| {
+        if let Some(p) = &progress {
+            p(t);
+        }
+    };
+    let (res, msg) = match model.simulate_with(&options, &hook) {
+        Ok(res) => (res, None),
+        Err(clr_mbd::MbdError::Failed {
+            source,
+            partial,
+            cause,
+        }) => (
+            *partial,
+            Some(format!(
+                "{source} (in the model file these are [solver] max_steps, rtol, atol, \
+                 method){cause}"
+            )),
+        ),
+        Err(e) => return Err(s.model_error(&e).into()),
+    };
+    let metrics = generic_metrics(&res, s.into());
+    Ok(Outcome::from_results(s.into(), res, metrics, msg))
 }
 
 /// The run settings of a built-in: end time (s), tolerance, knobs and progress hook.
@@ -625,9 +726,9 @@ fn max_abs(v: &[f64]) -> f64 {
 }
 
 /// Metrics of a generic model run, computed from its recorded columns.
-fn generic_metrics(r: &clr_mbd::Results, s: &ModelSpec) -> Vec<Metric> {
+fn generic_metrics(r: &clr_mbd::Results, s: Meta<'_>) -> Vec<Metric> {
     let mut m = Vec::new();
-    for (c, radial) in &s.clearances {
+    for (c, radial) in s.clearances {
         let start = m.len();
         let impacts = || r.impacts.iter().filter(|i| &i.joint == c);
         if let Some(f) = r.column(&format!("{c}.normal_force")) {

@@ -6,7 +6,7 @@
 use std::ffi::{c_char, CStr, CString};
 
 use clr_sim::spec::run::{execute, Job, Outcome};
-use clr_sim::spec::{load_str, Assignment, Loaded};
+use clr_sim::spec::{load_str, Assignment};
 
 use crate::error::{finite, guard, CapiError, ClrStatus};
 use crate::ffi::{free_handle, new_handle};
@@ -67,14 +67,7 @@ impl ClrModel {
             r => r,
         }
         .map_err(|e| CapiError::Model(e.to_string()))?;
-        let job = match loaded {
-            Loaded::Builtin { name, parameters } => Job::Builtin {
-                name,
-                parameters,
-                knobs: Default::default(),
-            },
-            Loaded::Generic(s) => Job::Generic(s),
-        };
+        let job = Job::from(loaded);
         Ok(Self { job, run: None })
     }
 
@@ -367,6 +360,7 @@ pub unsafe extern "C" fn clr_model_free(model: *mut ClrModel) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use clr_sim::spec::Loaded;
     use std::ffi::CString;
 
     const PENDULUM: &str = include_str!("../../../tests/data/pendulum.toml");

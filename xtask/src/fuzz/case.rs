@@ -159,6 +159,30 @@ fn run_inner(text: &str, limits: &Limits) -> Verdict {
                 Err(e) => run_verdict(&e),
             }
         }
+        Loaded::Spatial(spec) => {
+            let job = match Job::Spatial(spec).with_knobs(knobs(limits)) {
+                Ok(j) => j,
+                Err(e) => return run_verdict(&e),
+            };
+            let Job::Spatial(mut spec) = job else {
+                unreachable!("a spatial job stays spatial")
+            };
+            let (t0, t1) = (spec.options.t0, spec.options.t_end);
+            let end = t0 + (t1 - t0).min(limits.span);
+            if !limits.simulate || end <= t0 || spec.set_t_end(end).is_err() {
+                return match spec.build() {
+                    Ok(_) => Verdict::Accepted { simulated: false },
+                    Err(e) => spec_verdict(&e),
+                };
+            }
+            match execute(&Job::Spatial(spec), None, None, None) {
+                Ok(o) => match o.error {
+                    None => Verdict::Accepted { simulated: true },
+                    Some(m) => Verdict::SolverFailure(m),
+                },
+                Err(e) => run_verdict(&e),
+            }
+        }
         Loaded::Builtin { name, parameters } => {
             let job = Job::Builtin {
                 name,

@@ -14,6 +14,14 @@ use crate::system::Model;
 
 /// Validate `desc` and build the runtime model.
 pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
+    if desc.model.space == Some(super::parts::Space::Spatial) {
+        return Err(MbdError::Invalid {
+            path: "model.space".into(),
+            message: "a spatial model is a clr_mbd::spatial::SpatialDesc (a model file with \
+                      `space = \"spatial\"` is read as one), not a planar ModelDesc"
+                .into(),
+        });
+    }
     claim_names(desc)?;
     let anchors = (desc.joints.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))

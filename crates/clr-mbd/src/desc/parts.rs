@@ -16,6 +16,10 @@ pub struct ModelInfo {
     /// One-line description.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub description: Option<String>,
+    /// `"planar"` (the default; a spatial file is read by
+    /// [`SpatialDesc`](crate::spatial::SpatialDesc)).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub space: Option<Space>,
     /// Gravitational acceleration (g_x, g_y), m/s² (default none).
     #[serde(default)]
     pub gravity: [f64; 2],
@@ -23,6 +27,17 @@ pub struct ModelInfo {
     /// collinear action and reaction) or `contact_points` (Flores et al. 2004).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub clearance_force_application: Option<ForceApplicationDesc>,
+}
+
+/// Which engine a model file is for: `[model] space`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Space {
+    /// Bodies move in the x–y plane (x, y, θ per body); the default.
+    #[default]
+    Planar,
+    /// Bodies move in space (position and orientation quaternion per body).
+    Spatial,
 }
 
 /// Where a revolute clearance joint's force pair acts (clr-contact `ForceApplication`).

@@ -7,16 +7,7 @@ use serde::{Deserialize, Serialize};
 use crate::desc::{FrictionLawDesc, NormalLawDesc, OutputSettings, SolverSettings};
 use crate::timefn::TimeFn;
 
-/// Which engine a model file is for: `[model] space`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Space {
-    /// Bodies move in the x–y plane (x, y, θ per body); the default.
-    #[default]
-    Planar,
-    /// Bodies move in space (position and orientation quaternion per body).
-    Spatial,
-}
+pub use crate::desc::parts::Space;
 
 /// `[model]` of a spatial model.
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
