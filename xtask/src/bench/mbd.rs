@@ -245,13 +245,13 @@ fn clr_row(
 }
 
 /// Run a Python peer script of `bench/` with the venv interpreter and parse its JSON lines.
-fn run_peer(
+pub(super) fn run_peer<T: serde::de::DeserializeOwned>(
     root: &Path,
     python: &Path,
     script: &str,
     args: &[&str],
-) -> Result<Vec<PeerRow>, String> {
-    eprintln!("bench mbd: running bench/{script}");
+) -> Result<Vec<T>, String> {
+    eprintln!("bench: running bench/{script}");
     let out = Command::new(python)
         .current_dir(root)
         .arg(root.join("bench").join(script))
@@ -264,7 +264,7 @@ fn run_peer(
                 python.display()
             )
         })?;
-    let rows: Vec<PeerRow> = String::from_utf8_lossy(&out.stdout)
+    let rows: Vec<T> = String::from_utf8_lossy(&out.stdout)
         .lines()
         .filter(|l| l.trim_start().starts_with('{'))
         .map(|l| serde_json::from_str(l).map_err(|e| format!("{script}: unreadable row {l}: {e}")))
@@ -280,7 +280,7 @@ fn run_peer(
 }
 
 /// Make sure `exudyn` can be imported from the venv (pip-installing it otherwise).
-fn ensure_exudyn(python: &Path) -> Result<(), String> {
+pub(super) fn ensure_exudyn(python: &Path) -> Result<(), String> {
     let importable = || {
         Command::new(python)
             .args(["-c", "import exudyn"])
@@ -394,7 +394,7 @@ fn clr_points(sweep: &[Row]) -> Vec<(f64, f64, f64)> {
 
 /// clr NDF's time at error `err` (m, at 10 ms), interpolated log-log between the loosest pair
 /// of consecutive sweep points whose errors bracket it: (time s, the two rtols).
-fn clr_time_interpolated(pts: &[(f64, f64, f64)], err: f64) -> Option<(f64, f64, f64)> {
+pub(super) fn clr_time_interpolated(pts: &[(f64, f64, f64)], err: f64) -> Option<(f64, f64, f64)> {
     pts.windows(2).find_map(|w| {
         let ((ra, ta, ea), (rb, tb, eb)) = (w[0], w[1]);
         if !(ea > 0.0 && eb > 0.0 && err > 0.0) || err < ea.min(eb) || err > ea.max(eb) {

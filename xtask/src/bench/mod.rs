@@ -6,6 +6,7 @@ mod mbd;
 mod ode;
 mod peers;
 mod shapes;
+mod spatial;
 
 use std::process::ExitCode;
 use std::str::FromStr;
@@ -42,7 +43,12 @@ const USAGE: &str =
   shapes  100 shape contact pairs (10 balls bouncing on floors, 90 pairs apart) against the
         same model with its 10 touching pairs only: cost per step and its ratio (the broad
         phase), and the narrow-phase and box-test costs of one pair apart; writes
-        target/bench/shapes.{json,md}";
+        target/bench/shapes.{json,md}
+       cargo xtask bench spatial [--min-time SECONDS] [--exudyn-h H1,H2,...] [--no-exudyn]
+  spatial  pendulum in a spherical clearance joint over 0.1 s: clr spatial NDF (rtol 1e-5 ...
+        1e-10) vs Exudyn's hollow-sphere contact (generalized-α, h 1e-4 ... 1e-6), centre-of-mass
+        error against clr DOPRI5 at rtol 1e-12, equal-error time ratios; writes
+        target/bench/spatial.{json,md}";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {
@@ -50,6 +56,7 @@ pub fn run(args: &[String]) -> ExitCode {
         Some("mbd") => mbd::run(&args[1..]),
         Some("beam") => beam::run(&args[1..]),
         Some("shapes") => shapes::run(&args[1..]),
+        Some("spatial") => spatial::run(&args[1..]),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS

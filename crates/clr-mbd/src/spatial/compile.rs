@@ -422,6 +422,7 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         notes: Vec::new(),
         m,
         n_bristle,
+        norm_rate: super::model::NORM_RATE,
         ws,
     })
 }

@@ -10,8 +10,9 @@
 //!
 //! (Nikravesh 1988, eq. 6.93 in the body-frame form; Chrono and Multibody.jl keep the same pair
 //! of states). Its norm is kept by the exact flow but not by the integrator: every use goes
-//! through the normalized p/‖p‖ ([`rotation`]), so the physics never sees the drift, which is
-//! measured and reported after each run (`violation.quaternion`).
+//! through the normalized p/‖p‖ ([`rotation`]), so the physics never sees the drift; a term
+//! k(1 − ‖p‖²)p with k = 10/s pulls the norm back (the model's `NORM_RATE`), and the drift is
+//! measured and reported after each run (`violation.quaternion`, run notes).
 
 use nalgebra::{Matrix3, Vector3};
 

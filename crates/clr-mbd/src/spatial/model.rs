@@ -30,6 +30,15 @@ use super::kin::Kinematics;
 use super::sphere::{Sphere, SphereReport};
 use crate::timefn::TimeFn;
 
+/// Rate k (1/s) of the norm-restoring term k(1 − ‖p‖²)p added to every quaternion rate: the
+/// exact flow keeps ‖p‖ = 1, and the term makes that manifold attractive without changing the
+/// motion (every use normalizes p). Measured on models/examples/heavy_top.toml (NDF, rtol 1e-8,
+/// 2 s): largest |‖p‖ − 1| 3.2e-7, 7.8e-8, 1.7e-8, 2.3e-9 and 5.3e-9 for k = 0, 1, 10, 100 and
+/// 1000 1/s, with 4962, 5023, 4972, 4914 and 5029 steps (1000 needs 45 Jacobians instead of
+/// 11–15: the term's eigenvalue −2k starts to be stiff). 10 leaves explicit DOPRI5 steps up to
+/// about 0.16 s stable and costs nothing measurable.
+pub(crate) const NORM_RATE: f64 = 10.0;
+
 /// Mass properties of a spatial body.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct Inertia3 {
@@ -74,6 +83,8 @@ pub struct SpatialModel {
     pub(crate) notes: Vec<String>,
     pub(crate) m: usize,
     pub(crate) n_bristle: usize,
+    /// Rate k (1/s) of the norm-restoring term k(1 − ‖p‖²)p added to ṗ.
+    pub(crate) norm_rate: f64,
     pub(crate) ws: Workspace,
 }
 
@@ -296,11 +307,14 @@ impl OdeSystem for SpatialModel {
         for k in 0..nb {
             dydt[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
             let w = Vector3::new(v[6 * k + 3], v[6 * k + 4], v[6 * k + 5]);
-            quaternion_rate(
-                &y[7 * k + 3..7 * k + 7],
-                &w,
-                &mut dydt[7 * k + 3..7 * k + 7],
-            );
+            let p = &y[7 * k + 3..7 * k + 7];
+            quaternion_rate(p, &w, &mut dydt[7 * k + 3..7 * k + 7]);
+            if self.norm_rate > 0.0 {
+                let n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
+                for c in 0..4 {
+                    dydt[7 * k + 3 + c] += self.norm_rate * (1.0 - n2) * p[c];
+                }
+            }
         }
         dydt[nq..nq + nv].copy_from_slice(&self.ws.qf);
         dydt[nq + nv] = self.ws.p_diss;
