@@ -700,6 +700,14 @@ fn execute_spatial(
                  method){cause}"
             )),
         ),
+        Err(
+            e @ clr_mbd::MbdError::Implausible {
+                partial: Some(_), ..
+            },
+        ) => {
+            let msg = e.to_string();
+            (e.into_partial().unwrap_or_default(), Some(msg))
+        }
         Err(e) => return Err(s.model_error(&e).into()),
     };
     let metrics = generic_metrics(&res, s.into());
@@ -924,16 +932,20 @@ pub fn unit_of(column: &str) -> &'static str {
     if column.starts_with("energy.") {
         return "J";
     }
+    if column == "violation.quaternion" {
+        return "-";
+    }
     match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "u" | "v" | "ux" | "uy" | "penetration" | "ex" | "ey" | "lugre_z"
-        | "film_thickness" => "m",
+        "x" | "y" | "z" | "u" | "v" | "ux" | "uy" | "penetration" | "ex" | "ey" | "ez"
+        | "lugre_z" | "lugre_zx" | "lugre_zy" | "lugre_zz" | "film_thickness" => "m",
         "theta" | "rz" => "rad",
-        "vx" | "vy" | "rate" => "m/s",
-        "omega" => "rad/s",
-        "ax" | "ay" => "m/s^2",
-        "alpha" => "rad/s^2",
-        "Fx" | "Fy" | "normal_force" | "friction_force" | "film_force" => "N",
-        "M" => "N*m",
+        "vx" | "vy" | "vz" | "rate" => "m/s",
+        "omega" | "wx" | "wy" | "wz" => "rad/s",
+        "ax" | "ay" | "az" => "m/s^2",
+        "alpha" | "alphax" | "alphay" | "alphaz" => "rad/s^2",
+        "Fx" | "Fy" | "Fz" | "normal_force" | "friction_force" | "film_force" | "ftx" | "fty"
+        | "ftz" => "N",
+        "M" | "Mx" | "My" | "Mz" => "N*m",
         _ => "-",
     }
 }

@@ -157,7 +157,12 @@ impl SpatialModel {
         let stats = with_solver!(&solver, s => s.stats());
         match out {
             Ok(()) => Ok(run.results(self.columns(), stats)),
-            Err(e) => {
+            Err(Stop::ThroughSocket(what)) => Err(MbdError::Implausible {
+                warnings: what,
+                count: 1,
+                partial: Some(Box::new(run.results(self.columns(), stats))),
+            }),
+            Err(Stop::Ode(e)) => {
                 let sol = e.solution();
                 let stats = if sol.stats == Default::default() {
                     stats
@@ -182,7 +187,7 @@ impl SpatialModel {
         solver: &mut AnySolver,
         run: &mut Run,
         progress: &dyn Fn(f64),
-    ) -> Result<(), clr_ode::OdeError> {
+    ) -> Result<(), Stop> {
         let mut y_out = vec![0.0; self.dim()];
         let report_every = 0.01 * (opts.t_end - opts.t0);
         let mut last_report = opts.t0;
@@ -210,6 +215,7 @@ impl SpatialModel {
                 |tp: f64, out: &mut [f64]| with_solver!(&*solver, s => s.interpolate(tp, out));
             run.impacts.step(self, (t, &run.y), &interp, &mut y_out);
             self.commit_contacts(&run.y);
+            self.check_depth(t, &run.y)?;
             let (pv, _) = self.violation(t, &run.y);
             run.max_viol = run.max_viol.max(pv);
             run.max_drift = run.max_drift.max(self.quaternion_drift(&run.y));
@@ -240,6 +246,48 @@ impl SpatialModel {
                 with_solver!(&mut *solver, s => s.restart(self, t, &run.y))?;
             }
         }
+    }
+}
+
+/// Largest penetration accepted, as a fraction of the ball radius: deeper, the ball's centre is
+/// far outside any contact law's range (Hertz assumes δ ≪ R) and the run stops.
+const DEPTH_LIMIT: f64 = 0.1;
+
+/// Why the step loop stopped early.
+enum Stop {
+    Ode(clr_ode::OdeError),
+    /// A ball went through its socket (the message says which and what it means).
+    ThroughSocket(String),
+}
+
+impl From<clr_ode::OdeError> for Stop {
+    fn from(e: clr_ode::OdeError) -> Self {
+        Stop::Ode(e)
+    }
+}
+
+impl SpatialModel {
+    /// Stop when a ball has gone deeper than [`DEPTH_LIMIT`] of its radius into its socket: a
+    /// driven loop that cannot close at this pose (the linkage locks, and the driver pushes the
+    /// ball through), or a law far too soft for the load; either way the results beyond are
+    /// not physics.
+    fn check_depth(&mut self, t: f64, y: &[f64]) -> Result<(), Stop> {
+        self.ws.kin.update(self.bodies.len(), y);
+        for s in &self.spheres {
+            let d = s.gap(&self.ws.kin);
+            if d > DEPTH_LIMIT * s.r_ball {
+                return Err(Stop::ThroughSocket(format!(
+                    "clearance `{}` at t = {t:.6} s: the ball is {d:.3e} m deep in its socket, more \
+                     than {:.0} % of its radius: the loop probably cannot close at this pose (a \
+                     driven linkage that locks, which an ideal joint would report as singular), \
+                     or the normal law is far too soft for the load; check the lengths and the \
+                     stiffness",
+                    s.name,
+                    100.0 * DEPTH_LIMIT
+                )));
+            }
+        }
+        Ok(())
     }
 }
 
