@@ -1,5 +1,6 @@
 //! What a contact element reports at the last evaluated state ([`ContactReport`]): written by
-//! every contact element's force evaluation, read by the model's outputs and events.
+//! every contact element's force evaluation, read by the recorded columns, the energy balance,
+//! the plausibility checks and `Model::contact_reports`.
 
 /// Quantities of one contact element at the last evaluated state.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
