@@ -23,25 +23,6 @@ const MAKERS: &[(&str, Maker)] = &[
     ("lubrication", crate::verify::lubrication::figures),
 ];
 
-/// Copy the study figures `<from>/<name>.{svg,png}` into the docs folder `to` as
-/// `<prefix><name>.{svg,png}` (creating `to`).
-pub fn copy_study_figures(
-    from: &Path,
-    names: &[&str],
-    to: &Path,
-    prefix: &str,
-) -> Result<(), String> {
-    std::fs::create_dir_all(to).map_err(|e| e.to_string())?;
-    for name in names {
-        for ext in ["svg", "png"] {
-            let src = from.join(format!("{name}.{ext}"));
-            let dst = to.join(format!("{prefix}{name}.{ext}"));
-            std::fs::copy(&src, &dst).map_err(|e| format!("{}: {e}", src.display()))?;
-        }
-    }
-    Ok(())
-}
-
 pub fn run(_args: &[String]) -> ExitCode {
     let dir = crate::workspace_root().join("docs").join("figures");
     let mut ok = true;

@@ -19,6 +19,7 @@ mod fuzz;
 mod minimal_slider_crank;
 mod octave;
 mod report;
+mod study_figures;
 mod verify;
 
 use std::path::PathBuf;

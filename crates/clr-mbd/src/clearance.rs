@@ -1,33 +1,22 @@
-//! Contact elements: revolute clearance joint (journal in bearing) and translational clearance
-//! joint (rectangular slider in a straight guide), both force elements built on clr-contact.
+//! The assembly's contact elements ([`Clearance`]), force elements built on clr-contact: a
+//! revolute clearance joint (journal in bearing, optionally lubricated), a translational
+//! clearance joint (rectangular slider in a straight guide), a slider on a flexible beam face
+//! ([`FlexGuide`]), a shape pair and a shape against a beam face. Each holds its laws, its slots
+//! in the contact memory and its kind's runtime form, and gives its gaps, forces, memory commits
+//! and elastic energy. The runtime forms of the pairs (`crate::shape_pair`, `crate::face_pair`),
+//! the beam-face surface (`crate::beam_face`) and [`ContactReport`] sit below this module.
 
 use clr_beam::{Face, Path};
 use clr_contact::translational::{TranslationalClearance, TranslationalForces};
 use clr_contact::{
-    BodyState, ContactMemory, ForceApplication, FrictionLaw, GuideSurface, MultipointDetector,
-    NormalLaw, RevoluteClearance,
+    BodyState, ContactMemory, ForceApplication, FrictionLaw, MultipointDetector, NormalLaw,
+    RevoluteClearance,
 };
 use nalgebra::Vector2;
 
-use crate::flexible::FlexBeam;
-use crate::floating::FloatingBody;
-use crate::runtime::{perp, rot};
-
-/// Which flexible body carries a guide face.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum GuideBeam {
-    /// Index in the model's ground-fixed beams.
-    Fixed(usize),
-    /// Index in the model's floating-frame bodies.
-    Floating(usize),
-}
-
-/// The flexible body of a guide, resolved from the model.
-#[derive(Clone, Copy)]
-pub(crate) enum GuideRef<'a> {
-    Fixed(&'a FlexBeam),
-    Floating(&'a FloatingBody),
-}
+use crate::beam_face::{add_face_load, GuideBeam, GuideRef, Surface};
+use crate::contact_report::ContactReport;
+use crate::runtime::rot;
 
 /// A slider on a face of a flexible beam (clr-contact multipoint detection over the clr-beam
 /// deformed-shape queries), the beam ground-fixed or a floating-frame body.
@@ -42,191 +31,6 @@ pub(crate) struct FlexGuide {
     /// Full-DOF displacement and velocity buffers of the beam (scattered from q, q̇).
     pub(crate) qfull: Vec<f64>,
     pub(crate) qdfull: Vec<f64>,
-}
-
-/// The deformed beam face as a clr-contact guide surface (s = undeformed arc length).
-pub(crate) struct BeamFace<'a> {
-    path: &'a Path,
-    face: Face,
-    q: &'a [f64],
-    qd: &'a [f64],
-}
-
-impl BeamFace<'_> {
-    fn at(&self, s: f64) -> clr_beam::SurfacePoint {
-        self.path
-            .surface(s, self.face, self.q, self.qd)
-            .unwrap_or(clr_beam::SurfacePoint {
-                position: [f64::NAN; 2],
-                velocity: [f64::NAN; 2],
-                normal: [f64::NAN; 2],
-                normal_rate: [f64::NAN; 2],
-            })
-    }
-}
-
-impl GuideSurface for BeamFace<'_> {
-    fn arc_range(&self) -> (f64, f64) {
-        (0.0, self.path.length())
-    }
-    fn point(&self, s: f64) -> Vector2<f64> {
-        let p = self.at(s).position;
-        Vector2::new(p[0], p[1])
-    }
-    fn tangent(&self, s: f64) -> Vector2<f64> {
-        // dr/ds direction: the outward normal turned back by ∓90° (upper face: n = k̂ × t)
-        let n = self.at(s).normal;
-        match self.face {
-            Face::Upper => Vector2::new(n[1], -n[0]),
-            Face::Lower => Vector2::new(-n[1], n[0]),
-        }
-    }
-    fn normal(&self, s: f64) -> Vector2<f64> {
-        let n = self.at(s).normal;
-        Vector2::new(n[0], n[1])
-    }
-    fn velocity(&self, s: f64) -> Vector2<f64> {
-        let v = self.at(s).velocity;
-        Vector2::new(v[0], v[1])
-    }
-}
-
-/// The face of a floating-frame beam in world coordinates: the body-frame face point p̄(s),
-/// tangent, normal and elastic velocity from the beam interpolation at u = T q_f ([`BeamFace`]),
-/// then r = R + A p̄, t = A t̄, n = A n̄, ṙ = Ṙ + θ̇ Ĩ A p̄ + A p̄̇ (Shabana 2020, eq. 5.4 and its
-/// time derivative).
-pub(crate) struct FloatFace<'a> {
-    local: BeamFace<'a>,
-    origin: Vector2<f64>,
-    angle: f64,
-    velocity: Vector2<f64>,
-    omega: f64,
-}
-
-impl GuideSurface for FloatFace<'_> {
-    fn arc_range(&self) -> (f64, f64) {
-        self.local.arc_range()
-    }
-    fn point(&self, s: f64) -> Vector2<f64> {
-        self.origin + rot(self.angle, self.local.point(s))
-    }
-    fn tangent(&self, s: f64) -> Vector2<f64> {
-        rot(self.angle, self.local.tangent(s))
-    }
-    fn normal(&self, s: f64) -> Vector2<f64> {
-        rot(self.angle, self.local.normal(s))
-    }
-    fn velocity(&self, s: f64) -> Vector2<f64> {
-        let p = self.local.at(s);
-        let arm = rot(self.angle, Vector2::new(p.position[0], p.position[1]));
-        self.velocity
-            + self.omega * perp(arm)
-            + rot(self.angle, Vector2::new(p.velocity[0], p.velocity[1]))
-    }
-}
-
-/// The deformed face of a ground-fixed or floating beam at (q, q̇), as a clr-contact guide
-/// surface ([`BeamFace`], [`FloatFace`]).
-pub(crate) enum Surface<'a> {
-    Fixed(BeamFace<'a>),
-    Floating(FloatFace<'a>),
-}
-
-impl<'a> Surface<'a> {
-    /// Scatter the beam's coordinates and velocities into the full-DOF buffers `full` and
-    /// build the surface of `face` on `path`.
-    pub(crate) fn new(
-        guide: GuideRef,
-        q: &[f64],
-        qd: &[f64],
-        (path, face): (&'a Path, Face),
-        (u, ud): (&'a mut Vec<f64>, &'a mut Vec<f64>),
-    ) -> Self {
-        match guide {
-            GuideRef::Fixed(fb) => {
-                u.fill(0.0);
-                ud.fill(0.0);
-                for (a, &d) in fb.free.iter().enumerate() {
-                    u[d] = q[fb.offset + a];
-                    ud[d] = qd[fb.offset + a];
-                }
-                Surface::Fixed(BeamFace {
-                    path,
-                    face,
-                    q: u,
-                    qd: ud,
-                })
-            }
-            GuideRef::Floating(fl) => {
-                fl.full_displacements(q, qd, u, ud);
-                let o = fl.offset;
-                Surface::Floating(FloatFace {
-                    local: BeamFace {
-                        path,
-                        face,
-                        q: u,
-                        qd: ud,
-                    },
-                    origin: Vector2::new(q[o], q[o + 1]),
-                    angle: q[o + 2],
-                    velocity: Vector2::new(qd[o], qd[o + 1]),
-                    omega: qd[o + 2],
-                })
-            }
-        }
-    }
-
-    fn inner(&self) -> &dyn GuideSurface {
-        match self {
-            Surface::Fixed(f) => f,
-            Surface::Floating(f) => f,
-        }
-    }
-}
-
-impl GuideSurface for Surface<'_> {
-    fn arc_range(&self) -> (f64, f64) {
-        self.inner().arc_range()
-    }
-    fn point(&self, s: f64) -> Vector2<f64> {
-        self.inner().point(s)
-    }
-    fn tangent(&self, s: f64) -> Vector2<f64> {
-        self.inner().tangent(s)
-    }
-    fn normal(&self, s: f64) -> Vector2<f64> {
-        self.inner().normal(s)
-    }
-    fn velocity(&self, s: f64) -> Vector2<f64> {
-        self.inner().velocity(s)
-    }
-}
-
-/// Add a world force `force` (N) acting on the face `(path, face, u)` of a beam (u: its full-DOF
-/// displacements) at arc coordinate s, world point `point`, as work-equivalent nodal loads
-/// (clr-beam `surface_load_row`) on a ground-fixed beam's free DOF, or through
-/// `FloatingBody::add_point_force` on a floating body's (R, θ, q_f).
-pub(crate) fn add_face_load(
-    guide: GuideRef,
-    (path, face, u): (&Path, Face, &[f64]),
-    (s, point): (f64, Vector2<f64>),
-    force: Vector2<f64>,
-    q: &[f64],
-    qf: &mut [f64],
-) {
-    let Ok(row) = path.surface_load_row(s, face, u) else {
-        return;
-    };
-    match guide {
-        GuideRef::Fixed(fb) => {
-            for k in 0..6 {
-                if let Some(fi) = fb.free_index[row.dofs[k]] {
-                    qf[fb.offset + fi] += row.fx[k] * force.x + row.fy[k] * force.y;
-                }
-            }
-        }
-        GuideRef::Floating(fl) => fl.add_point_force(q, point, &row, force, qf),
-    }
 }
 
 /// The dry forces of a lubricated joint weighted by the transition's w(h_min) ∈ [0, 1].
@@ -284,38 +88,6 @@ pub(crate) struct Clearance {
 pub(crate) struct Film {
     pub(crate) bearing: clr_contact::lubrication::HydrodynamicBearing,
     pub(crate) transition: clr_contact::lubrication::Transition,
-}
-
-/// Quantities of one contact element at the last evaluated state.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ContactReport {
-    /// Largest penetration over the element's contact points, m (> 0 in contact; the signed
-    /// gap when no point is in contact).
-    pub penetration: f64,
-    /// Penetration rate of the point with the largest penetration, m/s (> 0 approaching).
-    pub penetration_rate: f64,
-    /// Normal force, summed over the active points, N.
-    pub normal_force: f64,
-    /// Friction force, summed over the active points, N.
-    pub friction_force: f64,
-    /// Number of active contact points (0 or 1 for a revolute clearance joint, 0–4 corners for
-    /// a translational one).
-    pub active_points: usize,
-    /// Revolute: journal centre relative to the bearing centre in the bearing body's frame;
-    /// translational: slider reference point in the guide frame; shape contact: the deepest
-    /// point on shape A within the prediction distance in the world frame (0 when there is
-    /// none), m.
-    pub eccentricity: [f64; 2],
-    /// Resultant of the oil film's pressure on the journal, N (lubricated joints; else 0).
-    pub film_force: f64,
-    /// Minimum film thickness h_min = c(1 − ε), m (lubricated joints; else 0).
-    pub film_thickness: f64,
-    /// Power dissipated by contact damping and friction, (F_N − F_e(δ))·δ̇ − F_T·v_T summed over
-    /// the active points, W. For a revolute joint it is the power the applied force pair takes
-    /// out of the bodies minus the elastic storage F_e·δ̇, so v_T is the slip at the points the
-    /// pair is applied to: with the default common-point application it differs from the slip
-    /// of the contact points by (δ/2)(ω_i + ω_j).
-    pub dissipated_power: f64,
 }
 
 impl Clearance {

@@ -19,10 +19,10 @@ use clr_contact::{
 };
 use nalgebra::Vector2;
 
-use crate::clearance::{add_face_load, ContactReport, GuideBeam, GuideRef, Surface};
-use crate::shape_pair::{
-    assign_slots, cross, perp, point_force, reduce, Kept, PairSettings, Side, SlotKey,
-};
+use crate::beam_face::{add_face_load, GuideBeam, GuideRef, Surface};
+use crate::contact_report::ContactReport;
+use crate::runtime::{cross, perp};
+use crate::shape_pair::{assign_slots, point_force, reduce, Kept, PairSettings, Side, SlotKey};
 
 /// The runtime form (module docs); B is on the clearance's frame j.
 pub(crate) struct FacePair {

@@ -3,7 +3,8 @@
 //! which all four do (the slider has left the guide). The contact itself stays continuous there
 //! (clr-contact clips the slider outline at the end); these notes tell the user it happened.
 
-use crate::clearance::{ClearanceKind, GuideBeam};
+use crate::beam_face::GuideBeam;
+use crate::clearance::ClearanceKind;
 use crate::system::Model;
 
 /// What one slider-on-beam element has reported so far.

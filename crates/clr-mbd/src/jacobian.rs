@@ -57,7 +57,9 @@ mod guide;
 use clr_contact::{BodyState, ContactMemory};
 use nalgebra::{Matrix2, Vector2};
 
-use crate::clearance::{Clearance, ClearanceKind, ContactReport, GuideBeam, GuideRef};
+use crate::beam_face::{GuideBeam, GuideRef};
+use crate::clearance::{Clearance, ClearanceKind};
+use crate::contact_report::ContactReport;
 use crate::runtime::{add_gen, body_state, perp, rot, ConKind, ForceEl, Frame, GROUND_ID};
 use crate::system::Model;
 
@@ -800,13 +802,13 @@ fn is_analytic(f: &ForceEl) -> bool {
 
 impl Model {
     /// Coordinate columns of the flexible body carrying a slider's guide face.
-    fn guide_columns(&self, b: crate::clearance::GuideBeam) -> Vec<usize> {
+    fn guide_columns(&self, b: GuideBeam) -> Vec<usize> {
         match b {
-            crate::clearance::GuideBeam::Fixed(k) => {
+            GuideBeam::Fixed(k) => {
                 let fb = &self.beams[k];
                 (fb.offset..fb.offset + fb.n_free()).collect()
             }
-            crate::clearance::GuideBeam::Floating(k) => {
+            GuideBeam::Floating(k) => {
                 let f = &self.floating[k];
                 (f.offset..f.offset + f.n_coords()).collect()
             }

@@ -31,7 +31,10 @@
 
 #![warn(missing_docs)]
 
+mod beam_face;
+mod broad_phase;
 mod clearance;
+mod contact_report;
 pub mod desc;
 pub mod element;
 pub mod error;

@@ -1,5 +1,7 @@
 //! Physical outputs of flexible bodies: the displacement, rotation and world position of chosen
-//! nodes (`[output.nodes]`, opt-in), and the meaning and unit of every elastic coordinate.
+//! nodes (`[output.nodes]`, opt-in), the meaning and unit of every elastic coordinate, and the
+//! coordinates of a recorded row with the world position of a floating body's node on them
+//! (`Model::coordinates_from_row`, `Model::floating_node_position`).
 //!
 //! Node columns, per recorded node k of body or beam `b` (after the coordinates of the floating
 //! bodies, in the order beams, then floating bodies, nodes ascending):
@@ -221,6 +223,91 @@ impl Model {
             }
         });
         beams.chain(floating).collect()
+    }
+}
+
+impl Model {
+    /// World position (m) of node `node` of floating flexible body `body` at coordinates `q`
+    /// (e.g. a row of [`crate::Results`] coordinates or the first n entries of a state):
+    /// r = R + A(θ)(ū₀ + Φ q_f) (Shabana 2020, eq. 5.4).
+    ///
+    /// # Errors
+    /// [`MbdError::UnknownBody`] for an unknown body name, [`MbdError::InvalidParameter`] for a
+    /// node that is not in the beam model or a `q` shorter than [`crate::Model::n_coordinates`].
+    pub fn floating_node_position(
+        &self,
+        body: &str,
+        node: usize,
+        q: &[f64],
+    ) -> Result<[f64; 2], MbdError> {
+        let Some(fb) = self.floating.iter().find(|f| f.name == body) else {
+            return Err(MbdError::UnknownBody {
+                item: "floating_node_position".into(),
+                body: body.into(),
+                known: self
+                    .floating
+                    .iter()
+                    .map(|f| f.name.clone())
+                    .collect::<Vec<_>>()
+                    .join(", "),
+            });
+        };
+        if node >= fb.nodes.len() || q.len() < self.n {
+            return Err(MbdError::InvalidParameter {
+                item: body.into(),
+                what: "node index or coordinate vector length",
+                value: node as f64,
+                requirement: "a node of the beam model and q with n_coordinates() entries",
+            });
+        }
+        let p = fb.node_position(node, q);
+        Ok([p.x, p.y])
+    }
+}
+
+impl Model {
+    /// The coordinates q (length [`crate::Model::n_coordinates`]) of output row `row` of
+    /// [`crate::Results`] from this model: rigid-body poses, floating-body coordinates, beam
+    /// DOF; the node-frame coordinates of node ties are set from their tie (p = R + A ū,
+    /// ψ = θ + φ_θ·q_f), which the constraints enforce. Use it with
+    /// [`crate::Model::floating_node_position`] on recorded results.
+    ///
+    /// # Errors
+    /// [`MbdError::InvalidParameter`] when `row` does not have one entry per output column.
+    pub fn coordinates_from_row(&self, row: &[f64]) -> Result<Vec<f64>, MbdError> {
+        let width = self.columns().len();
+        if row.len() != width {
+            return Err(MbdError::InvalidParameter {
+                item: "coordinates_from_row".into(),
+                what: "row length",
+                value: row.len() as f64,
+                requirement: "a row of Results from this model (one entry per output column)",
+            });
+        }
+        let mut q = vec![0.0; self.n];
+        let mut c = 1;
+        for k in 0..self.bodies.len() {
+            q[3 * k..3 * k + 3].copy_from_slice(&row[c..c + 3]);
+            c += 9;
+        }
+        for b in &self.beams {
+            let nf = b.n_free();
+            q[b.offset..b.offset + nf].copy_from_slice(&row[c..c + nf]);
+            c += nf;
+        }
+        for f in &self.floating {
+            let nc = f.n_coords();
+            q[f.offset..f.offset + nc].copy_from_slice(&row[c..c + nc]);
+            c += nc;
+        }
+        let zeros = vec![0.0; self.n];
+        for f in &self.floating {
+            for &(node, col) in &f.ties {
+                let (p, _) = f.node_frame(node, &q, &zeros);
+                q[col..col + 3].copy_from_slice(&p);
+            }
+        }
+        Ok(q)
     }
 }
 

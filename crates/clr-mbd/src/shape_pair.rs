@@ -1,6 +1,7 @@
-//! Runtime form of a shape contact pair (`[[clearance]] type = "contact"`): two placed shapes,
-//! a broad phase on their bounding circles (also tested for every pair at once by the model's
-//! [`BroadPhase`]) and boxes, parry's contact points reduced to one point per contact patch, a
+//! Runtime form of a shape contact pair (`[[clearance]] type = "contact"`): two placed shapes
+//! ([`PlacedShape`], the compiled form of a `[[shape]]`), a broad phase on their bounding circles
+//! (also tested for every pair at once by the model's
+//! [`BroadPhase`](crate::broad_phase::BroadPhase)) and boxes, parry's contact points reduced to one point per contact patch, a
 //! stable slot per point for the contact memory, and the step bound that keeps the shapes from
 //! passing through each other within a step ([`ShapePair::max_step`]).
 //!
@@ -28,8 +29,22 @@ use clr_contact::{
 };
 use nalgebra::Vector2;
 
-use crate::clearance::ContactReport;
-use crate::element::shape::PlacedShape;
+use crate::contact_report::ContactReport;
+use crate::runtime::{cross, perp, GROUND_ID};
+
+/// A compiled shape: the frame it moves with, its origin (arm from the frame's reference point)
+/// and angle there, and the parry shape built once.
+#[derive(Debug, Clone)]
+pub(crate) struct PlacedShape {
+    pub(crate) frame: usize,
+    pub(crate) arm: Vector2<f64>,
+    pub(crate) angle: f64,
+    pub(crate) shape: ContactShape,
+    /// The spacing of the shape's own discretization, m: the longest polyline segment, the
+    /// median flank chord of a gear, 0 for exact shapes (the default merge distance is twice
+    /// the larger of a pair's two: one smooth contact drawn as chords is one patch).
+    pub(crate) chord: f64,
+}
 
 /// One side of a pair: the placed shape.
 pub(crate) struct Side {
@@ -55,7 +70,7 @@ impl Side {
             shape: p.shape.clone(),
             radius,
             reach: p.arm.norm() + radius,
-            fixed: (p.frame == crate::runtime::GROUND_ID).then_some(p.arm),
+            fixed: (p.frame == GROUND_ID).then_some(p.arm),
         }
     }
 
@@ -416,71 +431,4 @@ pub(crate) fn reduce(points: &[ShapeContactPoint], s: &PairSettings, kept: &mut 
         kept.insert(at, Kept { point: *p, slot: 0 });
     }
     kept.truncate(s.max_points);
-}
-
-pub(crate) fn perp(v: Vector2<f64>) -> Vector2<f64> {
-    Vector2::new(-v.y, v.x)
-}
-
-pub(crate) fn cross(a: Vector2<f64>, b: Vector2<f64>) -> f64 {
-    a.x * b.y - a.y * b.x
-}
-
-/// The model's broad phase over its shape pairs: every pair's two bounding circles in one compact
-/// array, tested in a tight loop before the elements are visited, so that a pair far apart costs
-/// a few loads and a square root per evaluation (the same test [`ShapePair`] makes first, so
-/// the results do not change).
-#[derive(Default)]
-pub(crate) struct BroadPhase {
-    pairs: Vec<Circles>,
-    /// Per clearance element: true when it is a shape pair beyond its prediction distance at
-    /// the state of the last [`BroadPhase::update`].
-    pub(crate) apart: Vec<bool>,
-}
-
-/// The bounding circles of one pair ([`Side::circle`]).
-struct Circles {
-    clearance: usize,
-    frames: [usize; 2],
-    fixed: [Option<Vector2<f64>>; 2],
-    radius: [f64; 2],
-    margin: f64,
-}
-
-impl BroadPhase {
-    /// The shape pairs among `clearances`.
-    pub(crate) fn new(clearances: &[crate::clearance::Clearance]) -> Self {
-        let pairs = clearances
-            .iter()
-            .enumerate()
-            .filter_map(|(k, c)| match &c.kind {
-                crate::clearance::ClearanceKind::Shapes(p) => Some(Circles {
-                    clearance: k,
-                    frames: [c.i, c.j],
-                    fixed: [p.a.fixed, p.b.fixed],
-                    radius: [
-                        p.a.fixed.map_or(p.a.reach, |_| p.a.radius),
-                        p.b.fixed.map_or(p.b.reach, |_| p.b.radius),
-                    ],
-                    margin: p.settings.prediction,
-                }),
-                _ => None,
-            })
-            .collect();
-        Self {
-            pairs,
-            apart: vec![false; clearances.len()],
-        }
-    }
-
-    /// Test every pair at the coordinates `q`.
-    pub(crate) fn update(&mut self, frames: &[crate::runtime::Frame], q: &[f64]) {
-        for c in &self.pairs {
-            let centre = |s: usize| {
-                c.fixed[s].unwrap_or_else(|| crate::runtime::frame_position(frames, c.frames[s], q))
-            };
-            let gap = (centre(1) - centre(0)).norm() - c.radius[0] - c.radius[1];
-            self.apart[c.clearance] = gap > c.margin;
-        }
-    }
 }

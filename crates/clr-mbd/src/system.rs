@@ -30,8 +30,9 @@ use clr_contact::ContactMemory;
 
 use crate::timefn::TimeFn;
 
-pub use crate::clearance::ContactReport;
-use crate::clearance::{Clearance, GuideBeam, GuideRef};
+use crate::beam_face::{GuideBeam, GuideRef};
+use crate::clearance::Clearance;
+pub use crate::contact_report::ContactReport;
 use crate::flexible::FlexBeam;
 use crate::floating::FloatingBody;
 use clr_ode::{Direction, OdeSystem};
@@ -144,7 +145,7 @@ pub struct Model {
     pub(crate) sol: Vec<f64>,
     pub(crate) contacts: Vec<ContactReport>,
     /// Bounding-circle tests of the shape contact pairs (refreshed by each evaluation).
-    pub(crate) broad: crate::shape_pair::BroadPhase,
+    pub(crate) broad: crate::broad_phase::BroadPhase,
     pub(crate) solve_ok: bool,
     /// Power dissipated by dampers, contact damping and friction at the last evaluation, W.
     pub(crate) p_diss: f64,

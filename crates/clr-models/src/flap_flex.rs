@@ -38,6 +38,10 @@ pub const ELEMENTS: usize = 20;
 /// every step). The flexible runs record up to 6e5 steps × 100 columns.
 pub const MAX_CSV_ROWS: usize = 20_000;
 
+/// Duration of the flexible flap studies, s (ramp 0.25 s + 2 actuator periods): `clr study
+/// flap_flexible` and the flexible flap finding map.
+pub const FLAP_FLEX_STUDY_DURATION: f64 = 1.25;
+
 /// Body names of the three parts, in the order of [`FlapParams::flexible`].
 pub const PARTS: [&str; 3] = ["lever_arm", "aux_rod", "aux_lever_arm"];
 

@@ -44,10 +44,9 @@
 use crate::common;
 use crate::findings::{FindingSpec, Parameter, Scale};
 use crate::flap::{self, FlapParams};
-use crate::flap_flex;
+use crate::flap_flex::{self, FLAP_FLEX_STUDY_DURATION};
 use crate::lyapunov;
 use crate::map_study::MapDef;
-use crate::studies::FLAP_FLEX_STUDY_DURATION;
 use crate::RunSettings;
 use clr_mbd::Results;
 

@@ -32,8 +32,7 @@ pub type MapStudy = &'static MapDef;
 
 /// Duration of the rigid flap studies, s (ramp 0.25 s + 4 actuator periods).
 pub const FLAP_STUDY_DURATION: f64 = 2.25;
-/// Duration of the flexible flap studies, s (ramp 0.25 s + 2 actuator periods).
-pub const FLAP_FLEX_STUDY_DURATION: f64 = 1.25;
+pub use crate::flap_flex::FLAP_FLEX_STUDY_DURATION;
 /// Interguide spacings of the dual-guide spacing study, m.
 pub const DUAL_GUIDE_SPACINGS: [f64; 3] = [0.05, 0.1, 0.2];
 

@@ -4,7 +4,7 @@
 use clr_ode::test_models::{self, Hires, Orego, Problem, Robertson, VanDerPol};
 use clr_ode::{Ndf, OdeSystem, Options, Output};
 
-use super::ode::{timed, Row};
+use super::row::{timed, Row};
 
 /// Solver label of clr-ode's NDF in the rows.
 pub const SOLVER: &str = "clr-ndf";

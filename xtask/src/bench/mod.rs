@@ -5,6 +5,7 @@ mod clr;
 mod mbd;
 mod ode;
 mod peers;
+mod row;
 mod shapes;
 mod spatial;
 

@@ -23,33 +23,14 @@
 
 use std::fmt::Write as _;
 use std::process::ExitCode;
-use std::time::Instant;
 
 use clr_plot::Figure;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
 use super::clr;
 use super::peers::{run_diffsol, run_scipy, PeerRow};
+use super::row::{median, Row};
 use super::{parsed_or_report, with_series};
-
-/// One row of the benchmark table.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct Row {
-    pub problem: String,
-    pub solver: String,
-    pub rtol: f64,
-    pub atol: f64,
-    /// Median wall time of one solve (s).
-    pub wall_s: f64,
-    pub f_evals: usize,
-    pub steps: usize,
-    /// Mixed-error significant correct digits at t_end against the Test Set reference.
-    #[serde(default)]
-    pub scd: f64,
-    /// Number of timed solves behind the median.
-    #[serde(default)]
-    pub repeats: usize,
-}
 
 #[derive(Serialize)]
 struct Report<'a> {
@@ -108,38 +89,6 @@ pub fn atol_for(problem: &str, rtol: f64) -> f64 {
         rtol * 1e-6
     } else {
         rtol
-    }
-}
-
-/// Median of a non-empty sample.
-pub fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
-}
-
-/// Repeat `solve` at least 5 times and `min_time` seconds (at most 100 000 times) and return the
-/// median wall time with the last result.
-pub fn timed<T>(
-    min_time: f64,
-    mut solve: impl FnMut() -> Result<T, String>,
-) -> Result<(f64, usize, T), String> {
-    let mut times = Vec::new();
-    let mut total = 0.0;
-    loop {
-        let start = Instant::now();
-        let out = solve()?;
-        let dt = start.elapsed().as_secs_f64();
-        total += dt;
-        times.push(dt);
-        if times.len() >= 100_000 || (times.len() >= 5 && total >= min_time) {
-            let n = times.len();
-            return Ok((median(times), n, out));
-        }
     }
 }
 

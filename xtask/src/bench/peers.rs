@@ -14,7 +14,7 @@ use std::process::{Command, Stdio};
 
 use serde::Deserialize;
 
-use super::ode::Row;
+use super::row::Row;
 
 /// One row printed by a peer program: the common fields of a benchmark row (its `scd` is
 /// computed afterwards from `y_end`) and the state at t_end.

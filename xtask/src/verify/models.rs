@@ -12,8 +12,8 @@ use clr_models::slider_crank::{self, SliderCrankParams};
 use clr_models::{RunOutput, RunSettings};
 
 use super::Filter;
-use crate::figures::copy_study_figures;
 use crate::report::Case;
+use crate::study_figures::copy_study_figures;
 
 /// The known-gap link of guide friction finding `finding` (an id of
 /// `clr_models::guide_map::findings`): the page's analysis and the finding map.

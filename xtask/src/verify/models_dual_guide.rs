@@ -156,7 +156,7 @@ pub fn figures(out: &Path) -> Result<(), String> {
     dual_guide::single_vs_dual(&dir("single_vs_dual"))?;
     dual_guide::spacing_study(&dir("spacing"), &SPACINGS)?;
     for study in ["single_vs_dual", "spacing"] {
-        crate::figures::copy_study_figures(
+        crate::study_figures::copy_study_figures(
             &dir(study),
             &["lateral", "actuator"],
             out,

@@ -306,7 +306,7 @@ pub fn figures(dir: &Path) -> Result<(), String> {
     if !fdir.join("summary.csv").exists() {
         flap_flex::study(&fdir, &study_base())?;
     }
-    crate::figures::copy_study_figures(
+    crate::study_figures::copy_study_figures(
         &fdir,
         &[
             "bodies_oscillation",

@@ -10,7 +10,8 @@ use nalgebra::Vector2;
 use super::anchor::Anchor;
 use super::floating_body::FlexibleBody;
 use super::ground_beam::GroundBeam;
-use crate::clearance::{Clearance, GuideBeam};
+use crate::beam_face::GuideBeam;
+use crate::clearance::Clearance;
 use crate::desc::parts::{Body, ForceApplicationDesc, ModelInfo, Point};
 use crate::error::MbdError;
 use crate::flexible::FlexBeam;
@@ -379,7 +380,7 @@ impl Compiler {
         let (body_names, bodies): (Vec<_>, Vec<_>) = bodies.into_iter().unzip();
         let nc = clearances.len();
         let bristles = crate::lugre::assign_bristles(&mut clearances);
-        let broad = crate::shape_pair::BroadPhase::new(&clearances);
+        let broad = crate::broad_phase::BroadPhase::new(&clearances);
         Ok(Model {
             body_names,
             bodies,

@@ -4,12 +4,12 @@
 //! contact.
 
 use clr_contact::{ContactShape, InvoluteGear, Shape};
-use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
 
 use super::{Anchor, Compiler};
 use crate::error::MbdError;
 use crate::face_pair::FaceSource;
+use crate::shape_pair::PlacedShape;
 
 /// `[[shape]]`: a named shape on a body. Its frame sits at `at` turned by `angle` from the body's
 /// x axis; the geometry is written in that frame (m, rad).
@@ -184,20 +184,6 @@ impl Geometry {
             )),
         }
     }
-}
-
-/// A compiled shape: the frame it moves with, its origin (arm from the frame's reference point)
-/// and angle there, and the parry shape built once.
-#[derive(Debug, Clone)]
-pub(crate) struct PlacedShape {
-    pub(crate) frame: usize,
-    pub(crate) arm: Vector2<f64>,
-    pub(crate) angle: f64,
-    pub(crate) shape: ContactShape,
-    /// The spacing of the shape's own discretization, m: the longest polyline segment, the
-    /// median flank chord of a gear, 0 for exact shapes (the default merge distance is twice
-    /// the larger of a pair's two: one smooth contact drawn as chords is one patch).
-    pub(crate) chord: f64,
 }
 
 /// A compiled `[[shape]]`: rigid, or the face of a flexible beam (with the frame of its beam:

@@ -4,7 +4,8 @@
 use clr_contact::{BodyState, ContactMemory, LuGre};
 
 use super::state::{Bristles, LuGreContact};
-use crate::clearance::{Clearance, ClearanceKind, ContactReport};
+use crate::clearance::{Clearance, ClearanceKind};
+use crate::contact_report::ContactReport;
 
 /// ż and F_T of one contact point.
 #[inline]
