@@ -74,17 +74,27 @@
     };
   }
 
-  /** The box of every attachment point and traced point over all frames. */
+  /** The box of every attachment point, joint, socket and traced point over all frames. */
   function bounds(view, motion) {
+    const sc = view.scene;
     const box = new THREE.Box3();
     const v = new THREE.Vector3();
+    const poseOf = (name, i) => motion.pose(sc.bodies.findIndex((b) => b.name === name), i, 0);
+    /** Add the point `at` of body `name` (null: the ground) in frame i, grown by r. */
+    const add = (name, at, i, r) => {
+      const p = name == null ? null : poseOf(name, i);
+      v.set(...at);
+      if (p) v.applyQuaternion(p.q).add(p.p);
+      box.expandByPoint(v.clone().addScalar(r));
+      box.expandByPoint(v.addScalar(-r));
+    };
     for (let i = 0; i < motion.n; i++) {
-      view.scene.bodies.forEach((b, k) => {
-        const p = motion.pose(k, i, 0);
-        if (!p) return;
-        box.expandByPoint(p.p);
-        for (const a of b.points) box.expandByPoint(v.set(...a).applyQuaternion(p.q).add(p.p));
-      });
+      for (const b of sc.bodies) {
+        add(b.name, [0, 0, 0], i, 0);
+        for (const a of b.points) add(b.name, a, i, 0);
+      }
+      for (const j of sc.joints) add(j.body, j.at, i, 0);
+      for (const s of sc.sockets) add(s.socket_body, s.socket_at, i, s.socket_radius);
       const tr = motion.trace(i, 0);
       if (tr) box.expandByPoint(tr);
     }
@@ -173,6 +183,12 @@
     const size = Math.max(box3.getSize(new THREE.Vector3()).length(), 1e-6);
     const handle = { webgl: 'pending', renders: 0, ball: () => null, body: () => null };
     clrReport.spatial = handle;
+    // three.js reports WebGL failures (shader compilation, lost context) on the console only
+    const consoleError = console.error.bind(console);
+    console.error = (...args) => {
+      clrReport.errors.push(args.map(String).join(' '));
+      consoleError(...args);
+    };
 
     // clearance magnification as on the planar page: the clearance drawn as 8 % of the socket
     // radius by default, up to 85 %
@@ -304,12 +320,51 @@
       if (trace && tr) trace.position.copy(tr);
       render();
       showTime();
+      if (!pb.playing) publishState();
     }
 
     function render() {
       if (!renderer) return;
       renderer.render(world, camera);
       handle.renders += 1;
+    }
+
+    /** Drawn pixels that are not the white background, of a 64 × 64 sample of the canvas. */
+    function inkSample() {
+      const gl = renderer && renderer.getContext();
+      if (!gl) return 0;
+      const w = gl.drawingBufferWidth;
+      const hgt = gl.drawingBufferHeight;
+      const px = new Uint8Array(w * hgt * 4);
+      gl.readPixels(0, 0, w, hgt, gl.RGBA, gl.UNSIGNED_BYTE, px);
+      let ink = 0;
+      for (let y = 0; y < 64; y++) {
+        for (let x = 0; x < 64; x++) {
+          const k = 4 * (Math.floor((y * hgt) / 64) * w + Math.floor((x * w) / 64));
+          if (px[k] < 240 || px[k + 1] < 240 || px[k + 2] < 240) ink++;
+        }
+      }
+      return ink;
+    }
+
+    /** The drawn state in the DOM (<script id="clr-state">), for a headless browser that can
+     * only dump the DOM (cargo xtask report-check): time, WebGL status, renders, the ink of the
+     * canvas, ball centres (world, unmagnified), body poses, script errors. */
+    function publishState() {
+      const balls = {};
+      for (const sk of sockets) balls[sk.s.name] = handle.ball(sk.s.name);
+      const poses = {};
+      for (const b of scene3.bodies) poses[b.name] = handle.body(b.name);
+      const state = {
+        time: pb.t, webgl: handle.webgl, renders: handle.renders, ink: inkSample(), view: current,
+        balls, bodies: poses, errors: clrReport.errors,
+      };
+      let el = document.getElementById('clr-state');
+      if (!el) {
+        el = h('script', { id: 'clr-state', type: 'application/json' });
+        document.body.appendChild(el);
+      }
+      el.textContent = JSON.stringify(state);
     }
 
     handle.ball = (name) => {
@@ -353,7 +408,8 @@
       const w = Math.max(1, Math.round(r.width));
       const hgt = Math.max(1, Math.round(r.height));
       renderer.setPixelRatio(window.devicePixelRatio || 1);
-      renderer.setSize(w, hgt, true);
+      // the canvas fills the stage by its style (report3d.css): only its buffer is sized here
+      renderer.setSize(w, hgt, false);
       camera.aspect = w / hgt;
       camera.updateProjectionMatrix();
       render();
