@@ -624,6 +624,22 @@ impl View {
         (0.04 * width as f64).round().max(24.0)
     }
 
+    /// The mapping that fits the box around the finite points of `pts` (m; the origin without
+    /// one) as [`View::fit`] does.
+    fn fit_points(pts: Vec<P>, width: u32) -> View {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in pts.into_iter().filter(|p| finite(*p)) {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        if !finite(lo) {
+            (lo, hi) = ([0.0, 0.0], [0.0, 0.0]);
+        }
+        View::fit(lo, hi, width)
+    }
+
     /// The mapping that fits the box `[lo, hi]` (m) into an image `width` px wide, with the
     /// height following the aspect (between a quarter of the width and 1.25 times it; even).
     fn fit(lo: P, hi: P, width: u32) -> View {
@@ -662,6 +678,14 @@ impl View {
             bottom: m + ((height as f64 - 2.0 * m) - dy * scale) / 2.0,
         }
     }
+}
+
+/// Decimals of the time shown: enough to tell the frames `picks` of the times `t` (s) apart.
+fn time_decimals(t: &[f64], picks: &[usize]) -> usize {
+    let (ta, tb) = (t[picks[0]], t[picks[picks.len() - 1]]);
+    let step = (tb - ta) / (picks.len().max(2) - 1) as f64;
+    let scale = if step > 0.0 { step } else { tb.abs().max(1e-3) };
+    (-scale.log10()).ceil().clamp(1.0, 9.0) as usize
 }
 
 /// Report frames at `count` equally spaced times over the frames inside [start, end] (the
@@ -800,22 +824,8 @@ impl<'a> Animation<'a> {
                 sh.extent(&mut pts);
             }
         }
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in pts.into_iter().filter(|p| finite(*p)) {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        if !finite(lo) {
-            (lo, hi) = ([0.0, 0.0], [0.0, 0.0]);
-        }
-        a.view = View::fit(lo, hi, s.width);
-        let t = &frames.t.0;
-        let (ta, tb) = (t[a.picks[0]], t[a.picks[a.picks.len() - 1]]);
-        let step = (tb - ta) / (a.picks.len().max(2) - 1) as f64;
-        let scale = if step > 0.0 { step } else { tb.abs().max(1e-3) };
-        a.decimals = (-scale.log10()).ceil().clamp(1.0, 9.0) as usize;
+        a.view = View::fit_points(pts, s.width);
+        a.decimals = time_decimals(&frames.t.0, &a.picks);
         Ok(a)
     }
 
@@ -2101,29 +2111,16 @@ impl SpatialAnimation {
             px: View::fit([0.0, 0.0], [1.0, 1.0], s.width),
             decimals: 3,
         };
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        let mut pts = Vec::new();
         for &f in &a.picks {
             for s in 0..a.view.scene.sockets.len() {
                 let v = a.view.frames.socket(s, f);
                 a.fmax = a.fmax.max(v[3].abs()).max(norm3([v[4], v[5], v[6]]));
             }
-            for p in a.world_points(f) {
-                let q = a.project(p);
-                for k in 0..2 {
-                    lo[k] = lo[k].min(q[k]);
-                    hi[k] = hi[k].max(q[k]);
-                }
-            }
+            pts.extend(a.world_points(f).into_iter().map(|p| a.project(p)));
         }
-        if !finite(lo) {
-            (lo, hi) = ([0.0, 0.0], [0.0, 0.0]);
-        }
-        a.px = View::fit(lo, hi, s.width);
-        let t = &a.view.frames.t;
-        let (ta, tb) = (t[a.picks[0]], t[a.picks[a.picks.len() - 1]]);
-        let step = (tb - ta) / (a.picks.len().max(2) - 1) as f64;
-        let scale = if step > 0.0 { step } else { tb.abs().max(1e-3) };
-        a.decimals = (-scale.log10()).ceil().clamp(1.0, 9.0) as usize;
+        a.px = View::fit_points(pts, s.width);
+        a.decimals = time_decimals(&a.view.frames.t, &a.picks);
         Ok(a)
     }
 

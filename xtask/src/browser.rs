@@ -386,6 +386,10 @@ fn check_spatial(chromium: &Path, dir: &Path, png: &Path) -> Result<(), String> 
     std::fs::write(&page, report.html()).map_err(|e| format!("{}: {e}", page.display()))?;
     let times = [0.3, 0.7];
     screenshot(chromium, &page, times[0], png)?;
+    let console = console_messages(chromium, &page, times[0])?;
+    if !console.is_empty() {
+        return Err(format!("spatial page: console messages: {console:?}"));
+    }
     for t in times {
         let state = page_state(chromium, &page, t)?;
         if state["webgl"] != "ok" || state["renders"].as_u64().unwrap_or(0) == 0 {
@@ -416,4 +420,21 @@ fn check_spatial(chromium: &Path, dir: &Path, png: &Path) -> Result<(), String> 
         println!("report-check: spatial: t = {t} s: WebGL drew ({ink} of 4096 samples inked), no errors, ball where the data puts it");
     }
     Ok(())
+}
+
+/// The browser console's messages while the page draws time `t` (Chromium's log on stderr),
+/// except the performance note of the page's own pixel sample ("GPU stall due to ReadPixels"):
+/// three.js reports WebGL trouble (a failed shader, a lost context) there, and Chromium its
+/// deprecation of an implicit software WebGL.
+fn console_messages(chromium: &Path, page: &Path, t: f64) -> Result<Vec<String>, String> {
+    let out = headless(chromium)
+        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
+        .arg(url(page, t)?)
+        .output()
+        .map_err(|e| format!("chromium: {e}"))?;
+    Ok(String::from_utf8_lossy(&out.stderr)
+        .lines()
+        .filter(|l| l.contains(":CONSOLE") && !l.contains("GPU stall due to ReadPixels"))
+        .map(str::to_string)
+        .collect())
 }
