@@ -518,13 +518,9 @@ mod tests {
             let r = rodrigues(a, 2.0 * std::f64::consts::PI * t, p);
             let want = [0, 1, 2].map(|k| 0.3 * a[k] + r[k]);
             // f32 storage: 7 digits of 0.4 m, 1e-6 m is ample and far below a pixel
-            for k in 0..3 {
+            for (k, w) in want.iter().enumerate() {
                 let got = f64::from(fr.trace[3 * f + k]);
-                assert!(
-                    (got - want[k]).abs() < 1e-6,
-                    "t {t} axis {k}: {got} vs {}",
-                    want[k]
-                );
+                assert!((got - w).abs() < 1e-6, "t {t} axis {k}: {got} vs {w}");
             }
             // the pivot (body point −0.3·a) stays at the origin: the spherical joint holds
             let pivot = fr.pose_of(Some(0), f).point(a.map(|v| -0.3 * v));

@@ -412,7 +412,9 @@ fn check_spatial(chromium: &Path, dir: &Path, png: &Path) -> Result<(), String> 
         let got: Vec<f64> = (0..3)
             .map(|k| state["balls"]["cup"][k].as_f64().unwrap_or(f64::NAN))
             .collect();
-        if (0..3).any(|k| !((got[k] - want[k]).abs() < 1e-6)) {
+        // a NaN (no ball drawn) fails too
+        let near = (0..3).all(|k| (got[k] - want[k]).abs() < 1e-6);
+        if !near {
             return Err(format!(
                 "spatial page: ball drawn at {got:?} at t = {t} s, expected {want:?}"
             ));
