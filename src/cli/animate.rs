@@ -28,6 +28,8 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform,
 };
 
+use clr_sim::report::spatial::{Pose, SocketDraw, SpatialScene, SpatialView};
+
 use super::CliError;
 
 /// `clr animate`.
@@ -67,6 +69,10 @@ pub(crate) struct AnimateArgs {
     /// Last time shown, s (default: the run's end).
     #[arg(long, value_name = "S")]
     pub end: Option<f64>,
+    /// The view of a spatial (3-D) model's run: an orthographic projection from (1, 1, 1)
+    /// (iso, the default), +z (front: the x-y plane), +y (top) or +x (side); y is up.
+    #[arg(long, value_enum, value_name = "VIEW")]
+    pub view: Option<ViewName>,
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -101,6 +107,9 @@ struct Page {
     scene_note: Option<String>,
     #[serde(default)]
     frames: Option<Frames>,
+    /// A spatial model's drawing and frames (then `scene` is absent).
+    #[serde(default)]
+    spatial: Option<SpatialView>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -261,8 +270,11 @@ fn check(page: &Page, file: &Path) -> Result<(), String> {
             dir.join("point-00000").display()
         ));
     }
-    let frames = page.frames.as_ref().map_or(0, |f| f.t.0.len());
-    if page.scene.is_none() || frames == 0 {
+    let frames = match &page.spatial {
+        Some(s) => s.frames.t.len(),
+        None => page.frames.as_ref().map_or(0, |f| f.t.0.len()),
+    };
+    if (page.scene.is_none() && page.spatial.is_none()) || frames == 0 {
         let why = match (&page.scene, &page.scene_note) {
             (None, Some(note)) => format!("the model has no drawing: {note}"),
             (None, None) => "the model has no drawing".to_string(),
@@ -280,16 +292,23 @@ fn check(page: &Page, file: &Path) -> Result<(), String> {
 // ---------------------------------------------------------------------------------------------
 // Options
 
-/// What the drawing needs besides the page.
+/// What the drawing needs besides the page (the options of `clr animate`, checked).
 #[derive(Debug, Clone)]
-struct Settings {
-    fps: f64,
-    duration: f64,
-    width: u32,
-    clearance_magnification: Option<f64>,
-    deformation_magnification: Option<f64>,
-    start: Option<f64>,
-    end: Option<f64>,
+pub(crate) struct Settings {
+    /// Frames per second.
+    pub(crate) fps: f64,
+    /// Length of the animation, s.
+    pub(crate) duration: f64,
+    /// Image width, px (even).
+    pub(crate) width: u32,
+    /// Clearance magnification (`None`: automatic).
+    pub(crate) clearance_magnification: Option<f64>,
+    /// Deformation magnification of beams (`None`: automatic).
+    pub(crate) deformation_magnification: Option<f64>,
+    /// First time shown, s.
+    pub(crate) start: Option<f64>,
+    /// Last time shown, s.
+    pub(crate) end: Option<f64>,
 }
 
 impl Default for Settings {
@@ -553,6 +572,30 @@ struct Animation<'a> {
     decimals: usize,
 }
 
+/// An animation as `clr animate` writes it: frames of one size, each showing a report frame.
+pub(crate) trait Movie {
+    /// Image width and height, px (even).
+    fn size(&self) -> (u32, u32);
+    /// The report frame each output frame shows.
+    fn picks(&self) -> &[usize];
+    /// Output frame `i`.
+    fn render(&self, i: usize) -> Pixmap;
+}
+
+impl Movie for Animation<'_> {
+    fn size(&self) -> (u32, u32) {
+        (self.view.width, self.view.height)
+    }
+
+    fn picks(&self) -> &[usize] {
+        &self.picks
+    }
+
+    fn render(&self, i: usize) -> Pixmap {
+        self.frame(i)
+    }
+}
+
 /// The world → pixel mapping (y up in the world, down in the image).
 #[derive(Debug, Clone, Copy)]
 struct View {
@@ -579,6 +622,22 @@ impl View {
     /// Margin around the drawing, px (room for the texts).
     fn margin(width: u32) -> f64 {
         (0.04 * width as f64).round().max(24.0)
+    }
+
+    /// The mapping that fits the box around the finite points of `pts` (m; the origin without
+    /// one) as [`View::fit`] does.
+    fn fit_points(pts: Vec<P>, width: u32) -> View {
+        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+        for p in pts.into_iter().filter(|p| finite(*p)) {
+            for k in 0..2 {
+                lo[k] = lo[k].min(p[k]);
+                hi[k] = hi[k].max(p[k]);
+            }
+        }
+        if !finite(lo) {
+            (lo, hi) = ([0.0, 0.0], [0.0, 0.0]);
+        }
+        View::fit(lo, hi, width)
     }
 
     /// The mapping that fits the box `[lo, hi]` (m) into an image `width` px wide, with the
@@ -619,6 +678,14 @@ impl View {
             bottom: m + ((height as f64 - 2.0 * m) - dy * scale) / 2.0,
         }
     }
+}
+
+/// Decimals of the time shown: enough to tell the frames `picks` of the times `t` (s) apart.
+fn time_decimals(t: &[f64], picks: &[usize]) -> usize {
+    let (ta, tb) = (t[picks[0]], t[picks[picks.len() - 1]]);
+    let step = (tb - ta) / (picks.len().max(2) - 1) as f64;
+    let scale = if step > 0.0 { step } else { tb.abs().max(1e-3) };
+    (-scale.log10()).ceil().clamp(1.0, 9.0) as usize
 }
 
 /// Report frames at `count` equally spaced times over the frames inside [start, end] (the
@@ -757,22 +824,8 @@ impl<'a> Animation<'a> {
                 sh.extent(&mut pts);
             }
         }
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for p in pts.into_iter().filter(|p| finite(*p)) {
-            for k in 0..2 {
-                lo[k] = lo[k].min(p[k]);
-                hi[k] = hi[k].max(p[k]);
-            }
-        }
-        if !finite(lo) {
-            (lo, hi) = ([0.0, 0.0], [0.0, 0.0]);
-        }
-        a.view = View::fit(lo, hi, s.width);
-        let t = &frames.t.0;
-        let (ta, tb) = (t[a.picks[0]], t[a.picks[a.picks.len() - 1]]);
-        let step = (tb - ta) / (a.picks.len().max(2) - 1) as f64;
-        let scale = if step > 0.0 { step } else { tb.abs().max(1e-3) };
-        a.decimals = (-scale.log10()).ceil().clamp(1.0, 9.0) as usize;
+        a.view = View::fit_points(pts, s.width);
+        a.decimals = time_decimals(&frames.t.0, &a.picks);
         Ok(a)
     }
 
@@ -1216,7 +1269,7 @@ impl<'a> Animation<'a> {
     }
 
     /// Output frame `i` drawn.
-    fn render(&self, i: usize) -> Pixmap {
+    fn frame(&self, i: usize) -> Pixmap {
         let f = self.picks[i];
         let v = &self.view;
         let mut pm = Pixmap::new(v.width, v.height).expect("the image size is checked");
@@ -1542,6 +1595,11 @@ fn circle(pm: &mut Pixmap, c: P, r: f64, fill: Option<Rgb>, edge: Option<(Rgb, f
 
 /// An arrow from `tail` along the unit `dir` (pixel axes), `length` px long.
 fn arrow(pm: &mut Pixmap, tail: P, dir: P, length: f64) {
+    arrow_in(pm, tail, dir, length, ARROW);
+}
+
+/// [`arrow`] in colour `c`.
+fn arrow_in(pm: &mut Pixmap, tail: P, dir: P, length: f64, c: Rgb) {
     if !finite(tail) || !finite(dir) || !length.is_finite() || length <= 0.0 {
         return;
     }
@@ -1549,15 +1607,15 @@ fn arrow(pm: &mut Pixmap, tail: P, dir: P, length: f64) {
     let tip = add(tail, mul(dir, length));
     let base = sub(tip, mul(dir, head));
     if length > head {
-        polyline(pm, &[tail, base], ARROW, 2.5);
+        polyline(pm, &[tail, base], c, 2.5);
     }
     let n = [-dir[1], dir[0]];
     let w = 0.45 * head;
     polygon(
         pm,
         &[tip, add(base, mul(n, w)), sub(base, mul(n, w))],
-        ARROW,
-        ARROW,
+        c,
+        c,
         1.0,
     );
 }
@@ -1937,6 +1995,360 @@ impl Mp4Sink {
 // ---------------------------------------------------------------------------------------------
 // The command
 
+// ---------------------------------------------------------------------------------------------
+// Spatial scenes (`--view`): an orthographic projection drawn with the 2-D primitives above.
+// A hand projection (no 3-D library): bodies as thick lines through their attachment points,
+// joints as dots with their axes, sockets as circles with the ball offset magnified, contact
+// force arrows, the traced point's path; everything sorted far to near (painter's order).
+
+/// A named view of a spatial scene (world y up, as on the 3-D page).
+#[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) enum ViewName {
+    /// From (1, 1, 1), y up.
+    #[default]
+    Iso,
+    /// From +z: x right, y up (the plane of a planar model).
+    Front,
+    /// From +y: x right, −z up.
+    Top,
+    /// From +x: −z right, y up.
+    Side,
+}
+
+impl ViewName {
+    /// Unit world directions of the image's right, its up and towards the viewer (a
+    /// right-handed triple: right × up = towards).
+    fn axes(self) -> [[f64; 3]; 3] {
+        let (a, b, c) = (
+            std::f64::consts::FRAC_1_SQRT_2,
+            1.0 / 6f64.sqrt(),
+            1.0 / 3f64.sqrt(),
+        );
+        match self {
+            ViewName::Iso => [[a, 0.0, -a], [-b, 2.0 * b, -b], [c, c, c]],
+            ViewName::Front => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            ViewName::Top => [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]],
+            ViewName::Side => [[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+        }
+    }
+
+    fn label(self) -> &'static str {
+        match self {
+            ViewName::Iso => "iso",
+            ViewName::Front => "front",
+            ViewName::Top => "top",
+            ViewName::Side => "side",
+        }
+    }
+}
+
+/// Colours of the bodies in turn (all in the GIF palette).
+const BODY_COLOURS: [Rgb; 4] = [PART_EDGE, BEARING, BEAM_EDGE, JOURNAL_EDGE];
+
+/// One thing drawn in a spatial frame (pixels), at its depth towards the viewer (m).
+enum Mark {
+    Line(Vec<P>, Rgb, f64),
+    Dot(P, f64, Rgb, Rgb),
+    Arrow(P, P, f64, Rgb),
+}
+
+/// A spatial scene's frames drawn from a named view.
+pub(crate) struct SpatialAnimation {
+    view: SpatialView,
+    model: String,
+    name: ViewName,
+    picks: Vec<usize>,
+    /// Clearance magnification.
+    mag: f64,
+    /// Largest contact force over the frames shown, N.
+    fmax: f64,
+    px: View,
+    decimals: usize,
+}
+
+/// The animation of `scene` over `results` seen from `view` (what `clr animate --view` draws
+/// for a spatial page), for a caller that holds the results rather than a report page.
+///
+/// # Errors
+/// The scene does not fit the results, or no frame is inside `--start … --end`.
+#[allow(dead_code)] // for the spatial run's `clr run` (issue 31); the tests call it meanwhile
+pub(crate) fn animate_spatial(
+    scene: SpatialScene,
+    results: &clr_mbd::Results,
+    view: ViewName,
+    settings: &Settings,
+    model: &str,
+) -> Result<SpatialAnimation, String> {
+    let t = results.column("t").unwrap_or_default();
+    let rows = clr_sim::report::frames::select(&t, 20_000);
+    let sv = SpatialView::new(scene, results, &rows).map_err(|e| e.to_string())?;
+    SpatialAnimation::new(sv, model, view, settings)
+}
+
+impl SpatialAnimation {
+    /// Choose the frames, the magnification and the pixel mapping.
+    fn new(view: SpatialView, model: &str, name: ViewName, s: &Settings) -> Result<Self, String> {
+        let count = ((s.fps * s.duration).round() as usize).max(1);
+        let picks = pick_frames(&view.frames.t, s.start, s.end, count);
+        if picks.is_empty() {
+            return Err("no frame of the spatial run inside --start … --end".into());
+        }
+        // as on the page: the clearance drawn as 8 % of the socket radius, at least 1
+        let auto = (view.scene.sockets.iter())
+            .filter(|k| k.socket_radius > k.ball_radius)
+            .map(|k| 0.08 * k.socket_radius / (k.socket_radius - k.ball_radius))
+            .fold(f64::INFINITY, f64::min);
+        let mag =
+            s.clearance_magnification
+                .unwrap_or(if auto.is_finite() { auto.max(1.0) } else { 1.0 });
+        let mut a = SpatialAnimation {
+            view,
+            model: model.to_string(),
+            name,
+            picks,
+            mag,
+            fmax: 0.0,
+            px: View::fit([0.0, 0.0], [1.0, 1.0], s.width),
+            decimals: 3,
+        };
+        let mut pts = Vec::new();
+        for &f in &a.picks {
+            for s in 0..a.view.scene.sockets.len() {
+                let v = a.view.frames.socket(s, f);
+                a.fmax = a.fmax.max(v[3].abs()).max(norm3([v[4], v[5], v[6]]));
+            }
+            pts.extend(a.world_points(f).into_iter().map(|p| a.project(p)));
+        }
+        a.px = View::fit_points(pts, s.width);
+        a.decimals = time_decimals(&a.view.frames.t, &a.picks);
+        Ok(a)
+    }
+
+    /// The image plane coordinates (m) of a world point.
+    fn project(&self, p: [f64; 3]) -> P {
+        let [r, u, _] = self.name.axes();
+        [dot3(p, r), dot3(p, u)]
+    }
+
+    fn depth(&self, p: [f64; 3]) -> f64 {
+        dot3(p, self.name.axes()[2])
+    }
+
+    fn pose(&self, body: Option<&str>, f: usize) -> Pose {
+        self.view.frames.pose_of(self.view.body(body), f)
+    }
+
+    /// Every world point drawn in frame `f` (for the bounds): body points and centres, joints,
+    /// socket centres with their radius, the trace.
+    fn world_points(&self, f: usize) -> Vec<[f64; 3]> {
+        let sc = &self.view.scene;
+        let mut out = Vec::new();
+        for (k, b) in sc.bodies.iter().enumerate() {
+            let pose = self.view.frames.pose_of(Some(k), f);
+            out.push(pose.x);
+            out.extend(b.points.iter().map(|&p| pose.point(p)));
+        }
+        for j in &sc.joints {
+            out.push(self.pose(j.body.as_deref(), f).point(j.at));
+        }
+        for k in &sc.sockets {
+            let c = self.pose(k.socket_body.as_deref(), f).point(k.socket_at);
+            out.extend([-1.0, 1.0].map(|s| c.map(|v| v + s * k.socket_radius)));
+        }
+        out.extend(
+            self.view
+                .frames
+                .trace
+                .chunks_exact(3)
+                .map(|c| [0, 1, 2].map(|k| f64::from(c[k]))),
+        );
+        out
+    }
+
+    /// Pixels of a world point.
+    fn to_px(&self, p: [f64; 3]) -> P {
+        self.px.px(self.project(p))
+    }
+
+    /// Pixels of a world direction (unit in the image, or zero).
+    fn dir_px(&self, d: [f64; 3]) -> P {
+        let q = self.project(d);
+        let n = norm(q);
+        if n > 0.0 {
+            [q[0] / n, -q[1] / n]
+        } else {
+            [0.0, 0.0]
+        }
+    }
+
+    /// What frame `f` draws, with depths.
+    fn marks(&self, f: usize) -> Vec<(f64, Mark)> {
+        let sc = &self.view.scene;
+        let mut out = Vec::new();
+        let o = [0.0; 3];
+        let axis = 0.12 * self.px.width as f64 / self.px.scale;
+        for (k, c) in [JOURNAL_EDGE, BEARING, PART_EDGE].into_iter().enumerate() {
+            let e = std::array::from_fn(|i| if i == k { axis } else { 0.0 });
+            out.push((
+                self.depth(e) / 2.0,
+                Mark::Line(vec![self.to_px(o), self.to_px(e)], c, 1.5),
+            ));
+        }
+        for (k, b) in sc.bodies.iter().enumerate() {
+            let pose = self.view.frames.pose_of(Some(k), f);
+            let c = BODY_COLOURS[k % BODY_COLOURS.len()];
+            let pts: Vec<[f64; 3]> = b.points.iter().map(|&p| pose.point(p)).collect();
+            // a closed loop through three or more points, a bar through two
+            let segments = if pts.len() >= 3 {
+                pts.len()
+            } else {
+                pts.len().saturating_sub(1)
+            };
+            for i in 0..segments {
+                let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
+                let d = 0.5 * (self.depth(a) + self.depth(b));
+                out.push((d, Mark::Line(vec![self.to_px(a), self.to_px(b)], c, 6.0)));
+            }
+            for &p in &pts {
+                let r = if pts.len() == 1 { 7.0 } else { 4.0 };
+                out.push((self.depth(p), Mark::Dot(self.to_px(p), r, c, c)));
+            }
+            out.push((
+                self.depth(pose.x),
+                Mark::Dot(self.to_px(pose.x), 3.5, INK, INK),
+            ));
+        }
+        for j in &sc.joints {
+            let pose = self.pose(j.body.as_deref(), f);
+            let at = pose.point(j.at);
+            let p = self.to_px(at);
+            if let Some(a) = j.axis {
+                let d = self.dir_px(pose.direction(a));
+                let l = 18.0;
+                let line = vec![sub(p, mul(d, l)), add(p, mul(d, l))];
+                out.push((self.depth(at), Mark::Line(line, INK, 1.5)));
+            }
+            out.push((self.depth(at), Mark::Dot(p, 5.0, LIGHT, INK)));
+        }
+        for (i, k) in sc.sockets.iter().enumerate() {
+            out.extend(self.socket_marks(i, k, f));
+        }
+        out
+    }
+
+    /// A socket (circle), its ball at the magnified offset and the contact force arrows.
+    fn socket_marks(&self, i: usize, k: &SocketDraw, f: usize) -> Vec<(f64, Mark)> {
+        let v = self.view.frames.socket(i, f);
+        let centre = self.pose(k.socket_body.as_deref(), f).point(k.socket_at);
+        let c = (k.socket_radius - k.ball_radius).max(0.0);
+        let m = if c > 0.0 { self.mag } else { 1.0 };
+        // too small to see: drawn at 8 px at least, offsets scaled alike (as the page does)
+        let grow = (8.0 / (k.socket_radius * self.px.scale)).max(1.0);
+        let rs = k.socket_radius * self.px.scale * grow;
+        let rb = ((k.socket_radius - m * c) * self.px.scale * grow).max(0.15 * rs);
+        let e = [v[0], v[1], v[2]];
+        let p = self.to_px(centre);
+        let q = self.project(e);
+        let b = [
+            p[0] + m * grow * q[0] * self.px.scale,
+            p[1] - m * grow * q[1] * self.px.scale,
+        ];
+        let on = v[7] > 0.5 || v[3] > 0.0;
+        let d = self.depth(centre);
+        let mut out = vec![
+            (d - 1e-9, Mark::Dot(p, rs, BACKGROUND, GREY)),
+            (
+                d,
+                Mark::Dot(b, rb, JOURNAL_FILL, if on { ARROW } else { JOURNAL_EDGE }),
+            ),
+        ];
+        let n = self.dir_px(e);
+        // no arrows where e points at the viewer (no direction in the image)
+        if on && self.fmax > 0.0 && norm(n) > 0.0 {
+            let tail = add(b, mul(n, rb));
+            let per_n = 0.15 * self.px.width.min(self.px.height) as f64 / self.fmax;
+            let normal = Mark::Arrow(tail, mul(n, -1.0), v[3] * per_n, ARROW);
+            out.push((d + 1e-9, normal));
+            let ft = [v[4], v[5], v[6]];
+            let t = self.dir_px(ft);
+            if norm(t) > 0.0 {
+                let friction = Mark::Arrow(tail, t, norm3(ft) * per_n, BEAM_EDGE);
+                out.push((d + 1e-9, friction));
+            }
+        }
+        out
+    }
+
+    fn draw_mark(pm: &mut Pixmap, m: &Mark) {
+        match m {
+            Mark::Line(pts, c, w) => polyline(pm, pts, *c, *w),
+            Mark::Dot(p, r, fill, edge) => circle(pm, *p, *r, Some(*fill), Some((*edge, 1.5))),
+            Mark::Arrow(tail, dir, len, c) => arrow_in(pm, *tail, *dir, *len, *c),
+        }
+    }
+}
+
+impl Movie for SpatialAnimation {
+    fn size(&self) -> (u32, u32) {
+        (self.px.width, self.px.height)
+    }
+
+    fn picks(&self) -> &[usize] {
+        &self.picks
+    }
+
+    fn render(&self, i: usize) -> Pixmap {
+        let f = self.picks[i];
+        let v = &self.px;
+        let mut pm = Pixmap::new(v.width, v.height).expect("the image size is checked");
+        pm.fill(Color::from_rgba8(
+            BACKGROUND[0],
+            BACKGROUND[1],
+            BACKGROUND[2],
+            255,
+        ));
+        let trace: Vec<P> = (self.view.frames.trace.chunks_exact(3))
+            .map(|c| self.to_px([0, 1, 2].map(|k| f64::from(c[k]))))
+            .collect();
+        polyline(&mut pm, &trace, SLIDER_FILL, 1.5);
+        let mut marks = self.marks(f);
+        marks.sort_by(|a, b| a.0.total_cmp(&b.0));
+        for (_, m) in &marks {
+            Self::draw_mark(&mut pm, m);
+        }
+        let scale = ((v.width as f64 / 400.0).round() as u32).max(1);
+        let pad = 3 * scale as i64;
+        let t = self.view.frames.t[f];
+        text(
+            &mut pm,
+            &format!("t = {:.*} s", self.decimals, t),
+            pad,
+            pad,
+            scale,
+            false,
+        );
+        text(&mut pm, &self.model, v.width as i64 - pad, pad, scale, true);
+        let mut legend = vec![format!("{} view", self.name.label())];
+        if self.mag > 1.0 && !self.view.scene.sockets.is_empty() {
+            legend.push(format!("clearance x{}", short(self.mag)));
+        }
+        if self.fmax > 0.0 {
+            legend.push(format!("longest arrow = {} N", short(self.fmax)));
+        }
+        let y = v.height as i64 - pad - 7 * scale as i64;
+        text(&mut pm, &legend.join("   "), pad, y, scale, false);
+        pm
+    }
+}
+
+fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn norm3(a: [f64; 3]) -> f64 {
+    dot3(a, a).sqrt()
+}
+
 fn size_text(bytes: u64) -> String {
     if bytes >= 1 << 20 {
         format!("{:.1} MB", bytes as f64 / (1u64 << 20) as f64)
@@ -1949,11 +2361,31 @@ fn size_text(bytes: u64) -> String {
 pub(crate) fn animate_command(a: &AnimateArgs) -> Result<(), CliError> {
     let settings = Settings::from_args(a).map_err(CliError::Input)?;
     let (file, page) = load(&a.run).map_err(CliError::Input)?;
-    let anim = Animation::new(&page, &settings).map_err(CliError::Input)?;
+    let anim: Box<dyn Movie> = match &page.spatial {
+        Some(sv) => Box::new(
+            SpatialAnimation::new(
+                sv.clone(),
+                &page.model,
+                a.view.unwrap_or_default(),
+                &settings,
+            )
+            .map_err(CliError::Input)?,
+        ),
+        None => {
+            if a.view.is_some() {
+                eprintln!(
+                    "clr: note: --view is for spatial models: {} is a planar model, drawn in its \
+                     plane",
+                    file.display()
+                );
+            }
+            Box::new(Animation::new(&page, &settings).map_err(CliError::Input)?)
+        }
+    };
     let started = Instant::now();
-    let (w, h) = (anim.view.width, anim.view.height);
-    let n = anim.picks.len();
-    let mut distinct = anim.picks.clone();
+    let (w, h) = anim.size();
+    let n = anim.picks().len();
+    let mut distinct = anim.picks().to_vec();
     distinct.dedup();
     if distinct.len() == 1 && n > 1 {
         eprintln!(
@@ -2344,5 +2776,75 @@ mod tests {
         assert_eq!(h.len(), 4);
         let h = hull(vec![[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]);
         assert_eq!(h, vec![[0.0, 0.0], [2.0, 0.0]]);
+    }
+
+    /// The spinning top of `clr_sim::report::spatial` drawn from each view: the image has the
+    /// asked width and an even height, every frame has ink, and the ball of the socket is drawn
+    /// where the hand projection puts it: socket (0.5, 0, 0) + m·e with e = 0.8 mm
+    /// (sin 2πt, −cos 2πt, 0) and m the automatic magnification 0.08·R/c = 1.6.
+    #[test]
+    fn a_spatial_run_is_drawn_from_each_view() {
+        let (scene, results) = clr_sim::report::spatial::spinning_top(101);
+        for view in [
+            ViewName::Iso,
+            ViewName::Front,
+            ViewName::Top,
+            ViewName::Side,
+        ] {
+            let anim =
+                animate_spatial(scene.clone(), &results, view, &settings(320, 5), "top").unwrap();
+            let (w, h) = anim.size();
+            assert_eq!(w, 320, "{view:?}");
+            assert!(h % 2 == 0 && (80..=400).contains(&h), "{view:?}: {h}");
+            assert_eq!(anim.picks(), &[0, 25, 50, 75, 100]);
+            assert!((anim.mag - 1.6).abs() < 1e-12);
+            for i in 0..5 {
+                let pm = anim.render(i);
+                let ink = pm
+                    .pixels()
+                    .iter()
+                    .filter(|p| p.red() < 200 || p.blue() < 200)
+                    .count();
+                assert!(ink > 500, "{view:?} frame {i}: {ink} pixels drawn");
+                let t = i as f64 / 4.0;
+                let phi = 2.0 * std::f64::consts::PI * t;
+                let e = [0.8e-3 * phi.sin(), -0.8e-3 * phi.cos(), 0.0];
+                let [r, u, _] = view.axes();
+                let world = [0.5 + 1.6 * e[0], 1.6 * e[1], 0.0];
+                let b = anim.px.px([dot3(world, r), dot3(world, u)]);
+                // 4 px beside the centre across the normal-force arrow, which runs through it
+                let n = anim.dir_px(e);
+                let b = add(b, mul([-n[1], n[0]], 4.0));
+                let px = pm.pixel(b[0] as u32, b[1] as u32).unwrap();
+                assert_eq!(
+                    [px.red(), px.green(), px.blue()],
+                    JOURNAL_FILL,
+                    "{view:?} frame {i}: no ball at {b:?}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_spatial_page_is_animated_from_its_data() {
+        let (scene, results) = clr_sim::report::spatial::spinning_top(41);
+        let input = clr_sim::report::Input {
+            model: "top",
+            source: "test",
+            description: "",
+            desc: Err("spatial".into()),
+            results: &results,
+            metrics: &[],
+            notes: &[],
+            error: None,
+        };
+        let limits = clr_sim::report::Limits::default();
+        let report = clr_sim::report::Report::spatial("run", &input, scene, limits).unwrap();
+        let page = parse_page(&report.html()).unwrap();
+        check(&page, Path::new("report.html")).unwrap();
+        let sv = page.spatial.unwrap();
+        assert_eq!(sv.frames.t.len(), 41);
+        let anim = SpatialAnimation::new(sv, "top", ViewName::Top, &settings(200, 3)).unwrap();
+        assert_eq!(anim.picks(), &[0, 20, 40]);
     }
 }

@@ -269,6 +269,12 @@ pub fn plots(scene: &Scene, results: &Results, max: usize) -> Vec<Plot> {
     if !forces.lines.is_empty() {
         out.push(forces);
     }
+    out.extend(energy_plot(results, &t, max));
+    out
+}
+
+/// The energy balance figure (total, dissipated, work in, balance), when recorded.
+pub(super) fn energy_plot(results: &Results, t: &[f64], max: usize) -> Option<Plot> {
     let mut energy = time_plot("energy balance: total + dissipated − work in", "energy [J]");
     for (name, label) in [
         ("energy.total", "total (kinetic + potential + elastic)"),
@@ -277,16 +283,13 @@ pub fn plots(scene: &Scene, results: &Results, max: usize) -> Vec<Plot> {
         ("energy.balance", "balance (should stay constant)"),
     ] {
         if let Some(e) = results.column(name) {
-            energy.lines.push(time_line(label, &t, &e, max));
+            energy.lines.push(time_line(label, t, &e, max));
         }
     }
-    if !energy.lines.is_empty() {
-        out.push(energy);
-    }
-    out
+    (!energy.lines.is_empty()).then_some(energy)
 }
 
-fn time_plot(title: &str, y_label: &str) -> Plot {
+pub(super) fn time_plot(title: &str, y_label: &str) -> Plot {
     Plot {
         title: title.into(),
         x_label: "time [s]".into(),
@@ -298,7 +301,7 @@ fn time_plot(title: &str, y_label: &str) -> Plot {
     }
 }
 
-fn time_line(label: &str, t: &[f64], y: &[f64], max: usize) -> Line {
+pub(super) fn time_line(label: &str, t: &[f64], y: &[f64], max: usize) -> Line {
     let rows = decimate(y, max);
     Line {
         label: label.into(),

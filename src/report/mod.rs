@@ -9,6 +9,7 @@
 
 pub mod frames;
 pub mod scene;
+pub mod spatial;
 mod sweep;
 
 use clr_mbd::{Model, ModelDesc, Results};
@@ -17,6 +18,7 @@ use serde::Serialize;
 
 pub use frames::{Frames, Plot};
 pub use scene::Scene;
+pub use spatial::{SpatialError, SpatialScene, SpatialView};
 pub use sweep::{metric_names, SweepRow};
 
 /// Size limits of a report.
@@ -83,6 +85,10 @@ pub struct Report {
     pub error: Option<String>,
     /// For a sweep: the table and the links to the points' reports.
     pub sweep: Option<serde_json::Value>,
+    /// For a spatial model: the 3-D drawing and its frames (then `scene` is `None`); left out
+    /// of the page's data when absent, so that planar pages are unchanged.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub spatial: Option<SpatialView>,
 }
 
 /// What a report is made from.
@@ -154,6 +160,7 @@ impl Report {
             ),
             error: input.error.map(str::to_string),
             sweep: None,
+            spatial: None,
         }
     }
 
@@ -163,12 +170,18 @@ impl Report {
         // the data sits in a <script> element: a "</" inside a string would end it
         let data = data.replace("</", "<\\/");
         let title = html_escape(&format!("clr — {}", self.model));
+        // a spatial page adds the 3-D renderer (three.js and report3d.js) before report.js,
+        // which hands the stage to it; a planar page is left as it was
+        let (css3d, js3d) = match self.spatial {
+            Some(_) => (spatial::CSS, spatial::scripts()),
+            None => ("", String::new()),
+        };
         format!(
             "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
              <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
-             <title>{title}</title>\n<style>\n{css}\n</style>\n</head>\n<body>\n\
+             <title>{title}</title>\n<style>\n{css}{css3d}\n</style>\n</head>\n<body>\n\
              <script id=\"clr-data\" type=\"application/json\">{data}</script>\n\
-             <script>\n{js}\n</script>\n</body>\n</html>\n",
+             {js3d}<script>\n{js}\n</script>\n</body>\n</html>\n",
             css = include_str!("assets/report.css"),
             js = include_str!("assets/report.js"),
         )

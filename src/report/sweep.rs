@@ -88,6 +88,7 @@ impl Report {
             initial_conditions: serde_json::Value::Null,
             error: None,
             sweep: Some(json!({"names": names, "table": table, "links": link_list})),
+            spatial: None,
         }
     }
 }

@@ -3,7 +3,9 @@
 //! errors, the mechanism moves (the drawn journal, or a part, is elsewhere at two times), the
 //! contact shapes are drawn and a shape contact's force acts along the right normal, a 10 s
 //! run's report stays under 20 MB, and the screenshots go to `docs/figures/` (shown in
-//! docs/cli.md). Installs Debian's `chromium` with apt-get when missing; never part of `cargo
+//! docs/cli.md). A spatial page (the synthetic spinning top of `clr_sim::report::spatial`) is
+//! checked too: WebGL (SwiftShader, software) drew its three.js canvas without a console error,
+//! and the ball drawn in its socket is where the recorded eccentricity puts it. Installs Debian's `chromium` with apt-get when missing; never part of `cargo
 //! test` (a browser is a large system dependency).
 
 use std::path::{Path, PathBuf};
@@ -13,13 +15,16 @@ use serde_json::Value;
 
 use crate::{target_dir, workspace_root};
 
-const HELP: &str = "usage: cargo xtask report-check
+const HELP: &str = "usage: cargo xtask report-check [spatial]
   Builds clr (release), runs slider_crank, the flap with flexible links, the dual guide and
   models/examples/gear_pair_backlash.toml, opens each report.html in headless Chromium (apt-get
   install chromium when missing) at two times, checks for script errors, that the mechanism
   moved and (gear pair) that the gears' shapes are drawn with the tooth force along the line of
   action, writes the screenshots to docs/figures/report_<model>_<k>.png (the gear pair's first
-  to docs/figures/report_shapes.png), and checks that a 10 s run's report is under 20 MB.";
+  to docs/figures/report_shapes.png), and checks that a 10 s run's report is under 20 MB.
+  Then writes the 3-D page of a synthetic spatial run (a spinning top, a ball in a socket),
+  checks that its WebGL canvas drew with no console error and the ball is where the data puts
+  it, and saves docs/figures/report3d.png (`spatial`: only this last check).";
 
 /// The largest report of a 10 s run the issue allows, bytes.
 const MAX_REPORT_BYTES: u64 = 20 * 1024 * 1024;
@@ -84,7 +89,18 @@ const CASES: &[Case] = &[
 ];
 
 pub fn run(args: &[String]) -> ExitCode {
+    // `report-check spatial`: the 3-D page only (no clr build, no runs)
+    if args.len() == 1 && args[0] == "spatial" {
+        return crate::command_without_arguments("report-check", HELP, &[], spatial_only);
+    }
     crate::command_without_arguments("report-check", HELP, args, run_all)
+}
+
+fn spatial_only() -> Result<(), String> {
+    let chromium = ensure_chromium()?;
+    let figures = workspace_root().join("docs").join("figures");
+    let out = target_dir().join("report-check").join("spatial");
+    check_spatial(&chromium, &out, &figures.join("report3d.png"))
 }
 
 fn run_all() -> Result<(), String> {
@@ -125,6 +141,11 @@ fn run_all() -> Result<(), String> {
             case.name
         );
     }
+    check_spatial(
+        &chromium,
+        &out.join("spatial"),
+        &figures.join("report3d.png"),
+    )?;
     let long = out.join("slider_crank_10s");
     run_clr(&clr, &["slider_crank", "--t-end", "10"], &long)?;
     let bytes = std::fs::metadata(long.join("report.html"))
@@ -226,6 +247,9 @@ fn headless(chromium: &Path) -> Command {
         "--window-size=1400,860",
         // time for the page to parse its data and draw before the capture
         "--virtual-time-budget=4000",
+        // WebGL for the 3-D page without a GPU: ANGLE on SwiftShader (software)
+        "--use-angle=swiftshader",
+        "--enable-unsafe-swiftshader",
     ]);
     c
 }
@@ -335,4 +359,84 @@ fn check_shapes(case: &str, states: &[Value], name: &str, normal: [f64; 2]) -> R
         ));
     }
     Ok(())
+}
+
+/// The 3-D page of the synthetic spinning top (`clr_sim::report::spatial::spinning_top`): WebGL
+/// drew its canvas (ink in the sample) with no script or console error at two times, the ball
+/// drawn in the socket is where the recorded eccentricity puts it, and the screenshot at the
+/// first time goes to `png`.
+fn check_spatial(chromium: &Path, dir: &Path, png: &Path) -> Result<(), String> {
+    use clr_sim::report::{spatial, Input, Limits, Report};
+    let (scene, results) = spatial::spinning_top(401);
+    let input = Input {
+        model: "spinning top (synthetic)",
+        source: "cargo xtask report-check",
+        description:
+            "a top spinning about a tilted axis on a spherical joint; a ball circling in a socket",
+        desc: Err("spatial".into()),
+        results: &results,
+        metrics: &[],
+        notes: &[],
+        error: None,
+    };
+    let report =
+        Report::spatial("run", &input, scene, Limits::default()).map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    let page = dir.join("report.html");
+    std::fs::write(&page, report.html()).map_err(|e| format!("{}: {e}", page.display()))?;
+    let times = [0.3, 0.7];
+    screenshot(chromium, &page, times[0], png)?;
+    let console = console_messages(chromium, &page, times[0])?;
+    if !console.is_empty() {
+        return Err(format!("spatial page: console messages: {console:?}"));
+    }
+    for t in times {
+        let state = page_state(chromium, &page, t)?;
+        if state["webgl"] != "ok" || state["renders"].as_u64().unwrap_or(0) == 0 {
+            return Err(format!(
+                "spatial page: WebGL did not draw at t = {t} s: {state}"
+            ));
+        }
+        // ink in at least 1 % of the 64 × 64 samples: the bodies, the socket and the axes
+        let ink = state["ink"].as_u64().unwrap_or(0);
+        if ink < 41 {
+            return Err(format!(
+                "spatial page: the canvas is blank at t = {t} s ({ink} samples drawn)"
+            ));
+        }
+        // the ball centre: socket (0.5, 0, 0) + 0.8 mm (sin 2πt, −cos 2πt, 0) (spinning_top);
+        // the page holds f32 frames interpolated linearly (401 rows 2.5 ms apart; t on a row):
+        // 1e-6 m covers both
+        let phi = 2.0 * std::f64::consts::PI * t;
+        let want = [0.5 + 0.8e-3 * phi.sin(), -0.8e-3 * phi.cos(), 0.0];
+        let got: Vec<f64> = (0..3)
+            .map(|k| state["balls"]["cup"][k].as_f64().unwrap_or(f64::NAN))
+            .collect();
+        // a NaN (no ball drawn) fails too
+        let near = (0..3).all(|k| (got[k] - want[k]).abs() < 1e-6);
+        if !near {
+            return Err(format!(
+                "spatial page: ball drawn at {got:?} at t = {t} s, expected {want:?}"
+            ));
+        }
+        println!("report-check: spatial: t = {t} s: WebGL drew ({ink} of 4096 samples inked), no errors, ball where the data puts it");
+    }
+    Ok(())
+}
+
+/// The browser console's messages while the page draws time `t` (Chromium's log on stderr),
+/// except the performance note of the page's own pixel sample ("GPU stall due to ReadPixels"):
+/// three.js reports WebGL trouble (a failed shader, a lost context) there, and Chromium its
+/// deprecation of an implicit software WebGL.
+fn console_messages(chromium: &Path, page: &Path, t: f64) -> Result<Vec<String>, String> {
+    let out = headless(chromium)
+        .args(["--enable-logging=stderr", "--v=0", "--dump-dom"])
+        .arg(url(page, t)?)
+        .output()
+        .map_err(|e| format!("chromium: {e}"))?;
+    Ok(String::from_utf8_lossy(&out.stderr)
+        .lines()
+        .filter(|l| l.contains(":CONSOLE") && !l.contains("GPU stall due to ReadPixels"))
+        .map(str::to_string)
+        .collect())
 }

@@ -1970,30 +1970,6 @@
         slider, timeText, speed);
     }
 
-    /** A logarithmic slider from lo to hi (value shown as ×v). */
-    function logControl(name, title, lo, hi, value, onChange, fmt) {
-      const steps = 1000;
-      const toPos = (v) => String(Math.round((Math.log(v / lo) / Math.log(hi / lo)) * steps));
-      const out = h('output', { class: 'clr-val' }, fmt(value));
-      const input = h('input', {
-        type: 'range', min: '0', max: String(steps), step: '1', value: toPos(value), 'aria-label': name,
-        oninput: () => {
-          const v = lo * (hi / lo) ** (parseFloat(input.value) / steps);
-          out.textContent = fmt(v);
-          onChange(v);
-        },
-      });
-      const reset = h('button', {
-        class: 'clr-link', type: 'button', title: 'back to the default',
-        onclick: () => {
-          input.value = toPos(value);
-          out.textContent = fmt(value);
-          onChange(value);
-        },
-      }, 'reset');
-      return h('label', { class: 'clr-control', title }, h('span', { class: 'clr-control-name' }, name), input, out, reset);
-    }
-
     function controls() {
       const items = [];
       const mag = (v) => `×${v < 10 ? v.toFixed(2) : v < 100 ? v.toFixed(1) : v.toFixed(0)}`;
@@ -2133,6 +2109,30 @@
         return f ? f(motion.at(pb.t)) : null;
       },
     };
+  }
+
+  /** A logarithmic slider from lo to hi (value shown as ×v). */
+  function logControl(name, title, lo, hi, value, onChange, fmt) {
+    const steps = 1000;
+    const toPos = (v) => String(Math.round((Math.log(v / lo) / Math.log(hi / lo)) * steps));
+    const out = h('output', { class: 'clr-val' }, fmt(value));
+    const input = h('input', {
+      type: 'range', min: '0', max: String(steps), step: '1', value: toPos(value), 'aria-label': name,
+      oninput: () => {
+        const v = lo * (hi / lo) ** (parseFloat(input.value) / steps);
+        out.textContent = fmt(v);
+        onChange(v);
+      },
+    });
+    const reset = h('button', {
+      class: 'clr-link', type: 'button', title: 'back to the default',
+      onclick: () => {
+        input.value = toPos(value);
+        out.textContent = fmt(value);
+        onChange(value);
+      },
+    }, 'reset');
+    return h('label', { class: 'clr-control', title }, h('span', { class: 'clr-control-name' }, name), input, out, reset);
   }
 
   /**
@@ -2640,7 +2640,9 @@
     }
     if (rep.error) app.appendChild(h('div', { class: 'clr-banner clr-banner-error', text: `the run stopped early: ${rep.error}` }));
 
-    const stage = rep.scene ? createStage(rep) : null;
+    // a spatial page carries report3d.js, which draws the 3-D stage with the same helpers
+    const kit = { h, icon, ICONS, eng, timeFormat, clamp, isNum, logControl, clrReport };
+    const stage = rep.scene ? createStage(rep) : rep.spatial && window.clrSpatialStage ? window.clrSpatialStage(rep, kit) : null;
     const layout = h('main', { class: `clr-layout${stage ? '' : ' clr-no-stage'}` });
     app.appendChild(layout);
     if (stage) layout.appendChild(stage.root);
