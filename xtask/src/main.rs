@@ -17,6 +17,7 @@ mod browser;
 mod figures;
 mod fuzz;
 mod minimal_slider_crank;
+mod minimal_spatial_slider_crank;
 mod octave;
 mod report;
 mod study_figures;

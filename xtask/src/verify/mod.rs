@@ -17,6 +17,7 @@ mod models_flap_map;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
+mod spatial_slider_crank;
 mod wear;
 
 use std::process::ExitCode;
@@ -87,6 +88,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "mbd.tolerance",
         run: mbd_tolerance::cases,
+    },
+    Group {
+        name: "mbd.spatial",
+        run: spatial_slider_crank::cases,
     },
     Group {
         name: "models",
