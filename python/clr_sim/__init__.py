@@ -1,4 +1,5 @@
-"""clr: planar mechanisms with clearance joints, contact, friction and flexible links.
+"""clr: planar mechanisms with clearance joints, contact, friction and flexible links, and
+spatial rigid multibody models (``Model(space="spatial")``, helpers in :mod:`clr_sim.spatial`).
 
 Build a model (:class:`Model`, or a model file, or a built-in model by name), run it
 (:func:`simulate`) and sweep its parameters in parallel (:func:`sweep`); the geometries of
@@ -15,7 +16,7 @@ import os
 import warnings as _warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import _native, contact, errors, inertia, shapes
+from . import _native, contact, errors, inertia, shapes, spatial
 from .contact import FrictionLaw, NormalLaw, RevoluteJoint
 from .errors import (
     ClrError,
@@ -27,7 +28,7 @@ from .errors import (
     SimulationError,
     UnknownModelError,
 )
-from .model import Model, at, friction, material, motion, node, normal
+from .model import Model, SpatialModel, at, friction, material, motion, node, normal
 from .progress import Progress
 from .result import Result, SweepResult, _rows
 
@@ -35,6 +36,8 @@ __version__ = _native.__version__
 
 __all__ = [
     "Model",
+    "SpatialModel",
+    "spatial",
     "at",
     "node",
     "material",

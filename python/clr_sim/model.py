@@ -36,7 +36,7 @@ from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 from . import _native
 from .errors import FieldError, ModelError
 
-__all__ = ["Model", "at", "node", "material", "normal", "friction", "motion"]
+__all__ = ["Model", "SpatialModel", "at", "node", "material", "normal", "friction", "motion"]
 
 #: A 2-vector (m, m/s or N): a tuple, list or numpy array of two numbers.
 Vec2 = Union[Sequence[float], Tuple[float, float]]
@@ -207,16 +207,29 @@ class Model:
     element's name and the line that added it.
     """
 
+    #: ``"planar"`` or ``"spatial"``: the engine the model is for.
+    space = "planar"
+
+    def __new__(cls, name: Optional[str] = None, *, space: Optional[str] = None, **_: Any):
+        # `Model(space="spatial")` is a SpatialModel: the same plumbing, the spatial methods
+        if cls is Model and space == "spatial":
+            cls = SpatialModel
+        return super().__new__(cls)
+
     def __init__(
         self,
         name: Optional[str] = None,
         *,
+        space: Optional[str] = None,
         description: Optional[str] = None,
         gravity: Optional[Vec2] = None,
         clearance_force_application: Optional[str] = None,
     ):
-        """``name`` and ``description`` for reports, ``gravity`` [g_x, g_y] (m/s²; default
-        none), ``clearance_force_application`` (``common_point`` or ``contact_points``)."""
+        """``name`` and ``description`` for reports, ``space`` (``"planar"``, the default, or
+        ``"spatial"``: then the model is a :class:`SpatialModel` with the methods of a spatial
+        model file), ``gravity`` [g_x, g_y] (m/s²; default none; [g_x, g_y, g_z] for a spatial
+        model), ``clearance_force_application`` (``common_point`` or ``contact_points``; planar
+        only)."""
         self._doc: Dict[str, Any] = {}
         # (section, index) → the script line that added the item
         self._sites: Dict[Tuple[str, int], str] = {}
@@ -225,6 +238,7 @@ class Model:
             "model",
             name=name,
             description=description,
+            space=space,
             gravity=gravity,
             clearance_force_application=clearance_force_application,
         )
@@ -235,7 +249,9 @@ class Model:
     def from_dict(cls, doc: Mapping[str, Any]) -> "Model":
         """A model from the dict of a model file (``{"model": {...}, "body": [{...}], ...}``),
         e.g. ``tomllib.load`` of a file or :meth:`to_dict` of another model (copied)."""
-        m = cls()
+        info = doc.get("model")
+        spatial = isinstance(info, Mapping) and info.get("space") == "spatial"
+        m = SpatialModel() if spatial else Model()
         m._doc = copy.deepcopy(dict(doc))
         m._sites = {}
         name = m._doc.get("model", {}).get("name")
@@ -796,6 +812,310 @@ class Model:
         )
 
 
+#: A 3-vector (m, m/s, rad/s or N): a tuple, list or numpy array of three numbers.
+Vec3 = Union[Sequence[float], Tuple[float, float, float]]
+#: Rows of a 3 × 3 matrix.
+Rows3 = Sequence[Vec3]
+
+
+class SpatialModel(Model):
+    """A spatial model under construction (``[model] space = "spatial"``,
+    docs/model-file.md "Spatial models"): what ``Model(space="spatial")`` returns.
+
+    >>> from clr_sim import spatial
+    >>> m = Model("top", space="spatial", gravity=(0.0, 0.0, -9.81))
+    >>> m.body("top", mass=0.5, principal_inertia=(1.2e-4, 1.2e-4, 2e-4),
+    ...        centre_of_mass=(0.0, 0.0, 0.04), orientation=spatial.axis_angle((1, 0, 0), 0.3))
+    >>> m.spherical("tip", a=spatial.at("ground"), b=spatial.at("top"))
+
+    The same plumbing as :class:`Model` (each call checked by the spatial model-file reader,
+    errors naming the element, the field and the script line; names of bodies and joints not
+    defined yet checked when the model is used), with one method per element kind of a spatial
+    file. Ends (``a``, ``b``, ``at``, ``socket``, ``ball``) are :func:`clr_sim.spatial.at`
+    dicts: a body (``"ground"`` for the fixed frame), a point in its frame (m) and, for joints,
+    an ``axis``; orientations are written by :func:`clr_sim.spatial.quaternion`,
+    :func:`~clr_sim.spatial.axis_angle`, :func:`~clr_sim.spatial.euler` and
+    :func:`~clr_sim.spatial.matrix`. A planar method (``translational``, ``drive_angle``,
+    ``revolute_clearance``, ...) raises :class:`clr_sim.errors.ModelError` naming the spatial
+    one to use. The planar joint kind (``type = "planar"``) is :meth:`planar_joint`: ``planar``
+    alone would read as the space.
+    """
+
+    space = "spatial"
+
+    def __init__(
+        self,
+        name: Optional[str] = None,
+        *,
+        space: Optional[str] = None,
+        description: Optional[str] = None,
+        gravity: Optional[Vec3] = None,
+        clearance_force_application: Optional[str] = None,
+    ):
+        """As :class:`Model`; ``space`` is ``"spatial"`` (the default here), ``gravity``
+        [g_x, g_y, g_z] (m/s²; default none). ``clearance_force_application`` is refused (the
+        spherical clearance joint's force pair acts at the midpoint of the contact points)."""
+        if space not in (None, "spatial"):
+            raise _refuse("model.space", f"a SpatialModel is spatial; for space={space!r} use Model")
+        super().__init__(
+            name,
+            space="spatial",
+            description=description,
+            gravity=gravity,
+            clearance_force_application=clearance_force_application,
+        )
+
+    # ----- [[body]] ----------------------------------------------------------------------
+
+    def body(
+        self,
+        name: str,
+        *,
+        mass: float,
+        inertia: Optional[Rows3] = None,
+        principal_inertia: Optional[Vec3] = None,
+        principal_axes: Optional[Rows3] = None,
+        centre_of_mass: Optional[Vec3] = None,
+        position: Optional[Vec3] = None,
+        orientation: Optional[Table] = None,
+        velocity: Optional[Vec3] = None,
+        velocity_frame: Optional[str] = None,
+        angular_velocity: Optional[Vec3] = None,
+        angular_velocity_frame: Optional[str] = None,
+    ) -> "Model":
+        """``[[body]]``: a rigid body of ``mass`` (kg) with the ``inertia`` tensor at its
+        centre of mass in the body frame (kg·m², rows of a symmetric positive definite matrix)
+        or ``principal_inertia`` (kg·m²) along ``principal_axes`` (rows, unit vectors in the
+        body frame; default the body axes); ``centre_of_mass`` (m) in the body frame. Its frame
+        starts at ``position`` (m, world) with ``orientation`` (:mod:`clr_sim.spatial`:
+        ``quaternion``, ``axis_angle``, ``euler``, ``matrix``; default aligned with the world),
+        moving with ``velocity`` (m/s, of the frame origin) in ``velocity_frame`` and
+        ``angular_velocity`` (rad/s) in ``angular_velocity_frame`` (``"world"`` or ``"body"``,
+        required with the vector). An initial value left out is solved by the assembly."""
+        return self._add("body", None, **{k: v for k, v in locals().items() if k != "self"})
+
+    # ----- [[joint]] ---------------------------------------------------------------------
+
+    def spherical(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Spherical joint: the points of ``a`` and ``b`` coincide (no ``axis``)."""
+        return self._add("joint", "spherical", name, a=a, b=b)
+
+    def revolute(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Revolute joint: the points coincide and ``b`` turns about ``a``'s ``axis`` (``b``'s
+        axis defaults to ``a``'s at the initial poses)."""
+        return self._add("joint", "revolute", name, a=a, b=b)
+
+    def universal(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Universal (Cardan) joint: the points coincide; ``a``'s ``axis`` on a and ``b``'s
+        ``axis`` on b stay perpendicular."""
+        return self._add("joint", "universal", name, a=a, b=b)
+
+    def cylindrical(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Cylindrical joint: ``b`` slides along and turns about ``a``'s ``axis`` through
+        ``a``'s point."""
+        return self._add("joint", "cylindrical", name, a=a, b=b)
+
+    def prismatic(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Prismatic joint: ``b`` slides along ``a``'s ``axis`` without turning."""
+        return self._add("joint", "prismatic", name, a=a, b=b)
+
+    def planar_joint(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Planar joint (``type = "planar"``): ``b`` moves in the plane through ``a``'s point
+        with normal ``a``'s ``axis``."""
+        return self._add("joint", "planar", name, a=a, b=b)
+
+    def fixed(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Fixed joint: ``b`` is welded to ``a`` at the initial poses (no ``axis``)."""
+        return self._add("joint", "fixed", name, a=a, b=b)
+
+    # ----- [[driver]] --------------------------------------------------------------------
+
+    def drive_revolute_angle(self, name: str, *, joint: str, motion: Table) -> "Model":
+        """Prescribed angle (rad) of a revolute or cylindrical ``joint``: ``b``'s turn about
+        the axis relative to ``a``, zero at the initial poses (``motion``: :func:`motion`)."""
+        return self._add("driver", "revolute_angle", name, joint=joint, motion=motion)
+
+    def drive_prismatic_displacement(self, name: str, *, joint: str, motion: Table) -> "Model":
+        """Prescribed displacement (m) of a prismatic or cylindrical ``joint`` along its axis,
+        zero at the initial poses (``motion``: :func:`motion`)."""
+        return self._add("driver", "prismatic_displacement", name, joint=joint, motion=motion)
+
+    # ----- [[force]] ---------------------------------------------------------------------
+
+    def spring_damper(
+        self,
+        name: str,
+        *,
+        a: Anchor,
+        b: Anchor,
+        stiffness: Optional[float] = None,
+        damping: Optional[float] = None,
+        free_length: Optional[float] = None,
+    ) -> "Model":
+        """Point-to-point spring–damper, tension k(ℓ − ℓ₀) + c ℓ̇: ``stiffness`` k (N/m),
+        ``damping`` c (N·s/m), ``free_length`` ℓ₀ (m; default 0)."""
+        return self._add(
+            "force", "spring_damper", name, a=a, b=b, stiffness=stiffness, damping=damping,
+            free_length=free_length,
+        )
+
+    def actuator(self, name: str, *, a: Anchor, b: Anchor, force: Table) -> "Model":
+        """Point-to-point actuator: ``force`` (N) of time (:func:`motion`), positive pushing
+        ``a`` and ``b`` apart."""
+        return self._add("force", "actuator", name, a=a, b=b, force=force)
+
+    def rotational_spring_damper(
+        self,
+        name: str,
+        *,
+        joint: str,
+        stiffness: Optional[float] = None,
+        damping: Optional[float] = None,
+        free_angle: Optional[float] = None,
+    ) -> "Model":
+        """Rotational spring–damper about the axis of a revolute or cylindrical ``joint``:
+        torque −k(θ − θ₀) − c θ̇ on b, ``stiffness`` k (N·m/rad), ``damping`` c (N·m·s/rad),
+        ``free_angle`` θ₀ (rad; θ is zero at the initial poses)."""
+        return self._add(
+            "force", "rotational_spring_damper", name, joint=joint, stiffness=stiffness,
+            damping=damping, free_angle=free_angle,
+        )
+
+    def bushing(
+        self,
+        name: str,
+        *,
+        a: Anchor,
+        b: Anchor,
+        stiffness: Optional[Vec3] = None,
+        damping: Optional[Vec3] = None,
+        rotational_stiffness: Optional[Vec3] = None,
+        rotational_damping: Optional[Vec3] = None,
+    ) -> "Model":
+        """Six-axis bushing from ``a``'s frame to ``b``'s point, in ``a``'s axes:
+        ``stiffness`` (N/m) and ``damping`` (N·s/m) along x, y, z, ``rotational_stiffness``
+        (N·m/rad) and ``rotational_damping`` (N·m·s/rad) about them (default 0)."""
+        return self._add(
+            "force", "bushing", name, a=a, b=b, stiffness=stiffness, damping=damping,
+            rotational_stiffness=rotational_stiffness, rotational_damping=rotational_damping,
+        )
+
+    def force(
+        self,
+        name: str,
+        *,
+        at: Anchor,
+        frame: str,
+        fx: Optional[Table] = None,
+        fy: Optional[Table] = None,
+        fz: Optional[Table] = None,
+    ) -> "Model":
+        """Applied force (N) at ``at`` (a point on a body), components ``fx``, ``fy``, ``fz``
+        of time (:func:`motion`; default 0) in ``frame`` (``"world"`` or ``"body"``)."""
+        return self._add("force", "force", name, at=at, frame=frame, fx=fx, fy=fy, fz=fz)
+
+    def torque(
+        self,
+        name: str,
+        *,
+        body: str,
+        frame: str,
+        mx: Optional[Table] = None,
+        my: Optional[Table] = None,
+        mz: Optional[Table] = None,
+    ) -> "Model":
+        """Applied torque (N·m) on ``body``, components ``mx``, ``my``, ``mz`` of time
+        (:func:`motion`; default 0) in ``frame`` (``"world"`` or ``"body"``)."""
+        return self._add("force", "torque", name, body=body, frame=frame, mx=mx, my=my, mz=mz)
+
+    # ----- [[clearance]] -----------------------------------------------------------------
+
+    def spherical_clearance(
+        self,
+        name: str,
+        *,
+        socket: Anchor,
+        ball: Anchor,
+        socket_radius: float,
+        ball_radius: float,
+        normal: Table,
+        friction: Optional[Table] = None,
+    ) -> "Model":
+        """Spherical clearance joint (``[[clearance]] type = "spherical"``): a ball of radius
+        ``ball_radius`` (m) centred at ``ball`` in a socket of radius ``socket_radius`` (m)
+        centred at ``socket``; contact by the ``normal`` law (:func:`normal`: ``hertz``,
+        ``power``, ``linear`` with their stiffness, or ``hertz-internal-sphere`` from
+        ``bearing_material`` (socket) and ``journal_material`` (ball)) and ``friction``
+        (:func:`friction`; default none; LuGre with vector bristles)."""
+        return self._add(
+            "clearance", "spherical", name, socket=socket, ball=ball,
+            socket_radius=socket_radius, ball_radius=ball_radius, normal=normal,
+            friction=friction,
+        )
+
+
+def _elsewhere(method: str, space: str, use: str):
+    """A method of the other space's builder: raises a ModelError that names the one to use."""
+
+    def refused(self: Model, *args: Any, **kwargs: Any) -> Model:
+        raise FieldError(
+            f"{method}() adds an element of a {space} model, and this model is "
+            f"{self.space}: {use}",
+            field="model.space",
+            where=_caller(),
+        )
+
+    refused.__name__ = method
+    refused.__qualname__ = f"{'SpatialModel' if space == 'planar' else 'Model'}.{method}"
+    refused.__doc__ = f"Not in a {'spatial' if space == 'planar' else 'planar'} model: {use}"
+    return refused
+
+
+#: The planar builder's methods a spatial model refuses, with what to use instead.
+_PLANAR_ONLY = {
+    "point": "name no points; give each end as spatial.at(body, x, y, z)",
+    "beam": "spatial models have no flexible beams yet",
+    "flexible_body": "spatial models have no flexible bodies yet",
+    "translational": "use prismatic() (a joint of a spatial model, with spatial.at(..., axis=))",
+    "drive_angle": "use drive_revolute_angle(joint=...) on a revolute or cylindrical joint",
+    "drive_relative_angle": "use drive_revolute_angle(joint=...) on the joint between the bodies",
+    "drive_displacement": "use drive_prismatic_displacement(joint=...) on a prismatic joint",
+    "torque_between": "use torque() on each body, or rotational_spring_damper(joint=...)",
+    "nodal_load": "spatial models have no flexible beams yet",
+    "shape": "spatial models have no contact shapes yet; a ball in a socket is "
+    "spherical_clearance()",
+    "contact": "spatial models have no shape contact yet; a ball in a socket is "
+    "spherical_clearance()",
+    "revolute_clearance": "use spherical_clearance() (a ball in a socket)",
+    "translational_clearance": "spatial models have no translational clearance joint yet",
+    "slider_on_beam": "spatial models have no flexible beams yet",
+}
+
+#: The spatial builder's methods a planar model refuses, with what to use instead.
+_SPATIAL_ONLY = {
+    "spherical": "build the model with Model(..., space=\"spatial\"); planar joints are "
+    "revolute(), translational() and fixed()",
+    "universal": "build the model with Model(..., space=\"spatial\")",
+    "cylindrical": "build the model with Model(..., space=\"spatial\")",
+    "prismatic": "use translational() (the planar sliding joint), or build the model with "
+    "Model(..., space=\"spatial\")",
+    "planar_joint": "every joint of a planar model is planar; use revolute() or "
+    "translational(), or build the model with Model(..., space=\"spatial\")",
+    "drive_revolute_angle": "use drive_angle(body=...) or drive_relative_angle(), or build "
+    "the model with Model(..., space=\"spatial\")",
+    "drive_prismatic_displacement": "use drive_displacement(), or build the model with "
+    "Model(..., space=\"spatial\")",
+    "spherical_clearance": "use revolute_clearance() (a journal in a bearing), or build the "
+    "model with Model(..., space=\"spatial\")",
+}
+
+for _name, _use in _PLANAR_ONLY.items():
+    setattr(SpatialModel, _name, _elsewhere(_name, "planar", _use))
+for _name, _use in _SPATIAL_ONLY.items():
+    setattr(Model, _name, _elsewhere(_name, "spatial", _use))
+del _name, _use
+
+
 #: For each ``(section, type)`` of a model file, the :class:`Model` method that adds it (the
 #: tests check that every kind the Rust reader knows has its method, with the same fields).
 METHODS: Dict[Tuple[str, Optional[str]], str] = {
@@ -826,3 +1146,33 @@ METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("clearance", "slider_on_beam"): "slider_on_beam",
     ("clearance", "contact"): "contact",
 }
+
+
+#: For each ``(section, type)`` of a spatial model file, the :class:`SpatialModel` method that
+#: adds it (checked against the spatial reader's kinds and fields like :data:`METHODS`).
+SPATIAL_METHODS: Dict[Tuple[str, Optional[str]], str] = {
+    ("model", None): "__init__",
+    ("solver", None): "solver",
+    ("output", None): "output",
+    ("body", None): "body",
+    ("joint", "spherical"): "spherical",
+    ("joint", "revolute"): "revolute",
+    ("joint", "universal"): "universal",
+    ("joint", "cylindrical"): "cylindrical",
+    ("joint", "prismatic"): "prismatic",
+    ("joint", "planar"): "planar_joint",
+    ("joint", "fixed"): "fixed",
+    ("driver", "revolute_angle"): "drive_revolute_angle",
+    ("driver", "prismatic_displacement"): "drive_prismatic_displacement",
+    ("force", "spring_damper"): "spring_damper",
+    ("force", "actuator"): "actuator",
+    ("force", "rotational_spring_damper"): "rotational_spring_damper",
+    ("force", "bushing"): "bushing",
+    ("force", "force"): "force",
+    ("force", "torque"): "torque",
+    ("clearance", "spherical"): "spherical_clearance",
+}
+
+#: The table of element methods of each kind of builder.
+Model.METHODS = METHODS
+SpatialModel.METHODS = SPATIAL_METHODS

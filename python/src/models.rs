@@ -311,15 +311,22 @@ fn probe_stand_ins(root: &mut toml::Table) {
             .is_some_and(|a| !a.is_empty())
     });
     if !moves {
+        let zeros = |n: usize| toml::Value::Array(vec![0.0.into(); n]);
         let mut body = toml::Table::new();
         body.insert("name".into(), PROBE_BODY.into());
         body.insert("mass".into(), 1.0.into());
-        body.insert("inertia".into(), 1.0.into());
-        body.insert(
-            "position".into(),
-            toml::Value::Array(vec![0.0.into(), 0.0.into()]),
-        );
-        body.insert("angle".into(), 0.0.into());
+        if is_spatial(root) {
+            // a unit sphere's inertia at the body origin, aligned with the world
+            body.insert(
+                "principal_inertia".into(),
+                toml::Value::Array(vec![1.0.into(); 3]),
+            );
+            body.insert("position".into(), zeros(3));
+        } else {
+            body.insert("inertia".into(), 1.0.into());
+            body.insert("position".into(), zeros(2));
+            body.insert("angle".into(), 0.0.into());
+        }
         root.insert(
             "body".into(),
             toml::Value::Array(vec![toml::Value::Table(body)]),
@@ -338,6 +345,14 @@ fn probe_stand_ins(root: &mut toml::Table) {
             out.insert("t_end".into(), (start + 1.0).into());
         }
     }
+}
+
+/// Whether the model being built says `[model] space = "spatial"` (as the reader decides).
+fn is_spatial(root: &toml::Table) -> bool {
+    root.get("model")
+        .and_then(|m| m.get("space"))
+        .and_then(toml::Value::as_str)
+        == Some("spatial")
 }
 
 /// What the reader says of one element in the context of the model so far.
@@ -422,6 +437,9 @@ fn item_name<'a>(root: &'a toml::Table, element: &str) -> Option<&'a str> {
 /// construction may have for now: the named item can still be added).
 fn names_an_undefined_item(root: toml::Table, message: &str) -> bool {
     use clr_sim::mbd::MbdError as E;
+    if is_spatial(&root) {
+        return spatial_names_an_undefined_item(root, message);
+    }
     let Ok(desc) = clr_sim::mbd::ModelDesc::from_toml_table(root) else {
         return false;
     };
@@ -436,6 +454,25 @@ fn names_an_undefined_item(root: toml::Table, message: &str) -> bool {
                 || (path.starts_with("output.nodes.")
                     && message.contains("is not a flexible body or beam"))
         }
+        _ => false,
+    }
+}
+
+/// [`names_an_undefined_item`] of a spatial model: a body, or a joint that a driver or a
+/// rotational spring–damper names (`clr_mbd::spatial` compile, `unknown joint`).
+fn spatial_names_an_undefined_item(root: toml::Table, message: &str) -> bool {
+    use clr_sim::mbd::MbdError as E;
+    let Ok(desc) = clr_sim::mbd::spatial::SpatialDesc::from_toml_table(root) else {
+        return false;
+    };
+    match desc.compile() {
+        Err(e) if e.to_string().ends_with(message) => match e {
+            E::UnknownBody { .. } => true,
+            E::Invalid { path, message } => {
+                path.ends_with(".joint") && message.starts_with("unknown joint")
+            }
+            _ => false,
+        },
         _ => false,
     }
 }
@@ -499,11 +536,44 @@ fn probe_header(section: &str) -> Option<String> {
     })
 }
 
+/// The engine a probe is for: `space` of [`element_kinds`] and [`kind_fields`] (`None` or
+/// `"planar"`, or `"spatial"`).
+fn is_spatial_space(space: Option<&str>) -> PyResult<bool> {
+    match space {
+        None | Some("planar") => Ok(false),
+        Some("spatial") => Ok(true),
+        Some(other) => Err(pyo3::exceptions::PyValueError::new_err(format!(
+            "unknown space `{other}`: give \"planar\" or \"spatial\""
+        ))),
+    }
+}
+
+/// The first lines of a spatial probe file.
+const SPATIAL_HEADER: &str = "[model]\nspace = \"spatial\"\n";
+
+/// The names serde lists in `message`: `expected one of `a`, `b`, `c``, `expected `a` or
+/// `b`` for two, `expected `a`` for one.
+fn expected_names(message: &str) -> Option<Vec<String>> {
+    let list =
+        names_after(message, "expected one of ").or_else(|| names_after(message, "expected "))?;
+    Some(
+        list.iter()
+            .flat_map(|n| n.split(" or "))
+            .map(|n| n.trim_matches('`').to_string())
+            .collect(),
+    )
+}
+
 /// Every section of a model file, in the order the reader lists them, with its element kinds
 /// (`type` values; empty for the sections without one), then the tagged tables inside items
-/// (`shape.geometry` with its geometry types), for the builder's consistency check.
+/// (`shape.geometry` with its geometry types), for the builder's consistency check. With
+/// `space = "spatial"`, those of a spatial model file (no tagged tables inside items).
 #[pyfunction]
-pub(crate) fn element_kinds() -> PyResult<Vec<(String, Vec<String>)>> {
+#[pyo3(signature = (space=None))]
+pub(crate) fn element_kinds(space: Option<&str>) -> PyResult<Vec<(String, Vec<String>)>> {
+    if is_spatial_space(space)? {
+        return spatial_element_kinds();
+    }
     use clr_sim::mbd::element::{Clearance, Driver, Force, Joint};
     let tagged: [(&str, &[&str]); 4] = [
         ("joint", Joint::KINDS),
@@ -538,17 +608,61 @@ pub(crate) fn element_kinds() -> PyResult<Vec<(String, Vec<String>)>> {
     Ok(out)
 }
 
+/// [`element_kinds`] of a spatial model file, as the spatial reader (serde) lists its sections
+/// and the `type` values of joints, drivers, forces and clearances.
+fn spatial_element_kinds() -> PyResult<Vec<(String, Vec<String>)>> {
+    let probe = |text: &str, what: &str| {
+        let message = probe_message(&format!("{PROBE} = 0\n{SPATIAL_HEADER}{text}"));
+        expected_names(&message).ok_or_else(|| {
+            pyo3::exceptions::PyValueError::new_err(format!("no list of {what}: {message}"))
+        })
+    };
+    let sections = probe("", "sections")?;
+    let mut out = Vec::new();
+    for s in sections {
+        let kinds = if ["joint", "driver", "force", "clearance"].contains(&s.as_str()) {
+            let message = probe_message(&format!("{SPATIAL_HEADER}[[{s}]]\ntype = \"{PROBE}\"\n"));
+            expected_names(&message).ok_or_else(|| {
+                pyo3::exceptions::PyValueError::new_err(format!("no kinds of [[{s}]]: {message}"))
+            })?
+        } else {
+            Vec::new()
+        };
+        out.push((s, kinds));
+    }
+    Ok(out)
+}
+
 /// The fields an item of `section` (of kind `kind` for the sections with a `type`) accepts, as
 /// the model-file reader lists them: the builder's methods are checked against these. Besides
 /// the sections, `shape.geometry` (with its `type` as `kind`) and `shape.geometry.parts` (a
-/// part of a compound geometry).
+/// part of a compound geometry). With `space = "spatial"`, those of a spatial model file
+/// (without `type`, which the builder's method gives).
 #[pyfunction]
-#[pyo3(signature = (section, kind=None))]
-pub(crate) fn kind_fields(section: &str, kind: Option<&str>) -> PyResult<Vec<String>> {
+#[pyo3(signature = (section, kind=None, space=None))]
+pub(crate) fn kind_fields(
+    section: &str,
+    kind: Option<&str>,
+    space: Option<&str>,
+) -> PyResult<Vec<String>> {
     let item = match kind {
         Some(k) => format!("type = \"{k}\"\n{PROBE} = 0\n"),
         None => format!("{PROBE} = 0\n"),
     };
+    if is_spatial_space(space)? {
+        let text = match section {
+            "model" => format!("{SPATIAL_HEADER}{item}"),
+            "solver" | "output" => format!("{SPATIAL_HEADER}[{section}]\n{item}"),
+            s => format!("{SPATIAL_HEADER}[[{s}]]\n{item}"),
+        };
+        let message = probe_message(&text);
+        let names = expected_names(&message).ok_or_else(|| {
+            pyo3::exceptions::PyValueError::new_err(format!(
+                "no field list for spatial [{section}] {kind:?}: {message}"
+            ))
+        })?;
+        return Ok(names.into_iter().filter(|n| n != "type").collect());
+    }
     let header = probe_header(section).ok_or_else(|| {
         pyo3::exceptions::PyValueError::new_err(format!("no probe for [{section}]"))
     })?;

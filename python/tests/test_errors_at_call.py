@@ -248,9 +248,9 @@ _TAGGED = ("joint", "driver", "force", "clearance")
 def test_every_model_file_rebuilt_call_by_call_is_accepted_and_the_same(path):
     """Each model file's checked form, rebuilt item by item through the Model methods (each
     call checked on its own), is accepted at every call and gives the same checked text:
-    the check at the call refuses nothing a file accepts, in the file's order or reversed."""
-    from clr_sim.model import METHODS
-
+    the check at the call refuses nothing a file accepts, in the file's order or reversed.
+    A spatial file (`[model] space = "spatial"`) is rebuilt by the SpatialModel that
+    `Model(space="spatial")` makes, through its own methods (`m.METHODS`)."""
     reference = clr_sim.Model.from_file(path)
     text = reference.to_toml()
     try:
@@ -265,7 +265,7 @@ def test_every_model_file_rebuilt_call_by_call_is_accepted_and_the_same(path):
             for item in doc.get(section, [])[::order]:
                 item = dict(item)
                 kind = item.pop("type") if section in _TAGGED else None
-                getattr(m, METHODS[(section, kind)])(**item)
+                getattr(m, m.METHODS[(section, kind)])(**item)
         for table in ("solver", "output"):
             if table in doc:
                 getattr(m, table)(**doc[table])
