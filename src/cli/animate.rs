@@ -2025,10 +2025,12 @@ impl ViewName {
             1.0 / 3f64.sqrt(),
         );
         match self {
-            ViewName::Iso => [[a, 0.0, -a], [-b, 2.0 * b, -b], [c, c, c]],
-            ViewName::Front => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
-            ViewName::Top => [[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]],
-            ViewName::Side => [[0.0, 0.0, -1.0], [0.0, 1.0, 0.0], [1.0, 0.0, 0.0]],
+            // z up (gravity along −z in spatial model files); rows: screen right, screen up,
+            // towards the viewer
+            ViewName::Iso => [[-a, a, 0.0], [-b, -b, 2.0 * b], [c, c, c]],
+            ViewName::Front => [[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]],
+            ViewName::Top => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            ViewName::Side => [[0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]],
         }
     }
 

@@ -298,7 +298,9 @@ pub(crate) fn write_run(
 ) -> Result<(), CliError> {
     let (t_end, rtol, figures) = (args.t_end, args.rtol, !args.no_figures);
     std::fs::create_dir_all(dir).map_err(|e| io(dir, e))?;
-    if let Some(job) = report {
+    if let Some(clr_sim::spec::run::Job::Spatial(s)) = report {
+        write_spatial_report(&dir.join("report.html"), rec, s)?;
+    } else if let Some(job) = report {
         let desc = job.desc(t_end, rtol);
         write_report(
             &dir.join("report.html"),
@@ -338,6 +340,29 @@ fn write_report(
         error: rec.error.as_deref(),
     };
     let report = clr_sim::report::Report::new("run", &input, clr_sim::report::Limits::default());
+    std::fs::write(path, report.html()).map_err(|e| io(path, e))
+}
+
+/// Write the 3-D `report.html` of a spatial run.
+fn write_spatial_report(
+    path: &Path,
+    rec: &Record,
+    spec: &clr_sim::spec::SpatialSpec,
+) -> Result<(), CliError> {
+    let input = clr_sim::report::Input {
+        model: &rec.model,
+        source: &rec.source,
+        description: "",
+        desc: Err(String::new()),
+        results: &rec.results,
+        metrics: &rec.metrics,
+        notes: &rec.notes,
+        error: rec.error.as_deref(),
+    };
+    let scene = clr_sim::report::spatial::SpatialScene::from_desc(spec.desc());
+    let report =
+        clr_sim::report::Report::spatial("run", &input, scene, clr_sim::report::Limits::default())
+            .map_err(|e| CliError::Input(format!("report.html: {e}")))?;
     std::fs::write(path, report.html()).map_err(|e| io(path, e))
 }
 

@@ -19,10 +19,11 @@
   const JOINT = 0x343a40;
   /** Camera directions (towards the camera) and up vectors of the named views. */
   const VIEWS = {
-    iso: { dir: [1, 1, 1], up: [0, 1, 0] },
-    front: { dir: [0, 0, 1], up: [0, 1, 0] },
-    top: { dir: [0, 1, 0], up: [0, 0, -1] },
-    side: { dir: [1, 0, 0], up: [0, 1, 0] },
+    // z up, as gravity along −z in spatial model files
+    iso: { dir: [1, 1, 1], up: [0, 0, 1] },
+    front: { dir: [0, -1, 0], up: [0, 0, 1] },
+    top: { dir: [0, 0, 1], up: [0, 1, 0] },
+    side: { dir: [1, 0, 0], up: [0, 0, 1] },
   };
 
   /** Frame index i and weight f of time tq in the sorted times t (t[i] ≤ tq ≤ t[i+1]). */

@@ -57,6 +57,15 @@ impl SpatialModel {
         }
     }
 
+    /// Which velocity coordinates belong to a given field in the position (`phase` 0) or
+    /// velocity (1) assembly.
+    fn given(&self, phase: usize) -> Vec<bool> {
+        self.fixed
+            .iter()
+            .flat_map(|f| (0..6).map(move |c| f[2 * phase + usize::from(c >= 3)]))
+            .collect()
+    }
+
     /// Weights W^{1/2} per velocity coordinate of the position (`phase` 0) or velocity (1)
     /// assembly: kinetic, solved fields 10⁴ times larger.
     fn weights(&self, phase: usize) -> Vec<f64> {
@@ -131,7 +140,7 @@ impl SpatialModel {
                 });
             }
             let rhs: Vec<f64> = ws.phi.iter().map(|v| -v).collect();
-            let dx = ws.min_norm(&w, &rhs)?;
+            let dx = ws.min_norm_held(&asm, &w, &self.given(0), &rhs)?;
             apply_increment(&mut y[..nq], &dx);
             iterations += 1;
         }
@@ -150,7 +159,7 @@ impl SpatialModel {
                     -(gv + ws.phit[r])
                 })
                 .collect();
-            let dv = ws.min_norm(&wv, &rhs)?;
+            let dv = ws.min_norm_held(&asm, &wv, &self.given(1), &rhs)?;
             for (c, d) in dv.iter().enumerate() {
                 y[nq + c] += d;
             }
@@ -243,34 +252,96 @@ impl AsmWs {
         }
     }
 
-    /// x = W² Gᵀ (G W² Gᵀ)⁻¹ rhs with W = diag(w): the least weighted x with G x = rhs.
-    fn min_norm(&self, w: &[f64], rhs: &[f64]) -> Result<Vec<f64>, MbdError> {
-        let (m, nv) = (rhs.len(), self.nv);
+    /// The least weighted x with G x = rhs, holding the `given` coordinates exactly when the
+    /// solved ones alone can meet every row: rows that touch no solved coordinate must then be
+    /// met already (|rhs| ≤ 1e-14), and the others must be independent over the solved
+    /// coordinates. Otherwise the soft weights `w` move the given coordinates too (by about
+    /// their weight's ratio to the solved ones', reported as corrections). Holding them exactly
+    /// matters: through the soft weights alone a given crank speed moved by 1e-7 of itself (the
+    /// inertia ratio of a light crank to a heavy slider), which the spatial slider–crank against
+    /// its minimal-coordinate reference showed.
+    fn min_norm_held(
+        &self,
+        asm: &Assembly,
+        w: &[f64],
+        given: &[bool],
+        rhs: &[f64],
+    ) -> Result<Vec<f64>, MbdError> {
+        let nv = self.nv;
+        let hard: Vec<f64> = w
+            .iter()
+            .zip(given)
+            .map(|(&w, &k)| if k { 0.0 } else { w })
+            .collect();
+        let touches = |r: usize| (0..nv).any(|c| hard[c] != 0.0 && self.g[r * nv + c] != 0.0);
+        let active: Vec<usize> = (0..rhs.len()).filter(|&r| touches(r)).collect();
+        let idle_met = (0..rhs.len())
+            .filter(|r| !active.contains(r))
+            .all(|r| rhs[r].abs() <= 1e-14);
+        let sub = Assembly {
+            prims: Vec::new(),
+            labels: active.iter().map(|&r| asm.labels[r].clone()).collect(),
+            m: active.len(),
+        };
+        let g_sub: Vec<f64> = active
+            .iter()
+            .flat_map(|&r| self.g[r * nv..(r + 1) * nv].iter().copied())
+            .collect();
+        if idle_met && dependent_rows(&sub, &g_sub, &hard).is_empty() {
+            let rhs_sub: Vec<f64> = active.iter().map(|&r| rhs[r]).collect();
+            return Ok(min_norm(&g_sub, nv, &hard, &rhs_sub));
+        }
+        Ok(min_norm(&self.g, nv, w, rhs))
+    }
+}
+
+/// x = W² Gᵀ (G W² Gᵀ)⁻¹ rhs with W = diag(w) and G row-major (rhs.len() × nv): the least
+/// weighted x with G x = rhs (rows independent: checked by the callers).
+fn min_norm(g: &[f64], nv: usize, w: &[f64], rhs: &[f64]) -> Vec<f64> {
+    {
+        let m = rhs.len();
         let mut lu = clr_ode::linalg::DenseLu::default();
         lu.resize(m);
         let a = lu.matrix_mut();
         for r in 0..m {
             for s in 0..m {
                 a[s * m + r] = (0..nv)
-                    .map(|c| self.g[r * nv + c] * w[c] * w[c] * self.g[s * nv + c])
+                    .map(|c| g[r * nv + c] * w[c] * w[c] * g[s * nv + c])
                     .sum();
             }
         }
-        lu.factor().map_err(|_| MbdError::RedundantConstraints {
-            rank: m - 1,
-            rows: m,
-            involved: "the assembly matrix is singular".into(),
-        })?;
         let mut l = rhs.to_vec();
-        lu.solve(&mut l);
-        Ok((0..nv)
-            .map(|c| w[c] * w[c] * (0..m).map(|r| self.g[r * nv + c] * l[r]).sum::<f64>())
-            .collect())
+        if m > 0 && lu.factor().is_ok() {
+            lu.solve(&mut l);
+        } else {
+            l.fill(0.0);
+        }
+        (0..nv)
+            .map(|c| w[c] * w[c] * (0..m).map(|r| g[r * nv + c] * l[r]).sum::<f64>())
+            .collect()
     }
 }
 
 /// Modified Gram–Schmidt on the rows of G W: the rows that depend on earlier ones.
 fn check_rank(asm: &Assembly, g: &[f64], w: &[f64]) -> Result<(), MbdError> {
+    let dependent = dependent_rows(asm, g, w);
+    if dependent.is_empty() {
+        return Ok(());
+    }
+    Err(MbdError::RedundantConstraints {
+        rank: asm.m - dependent.len(),
+        rows: asm.m,
+        involved: format!(
+            "{} (in space, a closed loop of revolute joints is over-constrained: replace one \
+             revolute by a spherical or universal joint, as in models/examples/spatial_four_bar.toml)",
+            dependent.join(", ")
+        ),
+    })
+}
+
+/// The labels of the rows of G W that depend on earlier ones (modified Gram–Schmidt, Golub &
+/// Van Loan §5.2.8, relative tolerance [`RANK_TOL`]).
+fn dependent_rows(asm: &Assembly, g: &[f64], w: &[f64]) -> Vec<String> {
     let nv = w.len();
     let mut basis: Vec<Vec<f64>> = Vec::new();
     let mut dependent = Vec::new();
@@ -288,16 +359,5 @@ fn check_rank(asm: &Assembly, g: &[f64], w: &[f64]) -> Result<(), MbdError> {
             basis.push(v.iter().map(|x| x / n).collect());
         }
     }
-    if dependent.is_empty() {
-        return Ok(());
-    }
-    Err(MbdError::RedundantConstraints {
-        rank: basis.len(),
-        rows: asm.m,
-        involved: format!(
-            "{} (in space, a closed loop of revolute joints is over-constrained: replace one \
-             revolute by a spherical or universal joint, as in models/examples/spatial_four_bar.toml)",
-            dependent.join(", ")
-        ),
-    })
+    dependent
 }
