@@ -17,6 +17,8 @@ mod models_flap_map;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
+mod spatial;
+mod spatial_ref;
 mod wear;
 
 use std::process::ExitCode;
@@ -87,6 +89,14 @@ const GROUPS: &[Group] = &[
     Group {
         name: "mbd.tolerance",
         run: mbd_tolerance::cases,
+    },
+    Group {
+        name: "mbd.spatial",
+        run: spatial::mbd_cases,
+    },
+    Group {
+        name: "contact.spatial",
+        run: spatial::contact_cases,
     },
     Group {
         name: "models",
