@@ -895,8 +895,7 @@ fn agreement(planar: &Results, spatial: &Results, cols: &[&str], z_cols: &[&str]
 /// Push the position and onset cases of a planar/spatial comparison.
 fn agreement_cases(
     out: &mut Vec<Case>,
-    base: &str,
-    src: &str,
+    (base, src): (&str, &str),
     runs: Result<(Results, Results), String>,
     (pos_tol, rtol): (f64, f64),
     what: &str,
@@ -995,8 +994,7 @@ fn sphere_planar_cases(out: &mut Vec<Case>) {
     })();
     agreement_cases(
         out,
-        "contact.spatial.sphere.planar",
-        src,
+        ("contact.spatial.sphere.planar", src),
         runs,
         (1e-9, 1e-10),
         "max |r_planar − r_spatial| of the rod's centre of mass at 31 times over 0.06 s",
@@ -1113,8 +1111,7 @@ fn planar_reduction_cases(out: &mut Vec<Case>) {
     };
     agreement_cases(
         out,
-        "mbd.spatial.planar_reduction",
-        src,
+        ("mbd.spatial.planar_reduction", src),
         runs(1e-12),
         (1e-9, 1e-12),
         "max |x_planar − x_spatial| of the slider at 1, 2, …, 10 ms",
