@@ -165,3 +165,52 @@ intervals = 10
     assert!((ez + 0.0005 + delta).abs() < 1e-3 * delta);
     assert!(!r.impacts.is_empty(), "the first touch is an impact");
 }
+
+/// A planar loop written in space with its ball-in-socket given off centre and every initial
+/// field given: the assembly keeps the given state (the ideal counterpart of the clearance
+/// joint, redundant with the joints in such a loop, is not used), so the penetration at t = 0
+/// is the given eccentricity minus the clearance exactly (closed form |e| − (R_s − R_b)).
+#[test]
+fn fully_given_state_keeps_an_off_centre_ball() {
+    let d = desc(
+        r#"
+[model]
+space = "spatial"
+[[body]]
+name = "b"
+mass = 0.5
+principal_inertia = [1e-4, 1e-4, 1e-4]
+position = [0.0, 0.0, 0.0]
+orientation = { quaternion = [1.0, 0.0, 0.0, 0.0] }
+velocity = [0.0, 0.0, 0.0]
+velocity_frame = "world"
+angular_velocity = [0.0, 0.0, 2.0]
+angular_velocity_frame = "world"
+[[joint]]
+name = "hinge"
+type = "revolute"
+a = { body = "ground", at = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0] }
+b = { body = "b", at = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0] }
+[[driver]]
+name = "motor"
+type = "revolute_angle"
+joint = "hinge"
+motion = { type = "linear", initial = 0.0, rate = 2.0 }
+[[clearance]]
+name = "S"
+type = "spherical"
+socket = { body = "ground", at = [0.0, 0.0, 0.0] }
+ball = { body = "b", at = [3e-4, 0.0, 0.0] }
+socket_radius = 0.010
+ball_radius = 0.0095
+normal = { law = "hertz", stiffness = 1e9, damping = "none", restitution = 1.0 }
+[output]
+t_end = 0.1
+intervals = 2
+"#,
+    );
+    let mut m = d.compile().unwrap();
+    let r = m.simulate(&d.sim_options().unwrap()).unwrap();
+    let pen = col(&r, "S.penetration")[0];
+    assert!((pen - (3e-4 - 5e-4)).abs() < 1e-15, "δ(0) = {pen:e}");
+}

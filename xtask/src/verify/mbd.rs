@@ -371,7 +371,7 @@ fn momentum_case(out: &mut Vec<Case>) {
 
 /// The benchmark slider–crank with the rod–slider joint as a clearance joint: bearing on the
 /// slider at its centre, journal on the rod end.
-fn clearance_slider_crank(
+pub(crate) fn clearance_slider_crank(
     omega: f64,
     normal: NormalLaw,
     friction: FrictionLaw,

@@ -17,6 +17,8 @@ mod models_flap_map;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
+mod spatial;
+mod spatial_ref;
 mod spatial_slider_crank;
 mod wear;
 
@@ -91,7 +93,15 @@ const GROUPS: &[Group] = &[
     },
     Group {
         name: "mbd.spatial",
+        run: spatial::mbd_cases,
+    },
+    Group {
+        name: "mbd.spatial",
         run: spatial_slider_crank::cases,
+    },
+    Group {
+        name: "contact.spatial",
+        run: spatial::contact_cases,
     },
     Group {
         name: "models",

@@ -2,9 +2,10 @@
 //! Newton's iteration on Φ = 0 with the weighted minimum-norm update
 //! Δ = −W Gᵀ(G W Gᵀ)⁻¹Φ in the velocity coordinates (translations and body-frame rotation
 //! increments, A ← A exp([Δφ]×)), W = M⁻¹ for given fields and 10⁸ M⁻¹ for solved ones, then
-//! one linear solve for the velocities. Spherical clearance joints are held as their ideal
-//! counterpart (ball centred in the socket). Redundant equations are found by modified
-//! Gram–Schmidt on the rows of G W^{1/2} before any solve.
+//! one linear solve for the velocities. When a field is left out, spherical clearance joints are
+//! held as their ideal counterpart (ball centred in the socket); with every field given they
+//! are left out. Redundant equations are found by modified Gram–Schmidt on the rows of
+//! G W^{1/2} before any solve.
 
 use nalgebra::Vector3;
 
@@ -19,8 +20,11 @@ const MAX_NEWTON: usize = 50;
 /// Position residual accepted by the assembly, m or rad.
 const POSITION_TOL: f64 = 1e-12;
 
-/// The assembly's rows: the model's constraints, then one coincidence per spherical clearance
-/// joint (its ideal counterpart).
+/// The assembly's rows: the model's constraints, then, when some initial field is left out, one
+/// coincidence per spherical clearance joint (its ideal counterpart). With every field given
+/// the counterparts are left out, as in the planar assembly: they would move a ball given off
+/// centre, and in a closed loop (a planar mechanism written in space) they are redundant with
+/// the joints although the clearance model is not.
 struct Assembly {
     prims: Vec<Prim>,
     labels: Vec<String>,
@@ -37,7 +41,8 @@ impl SpatialModel {
             }
         }
         let mut row = self.m;
-        for s in &self.spheres {
+        let all_given = self.fixed.iter().all(|f| f.iter().all(|&g| g));
+        for s in self.spheres.iter().filter(|_| !all_given) {
             prims.push(Prim {
                 owner: usize::MAX,
                 i: s.i,
@@ -164,18 +169,23 @@ impl SpatialModel {
                 y[nq + c] += d;
             }
         }
-        let notes = self.report(&self.y_given.clone(), &y, iterations);
+        let centred = asm.m > self.m;
+        let notes = self.report(&self.y_given.clone(), &y, iterations, centred);
         Ok((y, notes))
     }
 
     /// Notes on the fields solved and the given fields changed by the assembly.
-    fn report(&self, given: &[f64], y: &[f64], iterations: usize) -> Vec<String> {
+    fn report(&self, given: &[f64], y: &[f64], iterations: usize, centred: bool) -> Vec<String> {
         let (nq, _) = (self.n_q(), self.n_v());
         let mut notes = Vec::new();
         if iterations > 0 {
+            let held = if centred {
+                ", spherical clearance joints held centred (their ideal counterparts)"
+            } else {
+                ""
+            };
             notes.push(format!(
-                "initial conditions: positions assembled in {iterations} Newton iteration(s), \
-                 spherical clearance joints held centred (their ideal counterparts)"
+                "initial conditions: positions assembled in {iterations} Newton iteration(s){held}"
             ));
         }
         for (k, name) in self.names.iter().enumerate() {
