@@ -130,13 +130,10 @@ struct DKin {
 impl DKin {
     /// Seed body `k` of `kin` in `slot`, with velocities (ṙ, ω_body) `vel` (the state's when
     /// None). The ground is constant.
-    fn seed(kin: &Kinematics, k: usize, slot: usize, vel: Option<&[f64]>) -> Self {
+    fn seed(kin: &Kinematics, k: usize, slot: usize, vel: Option<[Vector3<f64>; 2]>) -> Self {
         let b: &Kin = kin.get(k);
         let (v, wb) = match vel {
-            Some(u) if k != GROUND => (
-                Vector3::new(u[6 * k], u[6 * k + 1], u[6 * k + 2]),
-                Vector3::new(u[6 * k + 3], u[6 * k + 4], u[6 * k + 5]),
-            ),
+            Some([v, w]) if k != GROUND => (v, w),
             _ => (b.v, b.a.transpose() * b.w),
         };
         if k == GROUND {
@@ -188,9 +185,24 @@ struct Pair {
 
 impl Pair {
     fn new(kin: &Kinematics, i: usize, j: usize, vel: Option<&[f64]>) -> Self {
+        let of = |k: usize| {
+            vel.filter(|_| k != GROUND).map(|u| {
+                [
+                    Vector3::new(u[6 * k], u[6 * k + 1], u[6 * k + 2]),
+                    Vector3::new(u[6 * k + 3], u[6 * k + 4], u[6 * k + 5]),
+                ]
+            })
+        };
+        Self::with(kin, [i, j], [of(i), of(j)])
+    }
+    /// The pair with the velocities (ṙ, ω_body) of each body given (the state's when None).
+    fn with(kin: &Kinematics, bodies: [usize; 2], vel: [Option<[Vector3<f64>; 2]>; 2]) -> Self {
         Pair {
-            bodies: [i, j],
-            k: [DKin::seed(kin, i, 0, vel), DKin::seed(kin, j, 1, vel)],
+            bodies,
+            k: [
+                DKin::seed(kin, bodies[0], 0, vel[0]),
+                DKin::seed(kin, bodies[1], 1, vel[1]),
+            ],
         }
     }
 }
@@ -444,6 +456,8 @@ pub(crate) struct RowBlocks<'a> {
     /// ∂γ/∂x and ∂γ/∂v.
     pub(crate) gamma_x: &'a mut [f64],
     pub(crate) gamma_v: &'a mut [f64],
+    /// ∂(Gᵀλ)/∂x at the multipliers λ (nv × nv): the geometric stiffness.
+    pub(crate) gtl_x: &'a mut [f64],
     pub(crate) nv: usize,
 }
 
@@ -534,7 +548,7 @@ impl Prim {
         kin: &Kinematics,
         t: f64,
         motions: &[TimeFn],
-        acc: &[f64],
+        (acc, lambda): (&[f64], &[f64]),
         out: &mut RowBlocks,
     ) {
         let z = S::cst(0.0);
@@ -561,6 +575,45 @@ impl Prim {
                 &mut out.gamma_x[row.clone()],
                 &mut out.gamma_v[row],
             );
+        }
+        self.geometric_stiffness(kin, t, motions, lambda, out);
+    }
+
+    /// Add ∂(Gᵀλ)/∂x: row 6b + d of Gᵀλ is Σ_r λ_r G[r, 6b + d], and G[r, 6b + d] is the rate
+    /// G u of the rows at the unit velocity u = e_{6b+d}, whose x-gradient the dual numbers give.
+    fn geometric_stiffness(
+        &self,
+        kin: &Kinematics,
+        t: f64,
+        motions: &[TimeFn],
+        lambda: &[f64],
+        out: &mut RowBlocks,
+    ) {
+        let nv = out.nv;
+        let bodies = [self.i, self.j];
+        let z = S::cst(0.0);
+        let mut rows = [RowD {
+            gu: z,
+            phit: z,
+            gamma: z,
+        }; 3];
+        for (slot, &b) in bodies.iter().enumerate() {
+            if b == GROUND {
+                continue;
+            }
+            for d in 0..6 {
+                let mut u = [Vector3::zeros(); 2];
+                u[d / 3][d % 3] = 1.0;
+                let mut vel = [Some([Vector3::zeros(); 2]); 2];
+                vel[slot] = Some(u);
+                self.rows_dual(&Pair::with(kin, bodies, vel), t, motions, &mut rows);
+                let o = (6 * b + d) * nv;
+                for (k, row) in rows.iter().enumerate().take(self.rows()) {
+                    let l = lambda[self.row + k];
+                    let g = row.gu.g.map(|x| x * l);
+                    scatter_x(&g, bodies, &mut out.gtl_x[o..o + nv]);
+                }
+            }
         }
     }
 }

@@ -53,6 +53,9 @@ pub(crate) struct SpatialNewton {
     /// ∂Q/∂x, ∂Q/∂v (nv × nv, row-major).
     pub(crate) qx: Vec<f64>,
     pub(crate) qv: Vec<f64>,
+    /// ∂(Gᵀλ)/∂x and the effective stiffness Q_x − ∂(Gᵀλ)/∂x of the Newton matrix (nv × nv).
+    pub(crate) gtl_x: Vec<f64>,
+    qx_eff: Vec<f64>,
     /// G, ∂(Gv)/∂x, ∂(Ga)/∂x, ∂Φ_t/∂x, ∂γ/∂x, ∂γ/∂v, b_x, b_v (m × nv, row-major).
     pub(crate) g: Vec<f64>,
     pub(crate) gv_x: Vec<f64>,
@@ -101,7 +104,13 @@ impl SpatialNewton {
         for v in [&mut self.q, &mut self.acc, &mut self.rho] {
             v.resize(nv, 0.0);
         }
-        for v in [&mut self.qx, &mut self.qv, &mut self.qxd] {
+        for v in [
+            &mut self.qx,
+            &mut self.qv,
+            &mut self.qxd,
+            &mut self.gtl_x,
+            &mut self.qx_eff,
+        ] {
             v.resize(nv * nv, 0.0);
         }
         for v in [
@@ -164,6 +173,9 @@ impl SpatialModel {
             nw.omega[k] = Vector3::new(y[nq + 6 * k + 3], y[nq + 6 * k + 4], y[nq + 6 * k + 5]);
         }
         self.element_blocks(nw, t);
+        for ((e, q), g) in nw.qx_eff.iter_mut().zip(&nw.qx).zip(&nw.gtl_x) {
+            *e = q - g;
+        }
         let (al, be) = (self.alpha, self.beta);
         for k in 0..m * nv {
             nw.bv[k] = nw.gamma_v[k] - 2.0 * al * nw.g[k];
@@ -204,6 +216,7 @@ impl SpatialModel {
             phit_x: &mut nw.phit_x,
             gamma_x: &mut nw.gamma_x,
             gamma_v: &mut nw.gamma_v,
+            gtl_x: &mut nw.gtl_x,
             nv,
         };
         for v in [
@@ -212,11 +225,12 @@ impl SpatialModel {
             &mut rows.phit_x,
             &mut rows.gamma_x,
             &mut rows.gamma_v,
+            &mut rows.gtl_x,
         ] {
             v.fill(0.0);
         }
         for p in &self.prims {
-            p.jacobian(kin, t, &self.motions, &nw.acc, &mut rows);
+            p.jacobian(kin, t, &self.motions, (&nw.acc, &self.ws.lambda), &mut rows);
         }
     }
 
@@ -238,7 +252,7 @@ impl SpatialModel {
         let (s, c2) = (0.5 * c, c * c);
         let mut qxd = std::mem::take(&mut nw.qxd);
         let mut bxd = std::mem::take(&mut nw.bxd);
-        times_d(nw, &nw.qx, &mut qxd, nv, s);
+        times_d(nw, &nw.qx_eff, &mut qxd, nv, s);
         times_d(nw, &nw.bx, &mut bxd, m, s);
         let a = nw.lu.matrix_mut();
         a.fill(0.0);
@@ -294,7 +308,7 @@ impl SpatialModel {
             }
         }
         for r in 0..nv {
-            let row = &nw.qx[r * nv..(r + 1) * nv];
+            let row = &nw.qx_eff[r * nv..(r + 1) * nv];
             nw.rhs[r] += c * row.iter().zip(&nw.rho).map(|(a, b)| a * b).sum::<f64>();
         }
         for r in 0..m {
