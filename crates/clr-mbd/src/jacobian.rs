@@ -51,7 +51,7 @@
 //! the integrator does after an accepted step.
 
 mod contact;
-mod dual;
+pub(crate) mod dual;
 mod guide;
 
 use clr_contact::{BodyState, ContactMemory};

@@ -69,7 +69,8 @@ pub(crate) struct ForceSums {
     pub(crate) p_in: f64,
 }
 
-fn vec_of(f: &[TimeFn; 3], t: f64) -> Vector3<f64> {
+/// The world or body components of a vector of time functions at t.
+pub(crate) fn vec_of(f: &[TimeFn; 3], t: f64) -> Vector3<f64> {
     Vector3::new(f[0].eval(t)[0], f[1].eval(t)[0], f[2].eval(t)[0])
 }
 
@@ -234,7 +235,7 @@ impl Force3 {
 }
 
 /// An angle difference into (−π, π].
-fn wrap(a: f64) -> f64 {
+pub(crate) fn wrap(a: f64) -> f64 {
     let t = std::f64::consts::TAU;
     let r = a.rem_euclid(t);
     if r > std::f64::consts::PI {

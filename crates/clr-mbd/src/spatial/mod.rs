@@ -28,8 +28,10 @@ mod constraint;
 mod force;
 pub mod frame;
 mod init;
+mod jacobian;
 mod kin;
 mod model;
+mod newton;
 mod output;
 mod sim;
 mod sphere;
@@ -39,6 +41,7 @@ pub use desc::{
     SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint, SphericalClearance, VectorFrame,
 };
 pub use model::SpatialModel;
+pub use newton::SpatialLinearization;
 pub use sphere::SphereReport;
 
 impl SpatialDesc {

@@ -108,6 +108,8 @@ pub(crate) struct Workspace {
     pub(crate) p_diss: f64,
     pub(crate) p_in: f64,
     pub(crate) solve_ok: bool,
+    /// The reduced Newton systems ([`super::newton`]).
+    pub(crate) newton: super::newton::SpatialNewton,
 }
 
 impl SpatialModel {
@@ -321,6 +323,19 @@ impl OdeSystem for SpatialModel {
         dydt[nq + nv + 1] = self.ws.p_in + self.driver_power(v);
         let zo = nq + nv + 2;
         dydt[zo..].copy_from_slice(&self.ws.zdot);
+    }
+
+    fn has_newton_solver(&self) -> bool {
+        self.ws.newton.on
+    }
+    fn newton_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
+        self.reduced_jacobian(t, y)
+    }
+    fn newton_factor(&mut self, c: f64) -> bool {
+        self.reduced_factor(c)
+    }
+    fn newton_solve(&mut self, b: &mut [f64]) {
+        self.reduced_solve(b)
     }
 
     fn n_events(&self) -> usize {

@@ -55,12 +55,16 @@ impl SpatialModel {
             ));
         }
         let mut notes = Vec::new();
-        if opts.solver == crate::SolverKind::Ndf && opts.jacobian == JacobianMode::Analytic {
-            notes.push(
-                "spatial models: the NDF Newton matrix is formed by finite differences of the \
-                 right-hand side (the analytic spatial Jacobians are not written yet)"
-                    .to_string(),
-            );
+        if opts.solver == crate::SolverKind::Ndf
+            && opts.jacobian == JacobianMode::Analytic
+            && self.n_bristle > 0
+        {
+            notes.push(format!(
+                "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
+                 \"finite_difference\"): the {} LuGre bristle states have no analytic Jacobian \
+                 rows yet",
+                self.n_bristle
+            ));
         }
         if opts.linear_solver == crate::LinearSolver::Sparse {
             notes.push("spatial models: the augmented equations are solved dense".to_string());
@@ -137,6 +141,7 @@ impl SpatialModel {
             )
         })?;
         self.events_on = opts.contact_events;
+        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic && self.n_bristle == 0;
         let (nq, nv) = (self.n_q(), self.n_v());
         let mut solver = AnySolver::new(opts, |ode| {
             if opts.scale_velocity_error {
