@@ -231,6 +231,37 @@ pub(crate) fn export_text(name: &str, parameters: &serde_json::Value) -> Result<
     Ok(run::builtin_file_text(name, parameters)?)
 }
 
+/// `clr view` of a spatial model: its 3-D page at t0.
+fn view_spatial(s: &clr_sim::spec::SpatialSpec, out: &Path, quiet: bool) -> Result<(), CliError> {
+    let (mut model, options) = s.build()?;
+    let results = model
+        .initial_results(options.t0)
+        .map_err(|e| CliError::from(s.model_error(&e)))?;
+    let notes: Vec<String> = s.notes.iter().chain(&results.notes).cloned().collect();
+    let input = clr_sim::report::Input {
+        model: &s.name,
+        source: &s.file,
+        description: &s.description,
+        desc: Err(String::new()),
+        results: &results,
+        metrics: &[],
+        notes: &notes,
+        error: None,
+    };
+    let scene = clr_sim::report::spatial::SpatialScene::from_desc(s.desc());
+    let report = clr_sim::report::Report::spatial("view", &input, scene, Default::default())
+        .map_err(|e| CliError::Input(format!("{}: {e}", s.file)))?;
+    std::fs::write(out, report.html())
+        .map_err(|e| CliError::Input(format!("cannot write {}: {e}", out.display())))?;
+    if !quiet {
+        for n in &notes {
+            eprintln!("clr: note: {n}");
+        }
+        eprintln!("clr: {} at t0 → {}", s.name, out.display());
+    }
+    Ok(())
+}
+
 /// `clr view`: the mechanism at t0 (consistent initial conditions assembled, not simulated) as
 /// `report.html`, with what the assembly changed.
 pub(crate) fn view_command(
@@ -241,6 +272,9 @@ pub(crate) fn view_command(
 ) -> Result<(), CliError> {
     let sets = assignments(set)?;
     let job = resolve(target, &sets, None, None)?;
+    if let Job::Spatial(s) = &job {
+        return view_spatial(s, out, quiet);
+    }
     let desc = job.desc(None, None).map_err(CliError::Input)?;
     let results = clr_sim::report::initial_state(&desc, desc.output.t_start)
         .map_err(|e| CliError::Input(format!("{target}: {e}")))?;

@@ -72,6 +72,25 @@ impl SpatialModel {
         Ok(notes)
     }
 
+    /// The consistent initial state at `t0` as one row of results, with the assembly's notes
+    /// (what `clr view` draws).
+    ///
+    /// # Errors
+    /// [`MbdError::RedundantConstraints`] or [`MbdError::Assembly`].
+    pub fn initial_results(&mut self, t0: f64) -> Result<Results, MbdError> {
+        let (y, notes) = self.initial_state(t0)?;
+        let mut data = Vec::new();
+        self.memory.reset();
+        self.record(t0, &y, &mut data);
+        Ok(Results {
+            columns: self.columns(),
+            data,
+            notes,
+            y_final: y,
+            ..Default::default()
+        })
+    }
+
     /// Simulate from the consistent initial state at `opts.t0` (assembled by
     /// [`SpatialModel::initial_state`]).
     ///
