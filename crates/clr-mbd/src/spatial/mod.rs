@@ -32,9 +32,11 @@ mod jacobian;
 mod kin;
 mod model;
 mod newton;
+mod newton_ws;
 mod output;
 mod sim;
 mod sphere;
+mod system;
 
 pub use desc::{
     ClearanceKind, DriverKind, End, JointKind, Orientation, Space, SpatialBody, SpatialDesc,

@@ -20,12 +20,10 @@
 
 use clr_contact::ContactMemory;
 use clr_ode::linalg::DenseLu;
-use clr_ode::{Direction, OdeSystem};
 use nalgebra::{Matrix3, Vector3};
 
 use super::constraint::{Prim, Rows};
 use super::force::Force3;
-use super::frame::quaternion_rate;
 use super::kin::Kinematics;
 use super::sphere::{Sphere, SphereReport};
 use crate::timefn::TimeFn;
@@ -108,8 +106,8 @@ pub(crate) struct Workspace {
     pub(crate) p_diss: f64,
     pub(crate) p_in: f64,
     pub(crate) solve_ok: bool,
-    /// The reduced Newton systems ([`super::newton`]).
-    pub(crate) newton: super::newton::SpatialNewton,
+    /// The reduced Newton systems ([`super::newton`] fills them).
+    pub(crate) newton: super::newton_ws::SpatialNewton,
 }
 
 impl SpatialModel {
@@ -293,73 +291,4 @@ fn apply_minv(b: &Inertia3, v: &mut [f64]) {
     v[..3].iter_mut().for_each(|c| *c /= b.mass);
     let w = b.j_inv * Vector3::new(v[3], v[4], v[5]);
     v[3..6].copy_from_slice(w.as_slice());
-}
-
-impl OdeSystem for SpatialModel {
-    fn dim(&self) -> usize {
-        self.n_q() + self.n_v() + 2 + self.n_bristle
-    }
-
-    fn rhs(&mut self, t: f64, y: &[f64], dydt: &mut [f64]) {
-        let nb = self.bodies.len();
-        let (nq, nv) = (7 * nb, 6 * nb);
-        self.evaluate(t, y);
-        let v = &y[nq..nq + nv];
-        self.solve(v);
-        for k in 0..nb {
-            dydt[7 * k..7 * k + 3].copy_from_slice(&v[6 * k..6 * k + 3]);
-            let w = Vector3::new(v[6 * k + 3], v[6 * k + 4], v[6 * k + 5]);
-            let p = &y[7 * k + 3..7 * k + 7];
-            quaternion_rate(p, &w, &mut dydt[7 * k + 3..7 * k + 7]);
-            if self.norm_rate > 0.0 {
-                let n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2] + p[3] * p[3];
-                for c in 0..4 {
-                    dydt[7 * k + 3 + c] += self.norm_rate * (1.0 - n2) * p[c];
-                }
-            }
-        }
-        dydt[nq..nq + nv].copy_from_slice(&self.ws.qf);
-        dydt[nq + nv] = self.ws.p_diss;
-        dydt[nq + nv + 1] = self.ws.p_in + self.driver_power(v);
-        let zo = nq + nv + 2;
-        dydt[zo..].copy_from_slice(&self.ws.zdot);
-    }
-
-    fn has_newton_solver(&self) -> bool {
-        self.ws.newton.on
-    }
-    fn newton_jacobian(&mut self, t: f64, y: &[f64]) -> bool {
-        self.reduced_jacobian(t, y)
-    }
-    fn newton_factor(&mut self, c: f64) -> bool {
-        self.reduced_factor(c)
-    }
-    fn newton_solve(&mut self, b: &mut [f64]) {
-        self.reduced_solve(b)
-    }
-
-    fn n_events(&self) -> usize {
-        if self.events_on {
-            self.spheres.len()
-        } else {
-            0
-        }
-    }
-
-    /// One event per spherical clearance joint: its penetration δ (m); a rising crossing is a
-    /// contact onset.
-    fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
-        self.ws.kin.update(self.bodies.len(), y);
-        for (k, s) in self.spheres.iter().enumerate() {
-            g[k] = s.gap(&self.ws.kin);
-        }
-    }
-
-    fn event_direction(&self, _i: usize) -> Direction {
-        Direction::Rising
-    }
-
-    fn event_terminal(&self, _i: usize) -> bool {
-        true
-    }
 }

@@ -36,46 +36,11 @@
 //! iterations, not accuracy). E_d and W_in are passive quadratures: ΔE = r_E, ΔW = r_W.
 //! Models with LuGre bristle states use the solver's finite-difference Newton matrix.
 
-use clr_ode::linalg::DenseLu;
 use nalgebra::{Matrix3, Vector3};
 
 use super::jacobian::{QBlocks, RowBlocks};
 use super::model::SpatialModel;
-
-/// Workspace of the reduced Newton systems, sized at the first use (nothing allocates after).
-#[derive(Debug, Default)]
-pub(crate) struct SpatialNewton {
-    /// Whether the integrator uses these systems (NDF, analytic, no LuGre bristles).
-    pub(crate) on: bool,
-    /// Q at the Jacobian's state (before the solve) and the accelerations a.
-    pub(crate) q: Vec<f64>,
-    pub(crate) acc: Vec<f64>,
-    /// ∂Q/∂x, ∂Q/∂v (nv × nv, row-major).
-    pub(crate) qx: Vec<f64>,
-    pub(crate) qv: Vec<f64>,
-    /// ∂(Gᵀλ)/∂x and the effective stiffness Q_x − ∂(Gᵀλ)/∂x of the Newton matrix (nv × nv).
-    pub(crate) gtl_x: Vec<f64>,
-    qx_eff: Vec<f64>,
-    /// G, ∂(Gv)/∂x, ∂(Ga)/∂x, ∂Φ_t/∂x, ∂γ/∂x, ∂γ/∂v, b_x, b_v (m × nv, row-major).
-    pub(crate) g: Vec<f64>,
-    pub(crate) gv_x: Vec<f64>,
-    pub(crate) ga_x: Vec<f64>,
-    pub(crate) phit_x: Vec<f64>,
-    pub(crate) gamma_x: Vec<f64>,
-    pub(crate) gamma_v: Vec<f64>,
-    pub(crate) bx: Vec<f64>,
-    pub(crate) bv: Vec<f64>,
-    /// Q_x D and b_x D of the last factorization.
-    qxd: Vec<f64>,
-    bxd: Vec<f64>,
-    /// Quaternion and body angular velocity of each body at the Jacobian's state.
-    quat: Vec<[f64; 4]>,
-    omega: Vec<Vector3<f64>>,
-    rhs: Vec<f64>,
-    rho: Vec<f64>,
-    lu: DenseLu,
-    c: f64,
-}
+use super::newton_ws::SpatialNewton;
 
 /// L(p)ᵀ y: the body-frame vector of a quaternion increment y (L(p)x = p ⊗ (0, x)).
 fn l_t(p: &[f64; 4], y: &[f64; 4]) -> Vector3<f64> {
