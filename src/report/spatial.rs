@@ -480,6 +480,112 @@ fn spin_axis() -> [f64; 3] {
     [b.sin(), b.cos(), 0.0]
 }
 
+impl SpatialScene {
+    /// The drawing of a spatial model description: every body through the points its joints,
+    /// forces and sockets attach to (centre-of-mass frame), the joints with their axes, the
+    /// sockets, and the trace of the first clearance joint's ball (else of the last body's
+    /// centre of mass).
+    pub fn from_desc(d: &clr_mbd::spatial::SpatialDesc) -> Self {
+        use clr_mbd::spatial::{End, SpatialForce};
+        let com = |body: &str| {
+            d.bodies
+                .iter()
+                .find(|b| b.name == body)
+                .map(|b| b.centre_of_mass)
+        };
+        let local = |e: &End| match com(&e.body) {
+            Some(c) => (Some(e.body.clone()), sub(e.at, c)),
+            None => (None, e.at),
+        };
+        let mut bodies: Vec<BodyDraw> = d
+            .bodies
+            .iter()
+            .map(|b| BodyDraw {
+                name: b.name.clone(),
+                points: Vec::new(),
+            })
+            .collect();
+        let mut attach = |e: &End| {
+            if let (Some(b), p) = local(e) {
+                if let Some(bd) = bodies.iter_mut().find(|x| x.name == b) {
+                    if !bd.points.contains(&p) {
+                        bd.points.push(p);
+                    }
+                }
+            }
+        };
+        let mut joints = Vec::new();
+        for j in &d.joints {
+            attach(&j.a);
+            attach(&j.b);
+            let (body, at) = local(&j.a);
+            let kind = serde_json::to_value(j.kind)
+                .ok()
+                .and_then(|v| v.as_str().map(String::from))
+                .unwrap_or_default();
+            joints.push(JointDraw {
+                name: j.name.clone(),
+                kind,
+                body,
+                at,
+                axis: j.a.axis,
+            });
+        }
+        for f in &d.forces {
+            match f {
+                SpatialForce::SpringDamper { a, b, .. }
+                | SpatialForce::Actuator { a, b, .. }
+                | SpatialForce::Bushing { a, b, .. } => {
+                    attach(a);
+                    attach(b);
+                }
+                SpatialForce::Force { at, .. } => attach(at),
+                _ => {}
+            }
+        }
+        let mut sockets = Vec::new();
+        for c in &d.clearances {
+            attach(&c.socket);
+            attach(&c.ball);
+            let (socket_body, socket_at) = local(&c.socket);
+            let (ball_body, ball_at) = local(&c.ball);
+            sockets.push(SocketDraw {
+                name: c.name.clone(),
+                socket_body,
+                socket_at,
+                ball_body,
+                ball_at,
+                socket_radius: c.socket_radius,
+                ball_radius: c.ball_radius,
+            });
+        }
+        let trace = match sockets.first() {
+            Some(SocketDraw {
+                ball_body: Some(b),
+                ball_at,
+                ..
+            }) => Some(TracePoint {
+                body: b.clone(),
+                at: *ball_at,
+            }),
+            _ => d.bodies.last().map(|b| TracePoint {
+                body: b.name.clone(),
+                at: [0.0; 3],
+            }),
+        };
+        Self {
+            bodies,
+            joints,
+            sockets,
+            trace,
+        }
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -609,110 +715,4 @@ mod tests {
         assert!(page_data(&html).get("spatial").is_none());
         assert_eq!(html.matches("</script>").count(), 2);
     }
-}
-
-impl SpatialScene {
-    /// The drawing of a spatial model description: every body through the points its joints,
-    /// forces and sockets attach to (centre-of-mass frame), the joints with their axes, the
-    /// sockets, and the trace of the first clearance joint's ball (else of the last body's
-    /// centre of mass).
-    pub fn from_desc(d: &clr_mbd::spatial::SpatialDesc) -> Self {
-        use clr_mbd::spatial::{End, SpatialForce};
-        let com = |body: &str| {
-            d.bodies
-                .iter()
-                .find(|b| b.name == body)
-                .map(|b| b.centre_of_mass)
-        };
-        let local = |e: &End| match com(&e.body) {
-            Some(c) => (Some(e.body.clone()), sub(e.at, c)),
-            None => (None, e.at),
-        };
-        let mut bodies: Vec<BodyDraw> = d
-            .bodies
-            .iter()
-            .map(|b| BodyDraw {
-                name: b.name.clone(),
-                points: Vec::new(),
-            })
-            .collect();
-        let mut attach = |e: &End| {
-            if let (Some(b), p) = local(e) {
-                if let Some(bd) = bodies.iter_mut().find(|x| x.name == b) {
-                    if !bd.points.contains(&p) {
-                        bd.points.push(p);
-                    }
-                }
-            }
-        };
-        let mut joints = Vec::new();
-        for j in &d.joints {
-            attach(&j.a);
-            attach(&j.b);
-            let (body, at) = local(&j.a);
-            let kind = serde_json::to_value(j.kind)
-                .ok()
-                .and_then(|v| v.as_str().map(String::from))
-                .unwrap_or_default();
-            joints.push(JointDraw {
-                name: j.name.clone(),
-                kind,
-                body,
-                at,
-                axis: j.a.axis,
-            });
-        }
-        for f in &d.forces {
-            match f {
-                SpatialForce::SpringDamper { a, b, .. }
-                | SpatialForce::Actuator { a, b, .. }
-                | SpatialForce::Bushing { a, b, .. } => {
-                    attach(a);
-                    attach(b);
-                }
-                SpatialForce::Force { at, .. } => attach(at),
-                _ => {}
-            }
-        }
-        let mut sockets = Vec::new();
-        for c in &d.clearances {
-            attach(&c.socket);
-            attach(&c.ball);
-            let (socket_body, socket_at) = local(&c.socket);
-            let (ball_body, ball_at) = local(&c.ball);
-            sockets.push(SocketDraw {
-                name: c.name.clone(),
-                socket_body,
-                socket_at,
-                ball_body,
-                ball_at,
-                socket_radius: c.socket_radius,
-                ball_radius: c.ball_radius,
-            });
-        }
-        let trace = match sockets.first() {
-            Some(SocketDraw {
-                ball_body: Some(b),
-                ball_at,
-                ..
-            }) => Some(TracePoint {
-                body: b.clone(),
-                at: *ball_at,
-            }),
-            _ => d.bodies.last().map(|b| TracePoint {
-                body: b.name.clone(),
-                at: [0.0; 3],
-            }),
-        };
-        Self {
-            bodies,
-            joints,
-            sockets,
-            trace,
-        }
-    }
-}
-
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }

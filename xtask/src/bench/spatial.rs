@@ -101,13 +101,12 @@ struct PeerRow {
     com: Vec<[f64; 3]>,
 }
 
+/// (median wall s, repeats, steps, onsets, centre of mass at [`TIMES`]) of one clr setting.
+type ClrRun = (f64, usize, usize, usize, Vec<[f64; 3]>);
+
 /// Centre of mass at [`TIMES`] from one clr run with (solver, rtol); (wall s, steps, onsets,
 /// positions), the model compiled outside the timer, median over repeats.
-fn clr_run(
-    solver: SolverKind,
-    rtol: f64,
-    min_time: f64,
-) -> Result<(f64, usize, usize, usize, Vec<[f64; 3]>), String> {
+fn clr_run(solver: SolverKind, rtol: f64, min_time: f64) -> Result<ClrRun, String> {
     let desc = SpatialDesc::from_toml_table(MODEL.parse().map_err(|e| format!("{e}"))?)
         .map_err(|e| e.to_string())?;
     let mut opts = SimOptions::default()
