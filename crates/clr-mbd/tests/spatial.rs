@@ -214,3 +214,33 @@ intervals = 2
     let pen = col(&r, "S.penetration")[0];
     assert!((pen - (3e-4 - 5e-4)).abs() < 1e-15, "δ(0) = {pen:e}");
 }
+
+/// The usual unit mistakes are refused at the field, not run: an orientation angle in degrees
+/// (beyond one turn, 2π rad) and a socket radius in millimetres (beyond 1 m).
+#[test]
+fn degrees_and_millimetres_are_refused() {
+    let top = include_str!("../../../models/examples/heavy_top.toml");
+    let deg = top.replace("angle = 0.3 }", "angle = 30.0 }");
+    let e = desc(&deg).compile().err().expect("30 rad refused");
+    assert!(e.to_string().contains("0.523599"), "{e}");
+    let text = r#"
+[model]
+space = "spatial"
+[[body]]
+name = "ball"
+mass = 1.0
+principal_inertia = [1e-4, 1e-4, 1e-4]
+[[clearance]]
+name = "S"
+type = "spherical"
+socket = { body = "ground", at = [0.0, 0.0, 0.0] }
+ball = { body = "ball", at = [0.0, 0.0, 0.0] }
+socket_radius = 10.0
+ball_radius = 9.5
+normal = { law = "hertz", stiffness = 1e10, damping = "lankarani-nikravesh", restitution = 0.9 }
+[output]
+t_end = 0.1
+"#;
+    let e = desc(text).compile().err().expect("a 10 m socket refused");
+    assert!(e.to_string().contains("mm"), "{e}");
+}

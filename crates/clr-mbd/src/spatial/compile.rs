@@ -189,6 +189,26 @@ fn inertia_of(path: &str, b: &SpatialBody) -> Result<Matrix3<f64>, MbdError> {
     Ok(j)
 }
 
+/// Refuse an orientation angle beyond one turn: in a pose it is almost surely degrees given
+/// for radians (30 → 0.5236 rad), which would otherwise give a valid but wrong orientation.
+fn radians(path: &str, angle: f64) -> Result<(), MbdError> {
+    if angle.abs() <= std::f64::consts::TAU {
+        return Ok(());
+    }
+    Err(invalid(
+        path,
+        format!(
+            "{angle} rad is more than one turn: angles are in rad (if {angle} is in degrees, \
+             write {:.6})",
+            angle.to_radians()
+        ),
+    ))
+}
+
+/// Largest ball or socket radius accepted, m: larger is almost surely millimetres given for
+/// metres (a 10 mm socket written as 10), which would leave the ball never touching its socket.
+const MAX_SPHERE_RADIUS: f64 = 1.0;
+
 /// Rotation matrix of an orientation.
 fn orientation(path: &str, o: &Orientation) -> Result<Matrix3<f64>, MbdError> {
     match o {
@@ -218,6 +238,7 @@ fn orientation(path: &str, o: &Orientation) -> Result<Matrix3<f64>, MbdError> {
             if !angle.is_finite() {
                 return Err(invalid(format!("{path}.angle"), "must be finite (rad)"));
             }
+            radians(&format!("{path}.angle"), *angle)?;
             Ok(exp_map(&(u * *angle)))
         }
         Orientation::Euler { euler, sequence } => {
@@ -234,6 +255,9 @@ fn orientation(path: &str, o: &Orientation) -> Result<Matrix3<f64>, MbdError> {
                          (e.g. \"zyx\", \"zxz\"); the angles are about the moving axes"
                     ),
                 ));
+            }
+            for (k, ang) in euler.iter().enumerate() {
+                radians(&format!("{path}.euler[{k}]"), *ang)?;
             }
             let mut a = Matrix3::identity();
             for (c, ang) in seq.iter().zip(euler) {
@@ -897,6 +921,16 @@ fn sphere(
         });
     }
     let (rs, rb) = (s.socket_radius, s.ball_radius);
+    if rs > MAX_SPHERE_RADIUS {
+        return Err(invalid(
+            format!("{name}.socket_radius"),
+            format!(
+                "{rs} m is larger than {MAX_SPHERE_RADIUS} m: lengths are in m (a radius in mm, \
+                 {rs} mm, is {:e} m)",
+                rs * 1e-3
+            ),
+        ));
+    }
     if !(rs > 0.0 && rs.is_finite()) {
         return Err(invalid(
             format!("{name}.socket_radius"),
