@@ -1,14 +1,14 @@
-//! The spatial run: consistent initial state, integration with clr-ode one accepted step at a
-//! time (the planar driver's integrator set-up, [`AnySolver`], and its impact tracker,
-//! [`ImpactTracker`]), contact memory commits, located onsets that restart the integrator, and
-//! the recorded columns ([`super::output`]).
+//! The spatial run: consistent initial state, then the shared step loop ([`crate::driver`]) with
+//! what differs in space (the model is its own integrand, balls are watched for going through
+//! their sockets, the quaternion drift is reported); the recorded columns are in
+//! [`super::output`].
 
-use clr_ode::{OdeSystem, StopReason};
+use clr_ode::OdeSystem;
 
 use super::model::SpatialModel;
+use crate::driver::{check_options, drive, AnySolver, Engine, StepEnd, Stop};
 use crate::error::MbdError;
-use crate::impacts::{ContactProbe, ImpactTracker, Probe};
-use crate::sim::{check_options, with_solver, AnySolver, StopEachStep};
+use crate::impacts::{ContactProbe, Probe};
 use crate::{InitialConditionsMode, JacobianMode, Results, SimOptions};
 
 impl ContactProbe for SpatialModel {
@@ -169,126 +169,75 @@ impl SpatialModel {
                 ode
             }
         });
-        let mut run = Run {
-            data: Vec::new(),
-            y: y0.to_vec(),
-            onsets: 0,
-            max_viol: 0.0,
-            max_drift: 0.0,
-            impacts: ImpactTracker::new(self, opts.t0, y0),
-        };
-        let out = self.integrate(opts, &mut solver, &mut run, progress);
-        let stats = with_solver!(&solver, s => s.stats());
-        match out {
-            Ok(()) => Ok(run.results(self.columns(), stats)),
-            Err(Stop::ThroughSocket(what)) => Err(MbdError::Implausible {
-                warnings: what,
-                count: 1,
-                partial: Some(Box::new(run.results(self.columns(), stats))),
-            }),
-            Err(Stop::Ode(e)) => {
-                let sol = e.solution();
-                let stats = if sol.stats == Default::default() {
-                    stats
-                } else {
-                    sol.stats
-                };
-                if sol.y_final.len() == run.y.len() {
-                    run.y.copy_from_slice(&sol.y_final);
-                }
-                Err(MbdError::Failed {
-                    partial: Box::new(run.results(self.columns(), stats)),
-                    source: e,
-                    cause: String::new(),
-                })
-            }
-        }
-    }
-
-    fn integrate(
-        &mut self,
-        opts: &SimOptions,
-        solver: &mut AnySolver,
-        run: &mut Run,
-        progress: &dyn Fn(f64),
-    ) -> Result<(), Stop> {
-        let mut y_out = vec![0.0; self.dim()];
-        let report_every = 0.01 * (opts.t_end - opts.t0);
-        let mut last_report = opts.t0;
-        self.memory.reset();
-        self.commit_contacts(&run.y);
-        with_solver!(&mut *solver, s => s.start(self, opts.t0, &run.y, opts.t_end))?;
-        let mut recorded = with_solver!(&*solver, s => s.solution().t.len());
-        for _ in 0..recorded.max(usize::from(opts.every_step)) {
-            self.record(opts.t0, &run.y.clone(), &mut run.data);
-        }
-        loop {
-            let reason =
-                with_solver!(&mut *solver, s => s.advance_observed(self, &mut StopEachStep))?;
-            let t = with_solver!(&*solver, s => s.solution().t_final);
-            run.y
-                .copy_from_slice(with_solver!(&*solver, s => &s.solution().y_final));
-            let n_out = with_solver!(&*solver, s => s.solution().t.len());
-            while recorded < n_out {
-                let to = with_solver!(&*solver, s => s.solution().t[recorded]);
-                y_out.copy_from_slice(with_solver!(&*solver, s => s.solution().state(recorded)));
-                self.record(to, &y_out, &mut run.data);
-                recorded += 1;
-            }
-            let interp =
-                |tp: f64, out: &mut [f64]| with_solver!(&*solver, s => s.interpolate(tp, out));
-            run.impacts.step(self, (t, &run.y), &interp, &mut y_out);
-            self.commit_contacts(&run.y);
-            self.check_depth(t, &run.y)?;
-            let (pv, _) = self.violation(t, &run.y);
-            run.max_viol = run.max_viol.max(pv);
-            run.max_drift = run.max_drift.max(self.quaternion_drift(&run.y));
-            let onset = match reason {
-                StopReason::TerminalEvent(e) => Some(e),
-                _ => None,
-            };
-            if let Some(k) = onset {
-                run.onsets += 1;
-                // LuGre bristles start undeflected at a new contact (as the planar joints)
-                if let Some(o) = self.spheres[k].bristle {
-                    let z = self.bristle_offset() + o;
-                    run.y[z..z + 3].fill(0.0);
-                }
-            }
-            if opts.every_step {
-                self.record(t, &run.y.clone(), &mut run.data);
-            }
-            let done = reason == StopReason::EndReached || t >= opts.t_end;
-            if (done && t > last_report) || t - last_report >= report_every {
-                progress(t);
-                last_report = t;
-            }
-            if done {
-                return Ok(());
-            }
-            if onset.is_some() {
-                with_solver!(&mut *solver, s => s.restart(self, t, &run.y))?;
-            }
-        }
+        drive(self, opts, y0, (&mut solver, &mut ()), Drift(0.0), progress)
     }
 }
+
+/// The spatial model in the shared step loop: it is its own integrand (its Newton workspace
+/// lives inside), balls are watched for going through their sockets, and the quaternion norm
+/// drift is reported.
+impl Engine for SpatialModel {
+    type Ws = ();
+    type Sys<'a> = &'a mut SpatialModel;
+    type Watch = Drift;
+
+    fn system<'a>(&'a mut self, _ws: &'a mut ()) -> &'a mut SpatialModel {
+        self
+    }
+    fn reset_memory(&mut self) {
+        self.memory.reset();
+    }
+    fn commit_contacts(&mut self, y: &[f64]) {
+        SpatialModel::commit_contacts(self, y);
+    }
+    fn record(&mut self, t: f64, y: &[f64], out: &mut Vec<f64>) {
+        SpatialModel::record(self, t, y, out);
+    }
+    fn columns(&self) -> Vec<String> {
+        SpatialModel::columns(self)
+    }
+    fn violation(&mut self, t: f64, y: &[f64]) -> f64 {
+        SpatialModel::violation(self, t, y).0
+    }
+    fn watch(&mut self, drift: &mut Drift, t: f64, y: &[f64]) -> Result<(), Stop> {
+        self.check_depth(t, y)?;
+        drift.0 = drift.0.max(self.quaternion_drift(y));
+        Ok(())
+    }
+    fn step_end(
+        &mut self,
+        _t: f64,
+        y: &mut [f64],
+        onset: Option<usize>,
+        _violation: f64,
+        _opts: &SimOptions,
+    ) -> Result<StepEnd, Stop> {
+        // LuGre bristles start undeflected at a new contact (as the planar joints); the onset
+        // restarts the integrator anyway
+        if let Some(o) = onset.and_then(|k| self.spheres[k].bristle) {
+            let z = self.bristle_offset() + o;
+            y[z..z + 3].fill(0.0);
+        }
+        Ok(StepEnd::default())
+    }
+    fn watch_notes(&self, drift: &Drift) -> Vec<String> {
+        vec![format!(
+            "quaternion norm drift: largest |‖p‖ − 1| over the run {:.2e} (every use \
+             normalizes p; column violation.quaternion)",
+            drift.0
+        )]
+    }
+    fn failure_cause(&mut self, _t: f64, _y: &[f64]) -> String {
+        String::new()
+    }
+}
+
+/// The largest quaternion norm drift |‖p‖ − 1| over a run so far.
+pub(crate) struct Drift(f64);
 
 /// Largest penetration accepted, as a fraction of the ball radius: deeper, the ball's centre is
 /// far outside any contact law's range (Hertz assumes δ ≪ R) and the run stops.
 const DEPTH_LIMIT: f64 = 0.1;
-
-/// Why the step loop stopped early.
-enum Stop {
-    Ode(clr_ode::OdeError),
-    /// A ball went through its socket (the message says which and what it means).
-    ThroughSocket(String),
-}
-
-impl From<clr_ode::OdeError> for Stop {
-    fn from(e: clr_ode::OdeError) -> Self {
-        Stop::Ode(e)
-    }
-}
 
 impl SpatialModel {
     /// Stop when a ball has gone deeper than [`DEPTH_LIMIT`] of its radius into its socket: a
@@ -300,7 +249,7 @@ impl SpatialModel {
         for s in &self.spheres {
             let d = s.gap(&self.ws.kin);
             if d > DEPTH_LIMIT * s.r_ball {
-                return Err(Stop::ThroughSocket(format!(
+                return Err(Stop::Implausible(format!(
                     "clearance `{}` at t = {t:.6} s: the ball is {d:.3e} m deep in its socket, more \
                      than {:.0} % of its radius: the loop probably cannot close at this pose (a \
                      driven linkage that locks, which an ideal joint would report as singular), \
@@ -312,37 +261,5 @@ impl SpatialModel {
             }
         }
         Ok(())
-    }
-}
-
-/// What a spatial run has computed so far.
-struct Run {
-    data: Vec<f64>,
-    y: Vec<f64>,
-    onsets: usize,
-    max_viol: f64,
-    max_drift: f64,
-    impacts: ImpactTracker,
-}
-
-impl Run {
-    fn results(&mut self, columns: Vec<String>, stats: clr_ode::Stats) -> Results {
-        Results {
-            notes: vec![format!(
-                "quaternion norm drift: largest |‖p‖ − 1| over the run {:.2e} (every use \
-                 normalizes p; column violation.quaternion)",
-                self.max_drift
-            )],
-            columns,
-            data: std::mem::take(&mut self.data),
-            stats,
-            onsets: self.onsets,
-            projections: 0,
-            max_position_violation: self.max_viol,
-            y_final: self.y.clone(),
-            impacts: std::mem::replace(&mut self.impacts, ImpactTracker::empty()).into_impacts(),
-            initial_conditions: None,
-            warnings: Vec::new(),
-        }
     }
 }
