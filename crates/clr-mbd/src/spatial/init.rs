@@ -34,12 +34,7 @@ struct Assembly {
 impl SpatialModel {
     fn assembly_rows(&self) -> Assembly {
         let mut prims = self.prims.clone();
-        let mut labels = Vec::new();
-        for o in &self.owners {
-            for r in o.rows.0..o.rows.1 {
-                labels.push(format!("{} (equation {})", o.name, r - o.rows.0 + 1));
-            }
-        }
+        let mut labels = self.row_labels();
         let mut row = self.m;
         let all_given = self.fixed.iter().all(|f| f.iter().all(|&g| g));
         for s in self.spheres.iter().filter(|_| !all_given) {
@@ -130,18 +125,11 @@ impl SpatialModel {
                 check_rank(&asm, &ws.g, &w)?;
             }
             if iterations == MAX_NEWTON || !res.is_finite() {
-                let k = (0..asm.m).fold(0, |b, r| {
-                    if ws.phi[r].abs() > ws.phi[b].abs() {
-                        r
-                    } else {
-                        b
-                    }
-                });
                 return Err(MbdError::Assembly {
                     t: t0,
                     residual: res,
                     iterations,
-                    worst: asm.labels[k].clone(),
+                    worst: worst_row(&asm, &ws.phi),
                 });
             }
             let rhs: Vec<f64> = ws.phi.iter().map(|v| -v).collect();
@@ -153,17 +141,7 @@ impl SpatialModel {
         let wv = self.weights(1);
         if asm.m > 0 {
             check_rank(&asm, &ws.g, &wv)?;
-            let v = &y[nq..nq + nv];
-            let rhs: Vec<f64> = (0..asm.m)
-                .map(|r| {
-                    let gv: f64 = ws.g[r * nv..(r + 1) * nv]
-                        .iter()
-                        .zip(v)
-                        .map(|(a, b)| a * b)
-                        .sum();
-                    -(gv + ws.phit[r])
-                })
-                .collect();
+            let rhs = velocity_residual(&ws, &y[nq..nq + nv]);
             let dv = ws.min_norm_held(&asm, &wv, &self.given(1), &rhs)?;
             for (c, d) in dv.iter().enumerate() {
                 y[nq + c] += d;
@@ -172,6 +150,81 @@ impl SpatialModel {
         let centred = asm.m > self.m;
         let notes = self.report(&self.y_given.clone(), &y, iterations, centred);
         Ok((y, notes))
+    }
+
+    /// Project y = (q, v, …) onto Φ = 0 (Newton) and Φ̇ = 0 (one linear solve) at time t in the
+    /// kinetic metric W = M⁻¹ (the correction of least kinetic energy, as the planar
+    /// [`crate::Model::project`]); the increments act on the velocity coordinates (translations
+    /// and body-frame rotations, A ← A exp([Δφ]×)), so the quaternions stay unit. Clearance
+    /// joints are not constraints and are left as they are. Returns the Newton iterations.
+    ///
+    /// # Errors
+    /// [`MbdError::Assembly`] when Newton does not reach `tol` (‖Φ‖∞ in m or rad) in 50
+    /// iterations, and [`MbdError::RedundantConstraints`] when G loses rank. A `tol` below the
+    /// rounding of the positions (16 ε max(1, |q|)) is raised to it.
+    pub fn project(&mut self, t: f64, y: &mut [f64], tol: f64) -> Result<usize, MbdError> {
+        if self.m == 0 {
+            return Ok(0);
+        }
+        let asm = Assembly {
+            prims: self.prims.clone(),
+            labels: self.row_labels(),
+            m: self.m,
+        };
+        let (nq, nv) = (self.n_q(), self.n_v());
+        let mut ws = AsmWs::new(asm.m, nv);
+        // kinetic weights: every coordinate counts as given
+        let w: Vec<f64> = self
+            .bodies
+            .iter()
+            .flat_map(|b| {
+                (0..6).map(move |c| 1.0 / if c < 3 { b.mass } else { b.j[(c - 3, c - 3)] }.sqrt())
+            })
+            .collect();
+        // a residual at rounding level cannot be reduced further: stop there even when `tol`
+        // asks for less (positions of magnitude r carry about ε r)
+        let size = y[..nq].iter().fold(1.0f64, |a, v| a.max(v.abs()));
+        let tol = tol.max(16.0 * f64::EPSILON * size);
+        let mut iterations = 0;
+        loop {
+            self.eval_rows(&asm, t, y, &mut ws);
+            let res = ws.phi.iter().fold(0.0f64, |a, v| a.max(v.abs()));
+            if res <= tol {
+                break;
+            }
+            if iterations == MAX_NEWTON || !res.is_finite() {
+                return Err(MbdError::Assembly {
+                    t,
+                    residual: res,
+                    iterations,
+                    worst: worst_row(&asm, &ws.phi),
+                });
+            }
+            if iterations == 0 {
+                check_rank(&asm, &ws.g, &w)?;
+            }
+            let rhs: Vec<f64> = ws.phi.iter().map(|v| -v).collect();
+            let dx = min_norm(&ws.g, nv, &w, &rhs);
+            apply_increment(&mut y[..nq], &dx);
+            iterations += 1;
+        }
+        let rhs = velocity_residual(&ws, &y[nq..nq + nv]);
+        let dv = min_norm(&ws.g, nv, &w, &rhs);
+        for (c, d) in dv.iter().enumerate() {
+            y[nq + c] += d;
+        }
+        Ok(iterations)
+    }
+
+    /// The labels of the model's constraint rows ("joint (equation k)").
+    fn row_labels(&self) -> Vec<String> {
+        let mut labels = Vec::with_capacity(self.m);
+        for o in &self.owners {
+            for r in o.rows.0..o.rows.1 {
+                labels.push(format!("{} (equation {})", o.name, r - o.rows.0 + 1));
+            }
+        }
+        labels
     }
 
     /// Notes on the fields solved and the given fields changed by the assembly.
@@ -228,6 +281,27 @@ impl SpatialModel {
         }
         notes
     }
+}
+
+/// The label of the row with the largest |Φ|.
+fn worst_row(asm: &Assembly, phi: &[f64]) -> String {
+    let k = (0..asm.m).fold(0, |b, r| if phi[r].abs() > phi[b].abs() { r } else { b });
+    asm.labels[k].clone()
+}
+
+/// −(G v + Φ_t): what the velocity correction must make up.
+fn velocity_residual(ws: &AsmWs, v: &[f64]) -> Vec<f64> {
+    let nv = ws.nv;
+    (0..ws.phi.len())
+        .map(|r| {
+            let gv: f64 = ws.g[r * nv..(r + 1) * nv]
+                .iter()
+                .zip(v)
+                .map(|(a, b)| a * b)
+                .sum();
+            -(gv + ws.phit[r])
+        })
+        .collect()
 }
 
 /// p ← p ⊗ q(Δφ) and r += Δr per body, from the velocity-coordinate increment dx.

@@ -46,14 +46,7 @@ impl SpatialModel {
 
     /// Options a spatial run does not have yet: refused, or noted when the choice only
     /// changes the cost.
-    fn option_notes(&self, opts: &SimOptions) -> Result<Vec<String>, MbdError> {
-        if opts.projection.is_some() {
-            return Err(MbdError::Options(
-                "`projection` is not available for spatial models yet: leave it out (Baumgarte \
-                 stabilization keeps the constraints; violation.position reports them)"
-                    .into(),
-            ));
-        }
+    fn option_notes(&self, opts: &SimOptions) -> Vec<String> {
         let mut notes = Vec::new();
         if opts.solver == crate::SolverKind::Ndf
             && opts.jacobian == JacobianMode::Analytic
@@ -69,7 +62,7 @@ impl SpatialModel {
         if opts.linear_solver == crate::LinearSolver::Sparse {
             notes.push("spatial models: the augmented equations are solved dense".to_string());
         }
-        Ok(notes)
+        notes
     }
 
     /// The consistent initial state at `t0` as one row of results, with the assembly's notes
@@ -129,7 +122,7 @@ impl SpatialModel {
         }
         let mut notes = self.notes.clone();
         notes.extend(ic_notes);
-        notes.extend(self.option_notes(opts)?);
+        notes.extend(self.option_notes(opts));
         let with_notes = |mut r: Results| {
             let mut n = notes.clone();
             n.append(&mut r.notes);
@@ -206,11 +199,11 @@ impl Engine for SpatialModel {
     }
     fn step_end(
         &mut self,
-        _t: f64,
+        t: f64,
         y: &mut [f64],
         onset: Option<usize>,
-        _violation: f64,
-        _opts: &SimOptions,
+        violation: f64,
+        opts: &SimOptions,
     ) -> Result<StepEnd, Stop> {
         // LuGre bristles start undeflected at a new contact (as the planar joints); the onset
         // restarts the integrator anyway
@@ -218,7 +211,17 @@ impl Engine for SpatialModel {
             let z = self.bristle_offset() + o;
             y[z..z + 3].fill(0.0);
         }
-        Ok(StepEnd::default())
+        match opts.projection {
+            // also at t_end: the last recorded state meets the threshold like the others
+            Some(tol) if violation > tol => {
+                self.project(t, y, tol * 1e-3)?;
+                Ok(StepEnd {
+                    restart: true,
+                    projected: true,
+                })
+            }
+            _ => Ok(StepEnd::default()),
+        }
     }
     fn watch_notes(&self, drift: &Drift) -> Vec<String> {
         vec![format!(
