@@ -658,9 +658,10 @@ pub fn execute(
                     )
                 }
                 Err(
-                    e @ clr_mbd::MbdError::Implausible {
+                    e @ (clr_mbd::MbdError::Implausible {
                         partial: Some(_), ..
-                    },
+                    }
+                    | clr_mbd::MbdError::Stopped { .. }),
                 ) => {
                     let msg = e.to_string();
                     let partial = e.into_partial().unwrap_or_default();
@@ -701,9 +702,10 @@ fn execute_spatial(
             )),
         ),
         Err(
-            e @ clr_mbd::MbdError::Implausible {
+            e @ (clr_mbd::MbdError::Implausible {
                 partial: Some(_), ..
-            },
+            }
+            | clr_mbd::MbdError::Stopped { .. }),
         ) => {
             let msg = e.to_string();
             (e.into_partial().unwrap_or_default(), Some(msg))

@@ -162,8 +162,8 @@ pub(crate) enum Stop {
     /// A clr-mbd step failed (projection); returned as it is.
     Mbd(MbdError),
     /// The state is not physics any more (the message says why): the run stops with
-    /// [`MbdError::Implausible`] and the rows so far.
-    Implausible(String),
+    /// [`MbdError::Stopped`] and the rows so far.
+    Unphysical(String),
 }
 
 impl From<OdeError> for Stop {
@@ -217,7 +217,7 @@ impl<W> Run<W> {
 ///
 /// # Errors
 /// [`MbdError::Failed`] with the partial results when the integrator fails,
-/// [`MbdError::Implausible`] with them when the model stops the run, and the model's own
+/// [`MbdError::Stopped`] with them when the model stops the run, and the model's own
 /// errors as they are.
 pub(crate) fn drive<E: Engine>(
     model: &mut E,
@@ -242,10 +242,9 @@ pub(crate) fn drive<E: Engine>(
     match out {
         Ok(()) => Ok(run.results(model, stats)),
         Err(Stop::Mbd(e)) => Err(e),
-        Err(Stop::Implausible(what)) => Err(MbdError::Implausible {
-            warnings: what,
-            count: 1,
-            partial: Some(Box::new(run.results(model, stats))),
+        Err(Stop::Unphysical(reason)) => Err(MbdError::Stopped {
+            reason,
+            partial: Box::new(run.results(model, stats)),
         }),
         Err(Stop::Ode(e)) => {
             // rows the solver interpolated but the loop has not recorded yet (none in practice:

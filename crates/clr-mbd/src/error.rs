@@ -234,6 +234,18 @@ pub enum MbdError {
         /// The finished run's results (`None` when refused before integrating).
         partial: Option<Box<Results>>,
     },
+    /// The run reached a state that is not physics any more (a ball driven through its socket)
+    /// and stopped there; `partial` holds every row up to that step.
+    #[error(
+        "the run stopped at a non-physical state: {reason}. The rows up to there are kept \
+         (partial results)"
+    )]
+    Stopped {
+        /// What happened, where and what to check.
+        reason: String,
+        /// The results up to the stop.
+        partial: Box<Results>,
+    },
     /// Writing output failed.
     #[error("writing output: {0}")]
     Io(#[from] std::io::Error),
@@ -290,8 +302,8 @@ impl From<crate::field::FieldError> for MbdError {
 }
 
 impl MbdError {
-    /// The same error with `f` applied to the partial results of a failed run (other errors
-    /// unchanged).
+    /// The same error with `f` applied to the partial results of a failed or stopped run
+    /// ([`MbdError::Failed`], [`MbdError::Stopped`]; other errors unchanged).
     pub(crate) fn map_partial(self, f: impl FnOnce(crate::Results) -> crate::Results) -> Self {
         match self {
             MbdError::Failed {
@@ -303,15 +315,20 @@ impl MbdError {
                 source,
                 cause,
             },
+            MbdError::Stopped { reason, partial } => MbdError::Stopped {
+                reason,
+                partial: Box::new(f(*partial)),
+            },
             e => e,
         }
     }
 
-    /// The results recorded up to an integrator failure ([`MbdError::Failed`]); `None` for
-    /// every other error (nothing was integrated).
+    /// The results recorded up to an integrator failure ([`MbdError::Failed`]) or a stop
+    /// ([`MbdError::Stopped`]), or of a strict run refused after it finished; `None` for every
+    /// other error (nothing was integrated).
     pub fn partial(&self) -> Option<&Results> {
         match self {
-            MbdError::Failed { partial, .. } => Some(partial),
+            MbdError::Failed { partial, .. } | MbdError::Stopped { partial, .. } => Some(partial),
             MbdError::Implausible {
                 partial: Some(p), ..
             } => Some(p),
@@ -322,7 +339,7 @@ impl MbdError {
     /// Take the results recorded up to an integrator failure (see [`MbdError::partial`]).
     pub fn into_partial(self) -> Option<Results> {
         match self {
-            MbdError::Failed { partial, .. } => Some(*partial),
+            MbdError::Failed { partial, .. } | MbdError::Stopped { partial, .. } => Some(*partial),
             MbdError::Implausible {
                 partial: Some(p), ..
             } => Some(*p),

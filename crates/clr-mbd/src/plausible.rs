@@ -68,7 +68,8 @@ pub const FORCE_RATIO: f64 = 1e4;
 
 pub use crate::initial_data::Warning;
 
-fn warn(field: impl Into<String>, message: String) -> Warning {
+/// A finding on `field`.
+pub(crate) fn warn(field: impl Into<String>, message: String) -> Warning {
     Warning {
         field: field.into(),
         message,
@@ -211,31 +212,15 @@ impl Model {
         for (k, b) in self.bodies.iter().enumerate() {
             let name = &self.body_names[k];
             let ext = sc.extent[k];
-            let speed = y0[n + 3 * k + 2].abs() * ext;
-            if speed > MAX_TIP_SPEED {
-                let w = y0[n + 3 * k + 2];
-                out.push(warn(
-                    format!("{name}.omega"),
-                    format!(
-                        "ω = {w:.6e} rad/s at t0 gives a peripheral speed of {speed:.3e} m/s at \
-                         {ext:.3e} m from the centre of mass (above {MAX_TIP_SPEED} m/s): if it \
-                         is in rpm, ω = {:.6e} rad/s",
-                        w * std::f64::consts::PI / 30.0
-                    ),
-                ));
-            }
+            let w = y0[n + 3 * k + 2];
+            out.extend(tip_speed(format!("{name}.omega"), "ω", w, ext));
             let gyration = (b.inertia / b.mass).sqrt();
-            if ext > 0.0 && gyration > MAX_GYRATION * ext {
-                out.push(warn(
-                    name.clone(),
-                    format!(
-                        "the radius of gyration √(inertia/mass) = {gyration:.3e} m is {:.1} times \
-                         the body's extent {ext:.3e} m (its farthest anchor): check the units of \
-                         mass (kg) and inertia (kg·m², about the centre of mass)",
-                        gyration / ext
-                    ),
-                ));
-            }
+            out.extend(gyration_radius(
+                name,
+                "the radius of gyration √(inertia/mass)",
+                gyration,
+                ext,
+            ));
         }
     }
 
@@ -244,49 +229,14 @@ impl Model {
             let name = &c.name;
             if let ClearanceKind::Revolute(g, _) = &c.kind {
                 let (rb, cl) = (g.bearing_radius(), g.clearance());
-                if sc.size > 0.0 && rb > RADIUS_FRACTION * sc.size {
-                    out.push(warn(
-                        format!("{name}.bearing_radius"),
-                        format!(
-                            "a bearing radius of {rb:.3e} m on a mechanism {:.3e} m across: radii \
-                             are in metres (10 mm is 0.01)",
-                            sc.size
-                        ),
-                    ));
-                }
-                if cl > CLEARANCE_FRACTION * rb {
-                    out.push(warn(
-                        format!("{name}.journal_radius"),
-                        format!(
-                            "a radial clearance of {cl:.3e} m is {:.0} % of the bearing radius \
-                             {rb:.3e} m (joints have 0.1–5 %): check both radii",
-                            100.0 * cl / rb
-                        ),
-                    ));
-                }
+                let fields = [
+                    format!("{name}.bearing_radius"),
+                    format!("{name}.journal_radius"),
+                ];
+                out.extend(joint_radii(fields, "bearing", rb, cl, sc.size));
             }
-            let mu = c.friction.mu_max();
-            if mu > MAX_FRICTION {
-                out.push(warn(
-                    format!("{name}.friction"),
-                    format!(
-                        "a friction coefficient of {mu} (above {MAX_FRICTION}; dry metals \
-                         0.1–0.8): check the value"
-                    ),
-                ));
-            }
-            let (asked, effective) = (c.normal.c_e(), c.normal.effective_restitution());
-            if asked > 0.0 && ((effective - asked) / asked).abs() > RESTITUTION_TOLERANCE {
-                out.push(warn(
-                    format!("{name}.normal"),
-                    format!(
-                        "the damping law turns the restitution {asked} asked for into an \
-                         effective {effective:.4} ({:+.1} %): choose an exact-restitution damping \
-                         (docs/contact.md) or adjust the value",
-                        100.0 * (effective - asked) / asked
-                    ),
-                ));
-            }
+            out.extend(friction(name, c.friction.mu_max()));
+            out.extend(restitution(name, &c.normal));
             if let Some(f) = &c.film {
                 check_film(name, &f.bearing, out);
             }
@@ -359,24 +309,12 @@ impl Model {
             let Some(depth) = r.column(&format!("{}.penetration", c.name)) else {
                 continue;
             };
-            let max = depth.iter().copied().fold(f64::NEG_INFINITY, f64::max);
             let (fraction, scale, of) = match contact_scale(c) {
                 Scale::Clearance(cl, _) => (PENETRATION_FRACTION, cl, "its clearance"),
                 Scale::Size(s) => (SHAPE_PENETRATION_FRACTION, s, "the smaller shape's size"),
                 Scale::None => continue,
             };
-            if max > fraction * scale {
-                out.push(warn(
-                    c.name.clone(),
-                    format!(
-                        "the largest penetration {max:.3e} m is {:.0} % of {of} {scale:.3e} m \
-                         (above {:.0} %): the contact stiffness is far too low for the loads \
-                         (Young's modulus in Pa, a stiffness in N/m^n, not per mm)",
-                        100.0 * max / scale,
-                        100.0 * fraction
-                    ),
-                ));
-            }
+            out.extend(deep(&c.name, &depth, (fraction, scale, of)));
         }
         self.check_peak_forces(r, sc, &mut out);
         out
@@ -417,18 +355,7 @@ impl Model {
             let Some(f) = r.column(&format!("{}.normal_force", c.name)) else {
                 continue;
             };
-            let peak = f.iter().map(|x| x.abs()).fold(0.0, f64::max);
-            if peak > FORCE_RATIO * load {
-                out.push(warn(
-                    c.name.clone(),
-                    format!(
-                        "a peak normal force of {peak:.3e} N is {:.1e} times the weight and \
-                         inertia loads of the mechanism ({load:.3e} N): check masses (kg), \
-                         stiffnesses and the initial state",
-                        peak / load
-                    ),
-                ));
-            }
+            out.extend(peak_force(&c.name, &f, load));
         }
     }
 
@@ -564,7 +491,8 @@ fn check_film(
     }
 }
 
-fn check_energy(r: &Results, out: &mut Vec<Warning>) {
+/// The energy balance against the run's energy scale ([`BALANCE_FRACTION`]).
+pub(crate) fn check_energy(r: &Results, out: &mut Vec<Warning>) {
     let range = |name: &str| -> Option<f64> {
         let c = r.column(name)?;
         let first = *c.first()?;
@@ -592,5 +520,179 @@ fn check_energy(r: &Results, out: &mut Vec<Warning>) {
                  initial state"
             ),
         ));
+    }
+}
+
+/// The error of `strict` runs with plausibility findings.
+pub(crate) fn implausible(w: &[Warning], partial: Option<Results>) -> MbdError {
+    MbdError::Implausible {
+        warnings: w
+            .iter()
+            .map(|w| w.to_string())
+            .collect::<Vec<_>>()
+            .join("; "),
+        count: w.len(),
+        partial: partial.map(Box::new),
+    }
+}
+
+/// A body turning at `w` (rad/s; `symbol` names it in the message) with its farthest anchor at
+/// `ext` (m): a finding above [`MAX_TIP_SPEED`], with the value it has if it was in rpm.
+pub(crate) fn tip_speed(field: String, symbol: &str, w: f64, ext: f64) -> Option<Warning> {
+    let speed = w.abs() * ext;
+    (speed > MAX_TIP_SPEED).then(|| {
+        warn(
+            field,
+            format!(
+                "{symbol} = {w:.6e} rad/s at t0 gives a peripheral speed of {speed:.3e} m/s at \
+                 {ext:.3e} m from the centre of mass (above {MAX_TIP_SPEED} m/s): if it is in \
+                 rpm, {symbol} = {:.6e} rad/s",
+                w * std::f64::consts::PI / 30.0
+            ),
+        )
+    })
+}
+
+/// A radius of gyration `gyration` (m; `what` says which) above [`MAX_GYRATION`] times the
+/// body's extent `ext` (m).
+pub(crate) fn gyration_radius(name: &str, what: &str, gyration: f64, ext: f64) -> Option<Warning> {
+    (ext > 0.0 && gyration > MAX_GYRATION * ext).then(|| {
+        warn(
+            name,
+            format!(
+                "{what} = {gyration:.3e} m is {:.1} times the body's extent {ext:.3e} m (its \
+                 farthest anchor): check the units of mass (kg) and inertia (kg·m², about the \
+                 centre of mass)",
+                gyration / ext
+            ),
+        )
+    })
+}
+
+/// The outer radius `r` (m) of a clearance joint (a `what`: bearing, socket) against the
+/// mechanism's `size` ([`RADIUS_FRACTION`]), and its clearance `cl` against `r`
+/// ([`CLEARANCE_FRACTION`]); `fields` name the outer and the inner radius.
+pub(crate) fn joint_radii(
+    fields: [String; 2],
+    what: &str,
+    r: f64,
+    cl: f64,
+    size: f64,
+) -> Vec<Warning> {
+    let [outer, inner] = fields;
+    let mut out = Vec::new();
+    if size > 0.0 && r > RADIUS_FRACTION * size {
+        out.push(warn(
+            outer,
+            format!(
+                "a {what} radius of {r:.3e} m on a mechanism {size:.3e} m across: radii are in \
+                 metres (10 mm is 0.01)"
+            ),
+        ));
+    }
+    if cl > CLEARANCE_FRACTION * r {
+        out.push(warn(
+            inner,
+            format!(
+                "a radial clearance of {cl:.3e} m is {:.0} % of the {what} radius {r:.3e} m \
+                 (joints have 0.1–5 %): check both radii",
+                100.0 * cl / r
+            ),
+        ));
+    }
+    out
+}
+
+/// A friction coefficient above [`MAX_FRICTION`] on element `name`.
+pub(crate) fn friction(name: &str, mu: f64) -> Option<Warning> {
+    (mu > MAX_FRICTION).then(|| {
+        warn(
+            format!("{name}.friction"),
+            format!(
+                "a friction coefficient of {mu} (above {MAX_FRICTION}; dry metals 0.1–0.8): \
+                 check the value"
+            ),
+        )
+    })
+}
+
+/// A damping law whose effective restitution misses the asked one by more than
+/// [`RESTITUTION_TOLERANCE`].
+pub(crate) fn restitution(name: &str, law: &clr_contact::NormalLaw) -> Option<Warning> {
+    let (asked, effective) = (law.c_e(), law.effective_restitution());
+    (asked > 0.0 && ((effective - asked) / asked).abs() > RESTITUTION_TOLERANCE).then(|| {
+        warn(
+            format!("{name}.normal"),
+            format!(
+                "the damping law turns the restitution {asked} asked for into an effective \
+                 {effective:.4} ({:+.1} %): choose an exact-restitution damping \
+                 (docs/contact.md) or adjust the value",
+                100.0 * (effective - asked) / asked
+            ),
+        )
+    })
+}
+
+/// The largest of a penetration column `depth` (m) above `fraction` of `scale` (m; `of` names
+/// it).
+pub(crate) fn deep(
+    name: &str,
+    depth: &[f64],
+    (fraction, scale, of): (f64, f64, &str),
+) -> Option<Warning> {
+    let max = depth.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+    (max > fraction * scale).then(|| {
+        warn(
+            name,
+            format!(
+                "the largest penetration {max:.3e} m is {:.0} % of {of} {scale:.3e} m (above \
+                 {:.0} %): the contact stiffness is far too low for the loads (Young's modulus \
+                 in Pa, a stiffness in N/m^n, not per mm)",
+                100.0 * max / scale,
+                100.0 * fraction
+            ),
+        )
+    })
+}
+
+/// The peak of a normal-force column `f` (N) above [`FORCE_RATIO`] times the weight and inertia
+/// loads `load` (N).
+pub(crate) fn peak_force(name: &str, f: &[f64], load: f64) -> Option<Warning> {
+    let peak = f.iter().map(|x| x.abs()).fold(0.0, f64::max);
+    (peak > FORCE_RATIO * load).then(|| {
+        warn(
+            name,
+            format!(
+                "a peak normal force of {peak:.3e} N is {:.1e} times the weight and inertia \
+                 loads of the mechanism ({load:.3e} N): check masses (kg), stiffnesses and the \
+                 initial state",
+                peak / load
+            ),
+        )
+    })
+}
+
+/// Finish a run: `report` adds what the model knows of the run (notes, plausibility findings)
+/// to its results, also to the partial results of a failed or stopped run; with `strict`, a
+/// finding makes the finished run an [`MbdError::Implausible`] carrying its results.
+///
+/// # Errors
+/// The run's own error (with its partial results reported), or [`MbdError::Implausible`].
+pub(crate) fn finish<M>(
+    model: &M,
+    run: Result<Results, MbdError>,
+    strict: bool,
+    report: impl Fn(&M, Results) -> Results,
+) -> Result<Results, MbdError> {
+    match run {
+        Ok(r) => {
+            let r = report(model, r);
+            if strict && !r.warnings.is_empty() {
+                let w = r.warnings.clone();
+                return Err(implausible(&w, Some(r)));
+            }
+            Ok(r)
+        }
+        Err(e) => Err(e.map_partial(|r| report(model, r))),
     }
 }

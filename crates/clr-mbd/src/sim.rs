@@ -14,6 +14,7 @@ use crate::error::MbdError;
 use crate::guide_exit::GuideExits;
 use crate::newton::{Integrand, NewtonWs};
 pub use crate::options::{InitialConditionsMode, SimOptions, SolverKind};
+use crate::plausible::{finish, implausible};
 pub use crate::results::Results;
 use crate::system::Model;
 use crate::JacobianMode;
@@ -202,17 +203,8 @@ impl Model {
             r.warnings.extend(model.check_end(&r, &scales));
             r
         };
-        match self.simulate_from_with(opts, &y0, progress) {
-            Ok(r) => {
-                let r = with_report(self, r);
-                if opts.strict && !r.warnings.is_empty() {
-                    let w = r.warnings.clone();
-                    return Err(implausible(&w, Some(r)));
-                }
-                Ok(r)
-            }
-            Err(e) => Err(e.map_partial(|r| with_report(self, r))),
-        }
+        let run = self.simulate_from_with(opts, &y0, progress);
+        finish(self, run, opts.strict, with_report)
     }
 
     /// As [`Model::simulate`] from a given state y0 = (q, q̇, E_d, W_in, z) of length
@@ -324,19 +316,6 @@ impl Engine for Model {
     }
     fn failure_cause(&mut self, t: f64, y: &[f64]) -> String {
         Model::failure_cause(self, t, y)
-    }
-}
-
-/// The error of `strict` runs with plausibility findings.
-fn implausible(w: &[crate::initial_data::Warning], partial: Option<Results>) -> MbdError {
-    MbdError::Implausible {
-        warnings: w
-            .iter()
-            .map(|w| w.to_string())
-            .collect::<Vec<_>>()
-            .join("; "),
-        count: w.len(),
-        partial: partial.map(Box::new),
     }
 }
 

@@ -2,7 +2,7 @@
 //! clearance joint at rest (the verify cases `mbd.spatial.*` hold the long references).
 
 use clr_mbd::spatial::SpatialDesc;
-use clr_mbd::Results;
+use clr_mbd::{MbdError, Results};
 
 fn desc(text: &str) -> SpatialDesc {
     SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap()
@@ -254,24 +254,91 @@ fn degrees_and_millimetres_are_refused() {
     let deg = top.replace("angle = 0.3 }", "angle = 30.0 }");
     let e = desc(&deg).compile().err().expect("30 rad refused");
     assert!(e.to_string().contains("0.523599"), "{e}");
-    let text = r#"
+    let text = ball_in_socket("", "socket_radius = 10.0\nball_radius = 9.5");
+    let e = desc(&text).compile().err().expect("a 10 m socket refused");
+    assert!(e.to_string().contains("mm"), "{e}");
+}
+
+/// The planar engine's plausibility checks run on spatial models (thresholds in
+/// clr_mbd::plausible): an angular velocity in rpm written as rad/s is reported at its field
+/// with the converted value (9000 rpm = 942.5 rad/s at the crank's anchors 20 mm from its centre
+/// of mass: 18.8 m/s, plausible; 9000 rad/s: 180 m/s, above 150 m/s); `strict` turns the finding into an error; a ball
+/// started outside its socket by more than the clearance is refused.
+#[test]
+fn spatial_plausibility_checks() {
+    let four_bar = include_str!("../../../models/examples/spatial_four_bar.toml")
+        .replace("t_end = 0.7 ", "t_end = 0.01 ")
+        .replace("intervals = 700", "intervals = 10");
+    let d = desc(&four_bar);
+    let mut m = d.compile().unwrap();
+    let r = m.simulate(&d.sim_options().unwrap()).unwrap();
+    assert!(r.warnings.is_empty(), "shipped example: {:?}", r.warnings);
+
+    let rpm = four_bar.replace("rate = 10.0 }", "rate = 9000.0 }");
+    let d = desc(&rpm);
+    let mut m = d.compile().unwrap();
+    let mut o = d.sim_options().unwrap();
+    o.max_steps = 20_000;
+    // the crank at 9000 rad/s drives the ball through its socket: the run stops there
+    // (deeper than 10 % of the ball's radius) and keeps its rows and the findings
+    let e = m.simulate(&o).expect_err("stopped");
+    assert!(matches!(e, MbdError::Stopped { .. }), "{e}");
+    let warnings = &e.partial().expect("rows kept").warnings;
+    let w = warnings
+        .iter()
+        .find(|w| w.field == "crank.angular_velocity")
+        .unwrap_or_else(|| panic!("no rpm finding in {warnings:?}"));
+    assert!(w.message.contains("9.424778e2"), "{}", w.message);
+    o.strict = true;
+    let e = desc(&rpm)
+        .compile()
+        .unwrap()
+        .simulate(&o)
+        .expect_err("strict");
+    assert!(matches!(e, MbdError::Implausible { .. }), "{e}");
+
+    // every field given: the ball stays where it is put, 1.5 mm beyond a 0.5 mm clearance
+    let d = desc(&ball_in_socket(
+        "position = [0.0, 0.0, -0.002]
+orientation = { quaternion = [1.0, 0.0, 0.0, 0.0] }
+velocity = [0.0, 0.0, 0.0]
+velocity_frame = \"world\"
+angular_velocity = [0.0, 0.0, 0.0]
+angular_velocity_frame = \"world\"",
+        "socket_radius = 0.010\nball_radius = 0.0095",
+    ));
+    let e = d
+        .compile()
+        .unwrap()
+        .simulate(&d.sim_options().unwrap())
+        .expect_err("refused");
+    assert!(
+        matches!(e, MbdError::InitialPenetration { ratio, .. } if (ratio - 3.0).abs() < 1e-9),
+        "{e}"
+    );
+}
+
+/// A ball (1 kg) with the body fields `state` in a ground socket with the radii `radii`, Hertz
+/// 1e10 N/m^1.5 with Lankarani–Nikravesh damping, no gravity.
+fn ball_in_socket(state: &str, radii: &str) -> String {
+    format!(
+        r#"
 [model]
 space = "spatial"
 [[body]]
 name = "ball"
 mass = 1.0
 principal_inertia = [1e-4, 1e-4, 1e-4]
+{state}
 [[clearance]]
 name = "S"
 type = "spherical"
-socket = { body = "ground", at = [0.0, 0.0, 0.0] }
-ball = { body = "ball", at = [0.0, 0.0, 0.0] }
-socket_radius = 10.0
-ball_radius = 9.5
-normal = { law = "hertz", stiffness = 1e10, damping = "lankarani-nikravesh", restitution = 0.9 }
+socket = {{ body = "ground", at = [0.0, 0.0, 0.0] }}
+ball = {{ body = "ball", at = [0.0, 0.0, 0.0] }}
+{radii}
+normal = {{ law = "hertz", stiffness = 1e10, damping = "lankarani-nikravesh", restitution = 0.9 }}
 [output]
-t_end = 0.1
-"#;
-    let e = desc(text).compile().err().expect("a 10 m socket refused");
-    assert!(e.to_string().contains("mm"), "{e}");
+t_end = 0.01
+"#
+    )
 }

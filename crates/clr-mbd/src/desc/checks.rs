@@ -20,11 +20,17 @@ fn warn(field: impl Into<String>, message: String) -> Warning {
 pub fn description_warnings(desc: &super::ModelDesc) -> Vec<Warning> {
     let mut out = Vec::new();
     for c in &desc.clearances {
-        if let Ok(v) = toml::Value::try_from(c) {
-            walk_moduli(c.name(), &v, &mut out);
-        }
+        moduli_warnings(c.name(), c, &mut out);
     }
     out
+}
+
+/// The findings of [`description_warnings`] on one item `name` of any description (walked as
+/// data).
+pub(crate) fn moduli_warnings(name: &str, item: &impl serde::Serialize, out: &mut Vec<Warning>) {
+    if let Ok(v) = toml::Value::try_from(item) {
+        walk_moduli(name, &v, out);
+    }
 }
 
 fn walk_moduli(path: &str, v: &toml::Value, out: &mut Vec<Warning>) {

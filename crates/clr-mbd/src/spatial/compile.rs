@@ -444,11 +444,21 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         beta: d.solver.baumgarte_beta,
         events_on: d.solver.contact_events,
         notes: Vec::new(),
+        input_warnings: input_warnings(d),
         m,
         n_bristle,
         norm_rate: super::model::NORM_RATE,
         ws,
     })
+}
+
+/// The description's value findings (crate::desc::checks), on every clearance joint.
+fn input_warnings(d: &SpatialDesc) -> Vec<crate::initial_data::Warning> {
+    let mut out = Vec::new();
+    for c in &d.clearances {
+        crate::desc::checks::moduli_warnings(&c.name, c, &mut out);
+    }
+    out
 }
 
 fn push_owner(

@@ -34,6 +34,7 @@ mod model;
 mod newton;
 mod newton_ws;
 mod output;
+mod plausible;
 mod sim;
 mod sphere;
 mod system;

@@ -81,6 +81,9 @@ pub struct SpatialModel {
     pub(crate) events_on: bool,
     /// What compiling decided, in words.
     pub(crate) notes: Vec<String>,
+    /// Findings on the description's values (Young's moduli out of range), reported with the
+    /// run's other plausibility warnings.
+    pub(crate) input_warnings: Vec<crate::initial_data::Warning>,
     pub(crate) m: usize,
     pub(crate) n_bristle: usize,
     /// Rate k (1/s) of the norm-restoring term k(1 − ‖p‖²)p added to ṗ.

@@ -9,6 +9,7 @@ use super::model::SpatialModel;
 use crate::driver::{check_options, drive, AnySolver, Engine, StepEnd, Stop};
 use crate::error::MbdError;
 use crate::impacts::{ContactProbe, Probe};
+use crate::plausible::{finish, implausible};
 use crate::{InitialConditionsMode, JacobianMode, Results, SimOptions};
 
 impl ContactProbe for SpatialModel {
@@ -120,19 +121,24 @@ impl SpatialModel {
                 });
             }
         }
+        let start = self.check_start(opts.t0, &y0)?;
+        if opts.strict && !start.is_empty() {
+            return Err(implausible(&start, None));
+        }
+        let scales = self.scales(&y0);
         let mut notes = self.notes.clone();
         notes.extend(ic_notes);
         notes.extend(self.option_notes(opts));
-        let with_notes = |mut r: Results| {
+        let with_report = |model: &SpatialModel, mut r: Results| {
             let mut n = notes.clone();
             n.append(&mut r.notes);
             r.notes = n;
+            r.warnings = start.clone();
+            r.warnings.extend(model.check_end(&r, &scales));
             r
         };
-        match self.simulate_from_with(opts, &y0, progress) {
-            Ok(r) => Ok(with_notes(r)),
-            Err(e) => Err(e.map_partial(with_notes)),
-        }
+        let run = self.simulate_from_with(opts, &y0, progress);
+        finish(self, run, opts.strict, with_report)
     }
 
     /// Simulate from a given state y0 = (q, v, E_d, W_in, z) of length [`OdeSystem::dim`].
@@ -252,7 +258,7 @@ impl SpatialModel {
         for s in &self.spheres {
             let d = s.gap(&self.ws.kin);
             if d > DEPTH_LIMIT * s.r_ball {
-                return Err(Stop::Implausible(format!(
+                return Err(Stop::Unphysical(format!(
                     "clearance `{}` at t = {t:.6} s: the ball is {d:.3e} m deep in its socket, more \
                      than {:.0} % of its radius: the loop probably cannot close at this pose (a \
                      driven linkage that locks, which an ideal joint would report as singular), \

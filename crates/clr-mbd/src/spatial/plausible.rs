@@ -1,0 +1,197 @@
+//! Plausibility checks of a spatial run, with the planar engine's thresholds
+//! ([`crate::plausible`], docs/plausibility.md): before integrating, the inputs and the
+//! assembled initial state (a speed in rpm, a mass or inertia in the wrong unit, a socket
+//! radius in millimetres, a clearance of a quarter of the radius, μ > 1, a damping law that
+//! misses its restitution, a ball started outside its socket by more than the clearance, which
+//! is refused); after, the results (the energy balance, penetrations beyond half the clearance,
+//! peak contact forces far above the weight and inertia loads).
+
+use nalgebra::Vector3;
+
+use super::constraint::PrimKind;
+use super::kin::GROUND;
+use super::model::SpatialModel;
+use crate::desc::laws::ContactFriction;
+use crate::error::MbdError;
+use crate::plausible::{
+    check_energy, deep, friction, gyration_radius, joint_radii, peak_force, restitution, tip_speed,
+    Warning, PENETRATION_FRACTION, REFUSE_PENETRATION,
+};
+use crate::results::Results;
+
+/// Sizes of a spatial mechanism at one state.
+pub(crate) struct Scales3 {
+    /// Diagonal of the bounding box of every anchor and centre of mass, m.
+    size: f64,
+    /// Farthest anchor of each body from its centre of mass, m.
+    extent: Vec<f64>,
+}
+
+impl SpatialModel {
+    /// Anchors (body, point in the centre-of-mass frame) of the joints and clearance joints.
+    fn anchors(&self) -> Vec<(usize, Vector3<f64>)> {
+        let mut out = Vec::new();
+        for p in &self.prims {
+            match p.kind {
+                PrimKind::Coincide { si, sj } | PrimKind::Dot2 { si, sj, .. } => {
+                    out.extend([(p.i, si), (p.j, sj)]);
+                }
+                _ => {}
+            }
+        }
+        out.extend(self.spheres.iter().flat_map(|s| [(s.i, s.si), (s.j, s.sj)]));
+        out
+    }
+
+    /// The mechanism's size and each body's extent at y.
+    pub(crate) fn scales(&mut self, y: &[f64]) -> Scales3 {
+        self.ws.kin.update(self.bodies.len(), y);
+        let mut extent = vec![0.0f64; self.bodies.len()];
+        let (mut lo, mut hi) = (
+            Vector3::repeat(f64::INFINITY),
+            Vector3::repeat(-f64::INFINITY),
+        );
+        let mut add = |p: Vector3<f64>| {
+            if p.iter().all(|x| x.is_finite()) {
+                lo = lo.inf(&p);
+                hi = hi.sup(&p);
+            }
+        };
+        for (k, s) in self.anchors() {
+            if k != GROUND {
+                extent[k] = extent[k].max(s.norm());
+            }
+            add(self.ws.kin.get(k).point(&s));
+        }
+        for k in 0..self.bodies.len() {
+            add(self.ws.kin.get(k).r);
+        }
+        let size = if lo.x.is_finite() {
+            (hi - lo).norm()
+        } else {
+            0.0
+        };
+        Scales3 { size, extent }
+    }
+
+    /// Checks of the inputs and of the assembled initial state y0 at t0.
+    ///
+    /// # Errors
+    /// [`MbdError::InitialPenetration`] for a ball started outside its socket by more than the
+    /// clearance.
+    pub(crate) fn check_start(&mut self, t0: f64, y0: &[f64]) -> Result<Vec<Warning>, MbdError> {
+        let sc = self.scales(y0);
+        let mut out = self.input_warnings.clone();
+        self.check_bodies(y0, &sc, &mut out);
+        self.check_sockets(&sc, &mut out);
+        self.check_initial_depths(t0, y0)?;
+        Ok(out)
+    }
+
+    fn check_bodies(&self, y0: &[f64], sc: &Scales3, out: &mut Vec<Warning>) {
+        let nq = self.n_q();
+        for (k, b) in self.bodies.iter().enumerate() {
+            let name = &self.names[k];
+            let ext = sc.extent[k];
+            let w = Vector3::from_column_slice(&y0[nq + 6 * k + 3..nq + 6 * k + 6]).norm();
+            out.extend(tip_speed(format!("{name}.angular_velocity"), "|ω|", w, ext));
+            let gyration = (b.j.symmetric_eigenvalues().max() / b.mass).sqrt();
+            let what = "the largest radius of gyration √(I/m)";
+            out.extend(gyration_radius(name, what, gyration, ext));
+        }
+    }
+
+    fn check_sockets(&self, sc: &Scales3, out: &mut Vec<Warning>) {
+        for s in &self.spheres {
+            let name = &s.name;
+            let fields = [
+                format!("{name}.socket_radius"),
+                format!("{name}.ball_radius"),
+            ];
+            out.extend(joint_radii(
+                fields,
+                "socket",
+                s.r_socket,
+                s.clearance(),
+                sc.size,
+            ));
+            let mu = match &s.friction {
+                Some(ContactFriction::Static(f)) => f.mu_max(),
+                Some(ContactFriction::LuGre(l)) => l.mu_max(0.0),
+                None => 0.0,
+            };
+            out.extend(friction(name, mu));
+            out.extend(restitution(name, &s.law));
+        }
+    }
+
+    /// A ball outside its socket by more than the clearance at t0 is refused: the first step
+    /// would fire it back with a force of the law far outside its range.
+    fn check_initial_depths(&mut self, t0: f64, y0: &[f64]) -> Result<(), MbdError> {
+        self.ws.kin.update(self.bodies.len(), y0);
+        for s in &self.spheres {
+            let (depth, cl) = (s.gap(&self.ws.kin), s.clearance());
+            if depth > REFUSE_PENETRATION * cl {
+                return Err(MbdError::InitialPenetration {
+                    element: s.name.clone(),
+                    what: "ball into the socket",
+                    t: t0,
+                    penetration: depth,
+                    clearance: cl,
+                    ratio: depth / cl,
+                    hint: String::new(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Checks of a finished (or failed) run's results.
+    pub(crate) fn check_end(&self, r: &Results, sc: &Scales3) -> Vec<Warning> {
+        let mut out = Vec::new();
+        check_energy(r, &mut out);
+        for s in &self.spheres {
+            if let Some(depth) = r.column(&format!("{}.penetration", s.name)) {
+                let scale = (PENETRATION_FRACTION, s.clearance(), "its clearance");
+                out.extend(deep(&s.name, &depth, scale));
+            }
+        }
+        self.check_peak_forces(r, sc, &mut out);
+        out
+    }
+
+    /// Peak normal forces against Σ m (|g| + |ω|² ρ + |v|²/L) over the run.
+    fn check_peak_forces(&self, r: &Results, sc: &Scales3, out: &mut Vec<Warning>) {
+        let g = self.gravity.norm();
+        let mut load = 0.0;
+        for (k, b) in self.bodies.iter().enumerate() {
+            let col = |s: &str| r.column(&format!("{}.{s}", self.names[k]));
+            let (Some(wx), Some(wy), Some(wz), Some(vx), Some(vy), Some(vz)) = (
+                col("wx"),
+                col("wy"),
+                col("wz"),
+                col("vx"),
+                col("vy"),
+                col("vz"),
+            ) else {
+                return;
+            };
+            let a = (0..wx.len())
+                .map(|i| {
+                    let w2 = wx[i] * wx[i] + wy[i] * wy[i] + wz[i] * wz[i];
+                    let v2 = vx[i] * vx[i] + vy[i] * vy[i] + vz[i] * vz[i];
+                    w2 * sc.extent[k] + if sc.size > 0.0 { v2 / sc.size } else { 0.0 }
+                })
+                .fold(0.0, f64::max);
+            load += b.mass * (g + a);
+        }
+        if load <= 0.0 {
+            return;
+        }
+        for s in &self.spheres {
+            if let Some(f) = r.column(&format!("{}.normal_force", s.name)) {
+                out.extend(peak_force(&s.name, &f, load));
+            }
+        }
+    }
+}
