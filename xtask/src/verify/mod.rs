@@ -18,6 +18,7 @@ mod models_guide_map;
 pub mod ode;
 mod shapes;
 mod spatial;
+mod spatial_jacobian;
 mod spatial_ref;
 mod spatial_slider_crank;
 mod wear;
@@ -94,6 +95,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "mbd.spatial",
         run: spatial::mbd_cases,
+    },
+    Group {
+        name: "mbd.jacobian",
+        run: spatial_jacobian::cases,
     },
     Group {
         name: "mbd.spatial",
