@@ -809,8 +809,10 @@ impl ShapeContactWorkspace3 {
 /// point (see [`ShapeContactPoint3::part_a`]), so a force element must decide how to combine
 /// them, as with the planar polylines.
 ///
-/// No allocation after warm-up for convex–convex pairs; parry's composite-shape queries
-/// (trimesh, compound) rebuild their list of manifolds on every call.
+/// No allocation after warm-up for a ball against a convex shape, box–box, a capsule in
+/// contact, and any convex pair within `prediction`; a penetrating cylinder, cone or
+/// polyhedron goes through parry's EPA, which allocates its polytope at each call, and parry's
+/// composite-shape queries (trimesh, compound) rebuild their list of manifolds on every call.
 ///
 /// # Errors
 /// A non-finite pose, a non-unit quaternion, a negative or non-finite prediction, or a pair

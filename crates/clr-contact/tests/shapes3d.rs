@@ -812,3 +812,93 @@ fn relative_velocity_of_the_contact_points() {
     // δ̇ = −v·n = 0.2 m/s approaching.
     assert!((-v.dot(&p.normal) - 0.2).abs() <= 1e-12);
 }
+
+// ------------------------------------------------------------------------------ allocation
+
+/// Counts the allocations of the current thread (tests run in parallel threads), so that a
+/// test can check that a hot path allocates nothing.
+struct CountingAllocator;
+
+thread_local! {
+    static ALLOCATIONS: std::cell::Cell<usize> = const { std::cell::Cell::new(0) };
+}
+
+// SAFETY: forwards every call to the system allocator unchanged; the counter is a
+// const-initialized thread-local without destructor, so touching it never allocates.
+unsafe impl std::alloc::GlobalAlloc for CountingAllocator {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        unsafe { std::alloc::System.alloc(layout) }
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        unsafe { std::alloc::System.dealloc(ptr, layout) }
+    }
+    unsafe fn realloc(&self, ptr: *mut u8, layout: std::alloc::Layout, size: usize) -> *mut u8 {
+        ALLOCATIONS.with(|c| c.set(c.get() + 1));
+        unsafe { std::alloc::System.realloc(ptr, layout, size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: CountingAllocator = CountingAllocator;
+
+/// Allocations of 49 queries of `b` resting on a large box, each moved 0.1 mm from the last,
+/// after one warm-up query; B's lowest point at `gap` above the box (negative: penetrating).
+fn allocations_of_queries(b: &ContactShape3, gap: f64) -> usize {
+    let big = shape(Shape3::cuboid(1.0, 1.0, 0.1));
+    let ground = BodyState3::default();
+    let rv = v3(0.01, -0.02, 0.3);
+    let bottom = b.aabb3(&at(v3(0.0, 0.0, 0.0), rv)).unwrap()[2];
+    let poses: Vec<BodyState3> = (0..50)
+        .map(|k| at(v3(1e-4 * k as f64, 0.0, 0.1 - bottom + gap), rv))
+        .collect();
+    let mut ws = ShapeContactWorkspace3::new();
+    contact_points3(&big, &ground, b, &poses[0], 1e-3, &mut ws).unwrap();
+    let before = ALLOCATIONS.with(|c| c.get());
+    let mut n = 0;
+    for pose in &poses[1..] {
+        n += contact_points3(&big, &ground, b, pose, 1e-3, &mut ws)
+            .unwrap()
+            .len();
+    }
+    let allocations = ALLOCATIONS.with(|c| c.get()) - before;
+    assert!(n >= 49, "{b:?}: {n} points");
+    allocations
+}
+
+/// The force evaluation's hot path allocates nothing once the workspace has seen the pair:
+/// the exact ball path, the box–box manifold and the capsule's segment in contact, and every
+/// convex pair within the prediction distance (GJK). A penetrating cylinder, cone or
+/// polyhedron goes through parry's EPA, which builds its polytope on the heap at each call (10 and 12
+/// allocations per query here): a parry limit, documented in docs/contact.md.
+#[test]
+fn convex_queries_do_not_allocate_after_warm_up() {
+    let penetrating_free = [
+        shape(Shape3::ball(0.02)),
+        shape(Shape3::cuboid(0.04, 0.03, 0.02)),
+        shape(Shape3::capsule(0.03, 0.01)),
+    ];
+    for b in &penetrating_free {
+        assert_eq!(allocations_of_queries(b, -2e-4), 0, "{b:?}");
+    }
+    let tetra = vec![
+        [0.02, 0.0, -0.01],
+        [-0.01, 0.02, -0.01],
+        [-0.01, -0.02, -0.01],
+        [0.0, 0.0, 0.02],
+    ];
+    let epa = [
+        shape(Shape3::cylinder(0.02, 0.03)),
+        shape(Shape3::cone(0.02, 0.03)),
+        shape(Shape3::convex_polyhedron(tetra)),
+    ];
+    for b in penetrating_free.iter().chain(&epa) {
+        assert_eq!(allocations_of_queries(b, 2e-4), 0, "{b:?}");
+    }
+    for b in &epa {
+        assert!(
+            allocations_of_queries(b, -2e-4) > 0,
+            "{b:?}: EPA no longer allocates"
+        );
+    }
+}
