@@ -260,6 +260,69 @@ fn cylinder_edge_on_cuboid() {
     assert_consistent(&p);
 }
 
+/// A cylinder lying on its side on a box top face z = h_z, axis horizontal at azimuth ψ:
+/// line contact along the bottom generatrix; parry's side feature is that segment, so two
+/// points at its ends c ± L a − R e_z, each at depth δ (the segment's azimuth comes from GJK:
+/// along the rim within 1e-5 R, as for the tilted rim).
+#[test]
+fn cylinder_side_on_cuboid() {
+    let (len, rad, hz, delta) = (0.03, 0.01, 0.05, 1e-4);
+    let cub = shape(Shape3::cuboid(0.3, 0.3, hz));
+    let cyl = shape(Shape3::cylinder(len, rad));
+    let ground = at(v3(0.0, 0.0, 0.0), v3(0.0, 0.0, 0.0));
+    let psi: f64 = 0.4;
+    let c = v3(-0.1, 0.05, hz + rad - delta);
+    let pose = at(c, v3(0.0, 0.0, psi));
+    let axis = v3(psi.cos(), psi.sin(), 0.0);
+    let pts = query(&cub, &ground, &cyl, &pose, 0.0);
+    assert_eq!(pts.len(), 2, "{pts:?}");
+    for p in &pts {
+        let s = if (p.point_b - c).dot(&axis) > 0.0 {
+            1.0
+        } else {
+            -1.0
+        };
+        let end = c + s * len * axis - rad * v3(0.0, 0.0, 1.0);
+        assert_depth(p.depth, delta);
+        assert_vec(p.normal, v3(0.0, 0.0, 1.0));
+        assert!((p.point_b - end).norm() <= 1e-5 * rad, "{p:?} {end:?}");
+        assert!((p.point_b.z - end.z).abs() <= 1e-12, "{p:?}");
+        assert_consistent(p);
+    }
+}
+
+/// A compound: a box with a cylinder part below it, the part's pose turning its axis (body x)
+/// to body z (rotation vector (0, −π/2, 0)) and placing it at (0, 0, −0.03). Its lower end at
+/// body z = −0.03 − L rests δ deep on a floor: four rim points of part 1 at distance R from
+/// the part's axis; the box part stays clear.
+#[test]
+fn compound_part_pose_applies() {
+    let (len, rad, delta) = (0.01, 0.015, 1e-4);
+    let comp = shape(Shape3::compound(vec![
+        (
+            PartPose3::IDENTITY,
+            Shape3::cuboid(0.04, 0.03, 0.02).unwrap(),
+        ),
+        (
+            PartPose3::new([0.0, 0.0, -0.03], [0.0, -FRAC_PI_2, 0.0]),
+            Shape3::cylinder(len, rad).unwrap(),
+        ),
+    ]));
+    let floor = shape(Shape3::cuboid(1.0, 1.0, 0.1));
+    let ground = at(v3(0.0, 0.0, 0.0), v3(0.0, 0.0, 0.0));
+    let c = v3(0.2, 0.1, 0.1 + 0.03 + len - delta);
+    let pose = at(c, v3(0.0, 0.0, 0.5));
+    let pts = query(&floor, &ground, &comp, &pose, 0.0);
+    assert_eq!(pts.len(), 4, "{pts:?}");
+    for p in &pts {
+        assert_eq!(p.part_b, 1);
+        assert_depth(p.depth, delta);
+        assert_vec(p.normal, v3(0.0, 0.0, 1.0));
+        assert!(((p.point_b - c).xy().norm() - rad).abs() <= 1e-12, "{p:?}");
+        assert!((p.point_b.z - (0.1 - delta)).abs() <= 1e-12, "{p:?}");
+    }
+}
+
 // ------------------------------------------------------------------------------ cone
 
 /// A cone (half height L, base radius R) standing on its apex on a plane (a large box top
@@ -364,6 +427,35 @@ fn convex_convex_vertex_on_face() {
     assert_eq!(q.len(), 1);
     assert_depth(q[0].depth, delta);
     assert_vec(q[0].point_b, p.point_b);
+}
+
+/// Two cubes (half width s) written as convex polyhedra, crossed edge on edge: A turned by
+/// π/4 about y has its top edge along y at z = s√2; B turned by π/4 about x, centred at
+/// (x_B, y_B, z_B), has its bottom edge along x at z_B − s√2. The edges cross at (0, y_B):
+/// δ = 2 s√2 − z_B, one point (parry's duplicate GJK point dropped) between two edges.
+#[test]
+fn convex_convex_edge_on_edge() {
+    let s = 0.02;
+    let cube_pts: Vec<[f64; 3]> = (0..8)
+        .map(|k| {
+            let sg = |b: usize| if k & b == 0 { -s } else { s };
+            [sg(1), sg(2), sg(4)]
+        })
+        .collect();
+    let cube = shape(Shape3::convex_polyhedron(cube_pts));
+    let delta = 1e-4;
+    let r2 = 2f64.sqrt();
+    let pa = at(v3(0.0, 0.0, 0.0), v3(0.0, PI / 4.0, 0.0));
+    let (xb, yb) = (0.005, -0.003);
+    let pb = at(v3(xb, yb, 2.0 * s * r2 - delta), v3(PI / 4.0, 0.0, 0.0));
+    let pts = query(&cube, &pa, &cube, &pb, 0.0);
+    assert_eq!(pts.len(), 1, "{pts:?}");
+    let p = pts[0];
+    assert_depth(p.depth, delta);
+    assert_vec(p.normal, v3(0.0, 0.0, 1.0));
+    assert_vec(p.point_a, v3(0.0, yb, s * r2));
+    assert_vec(p.point_b, v3(0.0, yb, s * r2 - delta));
+    assert_eq!((p.feature_a, p.feature_b), (Feature3::Edge, Feature3::Edge));
 }
 
 // ------------------------------------------------------------------------------ trimesh
