@@ -878,6 +878,22 @@ fn bounding_boxes_gap_and_distance() {
     assert!((boxes_gap3(&b1, &b2) - gap).abs() <= 1e-12);
     assert!((shape_distance3(&s1, &p1, &s2, &p2).unwrap() - gap).abs() <= 1e-12);
     assert!(!boxes_overlap3(&b1, &b2, 0.69) && boxes_overlap3(&b1, &b2, 0.71));
+    // A cylinder standing 1 mm above a box top face, tilted by α about y: its lowest rim
+    // point is L cos α + R sin α below its centre, so the gap is z_c − that − h_z; the box gap
+    // is a lower bound of it.
+    let (len, rad, hz, alpha) = (0.03, 0.02, 0.05, 0.3_f64);
+    let cub = shape(Shape3::cuboid(0.3, 0.3, hz));
+    let cyl = shape(Shape3::cylinder(len, rad));
+    let ground = BodyState3::default();
+    let q = UnitQuaternion::from_scaled_axis(v3(0.0, alpha, 0.0))
+        * UnitQuaternion::from_scaled_axis(v3(0.0, -FRAC_PI_2, 0.0));
+    let zc = hz + len * alpha.cos() + rad * alpha.sin() + 1e-3;
+    let pose = BodyState3::fixed(v3(0.1, -0.05, zc), q);
+    let d = shape_distance3(&cub, &ground, &cyl, &pose).unwrap();
+    // GJK on a curved rim: 2.1e-13 m off here; tolerance 1e-11 m (1e-8 of the gap).
+    assert!((d - 1e-3).abs() <= 1e-11, "{d}");
+    let gap = boxes_gap3(&cub.aabb3(&ground).unwrap(), &cyl.aabb3(&pose).unwrap());
+    assert!(gap <= d && gap > 0.0, "{gap} {d}");
 }
 
 /// The relative velocity of the contact points: B spinning at ω about z and translating at
