@@ -32,6 +32,29 @@ fn shape(s: Result<Shape3, ContactError>) -> ContactShape3 {
     ContactShape3::new(s.unwrap()).unwrap()
 }
 
+/// The eight corners (±s, ±s, ±s) of a cube of half width `s`, m.
+fn cube_points(s: f64) -> Vec<[f64; 3]> {
+    (0..8)
+        .map(|k| {
+            let sg = |b: usize| if k & b == 0 { -s } else { s };
+            [sg(1), sg(2), sg(4)]
+        })
+        .collect()
+}
+
+/// The square [−1, 1]² at height `z` as a mesh of two triangles.
+fn flat_mesh(z: f64) -> ContactShape3 {
+    shape(Shape3::trimesh(
+        vec![
+            [-1.0, -1.0, z],
+            [1.0, -1.0, z],
+            [1.0, 1.0, z],
+            [-1.0, 1.0, z],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    ))
+}
+
 fn query(
     a: &ContactShape3,
     pa: &BodyState3,
@@ -401,13 +424,7 @@ fn convex_convex_vertex_on_face() {
         [0.0, 0.0, a],
         [0.0, 0.0, -a],
     ]));
-    let cube_pts: Vec<[f64; 3]> = (0..8)
-        .map(|k| {
-            let sg = |b: usize| if k & b == 0 { -s } else { s };
-            [sg(1), sg(2), sg(4)]
-        })
-        .collect();
-    let cube = shape(Shape3::convex_polyhedron(cube_pts));
+    let cube = shape(Shape3::convex_polyhedron(cube_points(s)));
     let ground = at(v3(0.0, 0.0, 0.0), v3(0.0, 0.0, 0.0));
     let delta = 1e-4;
     // Turned about z only: the apex stays at the bottom.
@@ -436,13 +453,7 @@ fn convex_convex_vertex_on_face() {
 #[test]
 fn convex_convex_edge_on_edge() {
     let s = 0.02;
-    let cube_pts: Vec<[f64; 3]> = (0..8)
-        .map(|k| {
-            let sg = |b: usize| if k & b == 0 { -s } else { s };
-            [sg(1), sg(2), sg(4)]
-        })
-        .collect();
-    let cube = shape(Shape3::convex_polyhedron(cube_pts));
+    let cube = shape(Shape3::convex_polyhedron(cube_points(s)));
     let delta = 1e-4;
     let r2 = 2f64.sqrt();
     let pa = at(v3(0.0, 0.0, 0.0), v3(0.0, PI / 4.0, 0.0));
@@ -468,15 +479,7 @@ fn trimesh_ball() {
     let r = 0.01;
     let ball = shape(Shape3::ball(r));
     let ground = at(v3(0.0, 0.0, 0.0), v3(0.0, 0.0, 0.0));
-    let flat = shape(Shape3::trimesh(
-        vec![
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        vec![[0, 1, 2], [0, 2, 3]],
-    ));
+    let flat = flat_mesh(0.0);
     let delta = 2e-4;
     let c = v3(0.3, -0.4, r - delta);
     let pts = query(&flat, &ground, &ball, &at(c, v3(0.0, 0.0, 0.0)), 0.0);
@@ -517,15 +520,7 @@ fn trimesh_ball() {
 #[test]
 fn queries_are_history_free() {
     let big = shape(Shape3::cuboid(1.0, 1.0, 0.1));
-    let mesh = shape(Shape3::trimesh(
-        vec![
-            [-1.0, -1.0, 0.1],
-            [1.0, -1.0, 0.1],
-            [1.0, 1.0, 0.1],
-            [-1.0, 1.0, 0.1],
-        ],
-        vec![[0, 1, 2], [0, 2, 3]],
-    ));
+    let mesh = flat_mesh(0.1);
     let others = [
         shape(Shape3::cuboid(0.04, 0.03, 0.02)),
         shape(Shape3::cylinder(0.02, 0.03)),
@@ -1018,15 +1013,7 @@ fn convex_queries_do_not_allocate_after_warm_up() {
 /// tolerance 1e-10).
 #[test]
 fn composite_pairs_find_points() {
-    let floor = shape(Shape3::trimesh(
-        vec![
-            [-1.0, -1.0, 0.0],
-            [1.0, -1.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [-1.0, 1.0, 0.0],
-        ],
-        vec![[0, 1, 2], [0, 2, 3]],
-    ));
+    let floor = flat_mesh(0.0);
     let ground = at(v3(0.0, 0.0, 0.0), v3(0.0, 0.0, 0.0));
     let comp = shape(Shape3::compound(vec![(
         PartPose3::IDENTITY,
