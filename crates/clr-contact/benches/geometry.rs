@@ -1,7 +1,9 @@
 //! Cost of the clearance-joint kinematics, `cargo bench -p clr-contact --bench geometry`:
 //! one revolute contact evaluation with laws (ns/call), one translational corner evaluation, and
 //! one multipoint detection of the §7.8 slider (corners + 3 points per face + 21 guide samples)
-//! on a hogging sine guide, warm started as in a time-stepping loop.
+//! on a hogging sine guide, warm started as in a time-stepping loop; and one spatial shape
+//! contact query (`shapes3d`) per pair kind: ball on a box (exact path), box on a box (four
+//! corners), cylinder end on a box (polygonal features and GJK), ball on a 2-triangle mesh.
 
 use std::hint::black_box;
 
@@ -10,8 +12,12 @@ use clr_contact::friction::FrictionLaw;
 use clr_contact::multipoint::{MultipointDetector, SineGuide, SliderShape};
 use clr_contact::normal::{JournalBearing, NormalLaw};
 use clr_contact::revolute::RevoluteClearance;
+use clr_contact::shapes3d::{
+    contact_points3, BodyState3, ContactShape3, Shape3, ShapeContactWorkspace3,
+};
 use clr_contact::translational::TranslationalClearance;
 use criterion::{criterion_group, criterion_main, Criterion};
+use nalgebra::{UnitQuaternion, Vector3};
 
 fn revolute(c: &mut Criterion) {
     let jb = JournalBearing::flap_paper_test();
@@ -73,5 +79,65 @@ fn multipoint(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, revolute, translational, multipoint);
+fn shapes3d(c: &mut Criterion) {
+    let floor = ContactShape3::new(Shape3::cuboid(1.0, 1.0, 0.1).unwrap()).unwrap();
+    let mesh = Shape3::trimesh(
+        vec![
+            [-1.0, -1.0, 0.1],
+            [1.0, -1.0, 0.1],
+            [1.0, 1.0, 0.1],
+            [-1.0, 1.0, 0.1],
+        ],
+        vec![[0, 1, 2], [0, 2, 3]],
+    );
+    let mesh = ContactShape3::new(mesh.unwrap()).unwrap();
+    let ground = BodyState3::default();
+    // B resting 0.1 mm deep on the top face z = 0.1, slightly turned.
+    let rest = |half_height: f64, rv: Vector3<f64>| {
+        BodyState3::fixed(
+            Vector3::new(0.1, -0.05, 0.1 + half_height - 1e-4),
+            UnitQuaternion::from_scaled_axis(rv),
+        )
+    };
+    let upright = Vector3::new(0.0, -std::f64::consts::FRAC_PI_2, 0.0);
+    let cases = [
+        (
+            "ball on box",
+            &floor,
+            Shape3::ball(0.02),
+            rest(0.02, Vector3::zeros()),
+        ),
+        (
+            "box on box",
+            &floor,
+            Shape3::cuboid(0.04, 0.03, 0.02),
+            rest(0.02, Vector3::new(0.0, 0.0, 0.3)),
+        ),
+        (
+            "cylinder end on box",
+            &floor,
+            Shape3::cylinder(0.02, 0.03),
+            rest(0.02, upright),
+        ),
+        (
+            "ball on trimesh",
+            &mesh,
+            Shape3::ball(0.02),
+            rest(0.02, Vector3::zeros()),
+        ),
+    ];
+    for (name, a, b, pose) in cases {
+        let b = ContactShape3::new(b.unwrap()).unwrap();
+        let mut ws = ShapeContactWorkspace3::new();
+        c.bench_function(&format!("shapes3d {name}"), |bch| {
+            bch.iter(|| {
+                contact_points3(a, &ground, black_box(&b), black_box(&pose), 1e-3, &mut ws)
+                    .unwrap()
+                    .len()
+            })
+        });
+    }
+}
+
+criterion_group!(benches, revolute, translational, multipoint, shapes3d);
 criterion_main!(benches);

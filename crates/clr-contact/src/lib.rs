@@ -1,4 +1,5 @@
-//! Contact force laws, friction laws and planar clearance-joint kinematics.
+//! Contact force laws, friction laws, planar clearance-joint kinematics, and shape contact in
+//! the plane ([`shapes`]) and in space ([`shapes3d`]).
 //!
 //! `clr-contact` is meant to be embedded in other codes as much as used inside clr: plain `f64`
 //! functions and small validated structs, SI units everywhere, no allocation in force
@@ -27,6 +28,7 @@ pub mod memory;
 pub mod multipoint;
 pub mod revolute;
 pub mod shapes;
+pub mod shapes3d;
 pub mod translational;
 pub mod wear;
 
@@ -42,6 +44,10 @@ pub use revolute::{ForceApplication, RevoluteClearance, RevoluteContact};
 pub use shapes::{
     boxes_gap, boxes_overlap, contact_points, segment_contact_points, shape_distance, ContactShape,
     Feature, Shape, ShapeContactPoint, ShapeContactWorkspace,
+};
+pub use shapes3d::{
+    boxes_gap3, boxes_overlap3, contact_points3, shape_distance3, BodyState3, ContactShape3,
+    Feature3, PartPose3, Shape3, ShapeContactPoint3, ShapeContactWorkspace3,
 };
 pub use translational::{Configuration, TranslationalClearance, TranslationalContact};
 pub use wear::{ArchardWear, BearingProfile, LineContact, PressureDistribution};

@@ -100,17 +100,21 @@ fn positive(name: &'static str, v: f64) -> Result<(), ContactError> {
     }
 }
 
-fn finite_points(name: &'static str, points: &[[f64; 2]]) -> Result<(), ContactError> {
+/// Check that every coordinate of `points` (m) is finite; the error names point `i`. Shared
+/// with [`crate::shapes3d`] (`law` names the kind of shape).
+pub(crate) fn finite_points<const N: usize>(
+    law: &'static str,
+    name: &'static str,
+    points: &[[f64; N]],
+) -> Result<(), ContactError> {
     for (i, p) in points.iter().enumerate() {
-        for &c in p {
-            if !c.is_finite() {
-                return Err(ContactError::invalid(
-                    LAW,
-                    name,
-                    c,
-                    format!("point {i} has a non-finite coordinate; give finite coordinates in m"),
-                ));
-            }
+        if let Some(&c) = p.iter().find(|c| !c.is_finite()) {
+            return Err(ContactError::invalid(
+                law,
+                name,
+                c,
+                format!("point {i} has a non-finite coordinate; give finite coordinates in m"),
+            ));
         }
     }
     Ok(())
@@ -200,7 +204,7 @@ impl Shape {
                         "a polyline needs at least 2 points; add points",
                     ));
                 }
-                finite_points(name, points)?;
+                finite_points(LAW, name, points)?;
                 for (i, w) in points.windows(2).enumerate() {
                     if w[0] == w[1] {
                         return Err(ContactError::invalid(
@@ -261,7 +265,7 @@ fn validate_convex_polygon(points: &[[f64; 2]]) -> Result<(), ContactError> {
             "a convex polygon needs at least 3 points; add points",
         ));
     }
-    finite_points(name, points)?;
+    finite_points(LAW, name, points)?;
     // Scale for the collinearity tolerance.
     let size = points
         .iter()
@@ -562,7 +566,7 @@ pub fn contact_points<'w>(
     prediction: f64,
     workspace: &'w mut ShapeContactWorkspace,
 ) -> Result<&'w [ShapeContactPoint], ContactError> {
-    check_prediction(prediction)?;
+    check_prediction(LAW, prediction)?;
     let pa = pose_of(pose_a)?;
     let pb = pose_of(pose_b)?;
     let side_a = Posed {
@@ -593,7 +597,7 @@ pub fn segment_contact_points<'w>(
     prediction: f64,
     workspace: &'w mut ShapeContactWorkspace,
 ) -> Result<&'w [ShapeContactPoint], ContactError> {
-    check_prediction(prediction)?;
+    check_prediction(LAW, prediction)?;
     for c in [p0.x, p0.y, p1.x, p1.y] {
         finite("segment end point (m)", c)?;
     }
@@ -623,12 +627,13 @@ pub fn segment_contact_points<'w>(
     Ok(&workspace.points)
 }
 
-fn check_prediction(prediction: f64) -> Result<(), ContactError> {
+/// Require a prediction distance ≥ 0 and finite, m (shared with [`crate::shapes3d`]).
+pub(crate) fn check_prediction(law: &'static str, prediction: f64) -> Result<(), ContactError> {
     if prediction >= 0.0 && prediction.is_finite() {
         Ok(())
     } else {
         Err(ContactError::invalid(
-            LAW,
+            law,
             "prediction (m)",
             prediction,
             "must be ≥ 0 and finite",
