@@ -712,6 +712,15 @@ const MAX_ITER: usize = 60;
 
 impl<'a, S: Real> JournalGeometry<'a, S> {
     fn new(joint: &'a JournalClearance, state: &JournalState<S>) -> Result<Self, JournalError> {
+        let mut g = Self::bare(joint, state)?;
+        g.find_overlap();
+        g.find_regions();
+        g.find_thrust();
+        Ok(g)
+    }
+
+    /// The frame quantities only (no overlap, regions or thrust points yet).
+    fn bare(joint: &'a JournalClearance, state: &JournalState<S>) -> Result<Self, JournalError> {
         let mut state = *state;
         let ub = state
             .bearing_axis
@@ -746,7 +755,7 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             w,
             t: w.scale(S::from_f64(1.0) / cg),
         };
-        let mut g = Self {
+        Ok(Self {
             joint,
             state,
             frame,
@@ -756,11 +765,33 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             split: 0.0,
             regions: [None, None],
             thrust: [None, None],
+        })
+    }
+
+    /// The rate ż_e (m/s) at which the journal end s_end (±L_j/2, m) moves along the bore: the
+    /// end's fixed point evaluated in [`Rate`] numbers along the current rigid motions.
+    fn journal_end_rate(&self, s_end: f64) -> f64 {
+        let st = &self.state;
+        let moving = |x: &V3<S>, dx: Vector3<f64>| {
+            let x = x.value();
+            V3([0, 1, 2].map(|i| Rate { v: x[i], d: dx[i] }))
         };
-        g.find_overlap();
-        g.find_regions();
-        g.find_thrust();
-        Ok(g)
+        let still = |x: &V3<S>| V3::constant(&x.value());
+        let (wb, wj) = (
+            st.bearing_angular_velocity.value(),
+            st.journal_angular_velocity.value(),
+        );
+        let rate_state = JournalState {
+            bearing_centre: moving(&st.bearing_centre, st.bearing_velocity.value()),
+            bearing_axis: moving(&st.bearing_axis, wb.cross(&st.bearing_axis.value())),
+            bearing_velocity: still(&st.bearing_velocity),
+            bearing_angular_velocity: still(&st.bearing_angular_velocity),
+            journal_centre: moving(&st.journal_centre, st.journal_velocity.value()),
+            journal_axis: moving(&st.journal_axis, wj.cross(&st.journal_axis.value())),
+            journal_velocity: still(&st.journal_velocity),
+            journal_angular_velocity: still(&st.journal_angular_velocity),
+        };
+        JournalGeometry::bare(self.joint, &rate_state).map_or(0.0, |g| g.journal_end(s_end).d)
     }
 
     /// Tilt γ between the journal and bore axes, rad.
@@ -1254,10 +1285,9 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
                 f.ub.scale(phi_s * S::from_f64(-sign / lc)),
                 &end.journal_point,
             );
-            let v_rel = (self.state.journal_point_velocity(&end.journal_point)
-                - self.state.bearing_point_velocity(&end.journal_point))
-            .value();
-            w_rate += sign * phi / lc * v_rel.dot(&ub);
+            // the stored energy's rate takes the end's exact rate (with the slide of the deepest
+            // point along the end circle), so the reported dissipation closes the balance
+            w_rate += sign * phi / lc * self.journal_end_rate(sign * 0.5 * j.journal_length);
         }
         out.force = force;
         out.journal_moment = mj;
@@ -1305,6 +1335,80 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         out.dissipated = -fq.value().dot(&v_mid) - laws.thrust.elastic_force(delta) * rate;
         out.elastic_energy = laws.thrust.elastic_energy(delta);
         out
+    }
+}
+
+/// A value and its rate along the current motion (forward mode, one direction): evaluates the
+/// journal end's fixed point to get its exact rate.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Rate {
+    v: f64,
+    d: f64,
+}
+
+impl Add for Rate {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self {
+            v: self.v + o.v,
+            d: self.d + o.d,
+        }
+    }
+}
+impl Sub for Rate {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Self {
+            v: self.v - o.v,
+            d: self.d - o.d,
+        }
+    }
+}
+impl Mul for Rate {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        Self {
+            v: self.v * o.v,
+            d: self.d * o.v + self.v * o.d,
+        }
+    }
+}
+impl Div for Rate {
+    type Output = Self;
+    fn div(self, o: Self) -> Self {
+        Self {
+            v: self.v / o.v,
+            d: (self.d * o.v - self.v * o.d) / (o.v * o.v),
+        }
+    }
+}
+impl Neg for Rate {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Self {
+            v: -self.v,
+            d: -self.d,
+        }
+    }
+}
+impl Real for Rate {
+    fn from_f64(v: f64) -> Self {
+        Self { v, d: 0.0 }
+    }
+    fn value(&self) -> f64 {
+        self.v
+    }
+    fn chain(self, f: f64, df: f64) -> Self {
+        Self {
+            v: f,
+            d: df * self.d,
+        }
+    }
+    fn chain2(a: Self, b: Self, f: f64, dfa: f64, dfb: f64) -> Self {
+        Self {
+            v: f,
+            d: dfa * a.d + dfb * b.d,
+        }
     }
 }
 

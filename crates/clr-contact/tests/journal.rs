@@ -591,41 +591,66 @@ fn moments_balance_and_lugre_is_refused() {
 }
 
 /// Energy: without damping and friction the contact is conservative, so the reported
-/// dissipation −P − dW/dt is zero and dW/dt equals −P (the power of the contact forces): a
-/// journal tilted in the plane of its eccentricity, sliding axially and whirling, with W(t) from
-/// central differences along the rigid motion (step 1e-7 s; the quadrature's own error in W is
-/// what limits the match: 1e-6 of |P|).
+/// dissipation −P − dW/dt is zero and dW/dt equals −P (the power of the contact forces), with
+/// W(t) from central differences along the rigid motion (step 1e-7 s). Journal tilted in the
+/// plane of its eccentricity, sliding axially and tilting further: with the wetted end at the
+/// bore's edge and at the journal's own rim (the moving-end term): 1e-6 of |P| (the quadrature's
+/// own error in W limits the match). Out of that plane, the slide of the rim's deepest point
+/// along the end circle, left out of the moving-end term (module docs), shows: measured below.
 #[test]
 fn conservative_contact_dissipates_nothing() {
     let joint = JournalClearance::cylindrical(RB, L, RJ, L).unwrap();
     let laws = laws(elastic(ElasticLaw::hertz(5e9).unwrap()), None);
-    let (oj, uj) = (v3(0.4 * C, 0.0, 2e-4), tilted(0.012, 0.0));
-    let (vj, wj) = (v3(1e-4, 0.0, 2e-2), v3(0.0, 0.05, 0.0));
-    let at = |t: f64| {
-        let rot = Rotation3::from_axis_angle(&Unit::new_normalize(wj), wj.norm() * t);
-        state(oj + vj * t, rot * uj, vj, wj)
-    };
-    let eval = |t: f64| {
-        joint
-            .geometry(&at(t))
-            .unwrap()
-            .forces(&laws, &[1.0; GROUPS])
-    };
-    let h = 1e-7;
-    let w_rate = (eval(h).elastic_energy() - eval(-h).elastic_energy()) / (2.0 * h);
-    let st = at(0.0);
-    let g = joint.geometry(&st).unwrap();
-    let fr = g.forces(&laws, &[1.0; GROUPS]);
-    // power of the pair on the journal (moment about O_j with ω_j, force with v_j; the bearing is
-    // at rest)
-    let p = fr.force.value().dot(&vj) + fr.journal_moment.value().dot(&wj);
-    println!(
-        "P = {p:e} W, dW/dt = {w_rate:e} W, dissipated {:e} W",
-        fr.dissipated()
-    );
-    assert!(p.abs() > 0.0);
-    assert!((w_rate + p).abs() <= 1e-6 * p.abs(), "{w_rate} vs {p}");
-    assert!(fr.dissipated().abs() <= 1e-6 * p.abs());
+    let cases = [
+        // (centre, axis, velocity, angular velocity, tolerance relative to |P|)
+        (
+            v3(0.4 * C, 0.0, 2e-4),
+            tilted(0.012, 0.0),
+            v3(1e-4, 0.0, 2e-2),
+            v3(0.0, 0.05, 0.0),
+            1e-6,
+        ),
+        (
+            v3(0.4 * C, 0.0, -2e-4),
+            tilted(0.012, 0.0),
+            v3(1e-4, 0.0, 2e-2),
+            v3(0.0, 0.05, 0.0),
+            1e-6,
+        ),
+        (
+            v3(0.4 * C, 0.1 * C, -2e-4),
+            tilted(0.012, 0.4),
+            v3(1e-4, 3e-5, 2e-2),
+            v3(0.02, 0.05, 3.0),
+            1e-2,
+        ),
+    ];
+    for (oj, uj, vj, wj, tol) in cases {
+        let at = |t: f64| {
+            let rot = Rotation3::from_axis_angle(&Unit::new_normalize(wj), wj.norm() * t);
+            state(oj + vj * t, rot * uj, vj, wj)
+        };
+        let eval = |t: f64| {
+            joint
+                .geometry(&at(t))
+                .unwrap()
+                .forces(&laws, &[1.0; GROUPS])
+        };
+        let h = 1e-7;
+        let w_rate = (eval(h).elastic_energy() - eval(-h).elastic_energy()) / (2.0 * h);
+        let fr = eval(0.0);
+        // power of the pair on the journal (moment about O_j with ω_j, force with v_j; the
+        // bearing is at rest)
+        let p = fr.force.value().dot(&vj) + fr.journal_moment.value().dot(&wj);
+        println!(
+            "P = {p:e} W, dW/dt = {w_rate:e} W, dissipated {:e} W ({:e} of |P|)",
+            fr.dissipated(),
+            fr.dissipated() / p.abs()
+        );
+        assert!(p.abs() > 0.0);
+        assert!((w_rate + p).abs() <= tol * p.abs(), "{w_rate} vs {p}");
+        assert!(fr.dissipated().abs() <= tol * p.abs());
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
