@@ -27,14 +27,25 @@
 //! the circle of radius R_j, so that start lies on the wetted side).
 //!
 //! The force per unit length is p(z) = F_N(δ(z), δ̇(z), δ̇⁻)/L_c with L_c = min(L_b, L_j) and δ̇
-//! the approach rate of the deepest points, integrated over each wetted region with a fixed-order
-//! Gauss–Legendre rule after the substitution z = z_in + (z_out − z_in)u², which clusters the
-//! nodes at the wetted region's inner end, where p ∝ δ^n vanishes like a power: the force is
-//! continuous as regions open, shrink to a rim and merge, and without tilt it is F_N(δ) exactly
-//! up to rounding (the planar [`crate::revolute`] joint). Each Gauss point also carries friction
-//! in the tangent plane against the slip of the deepest points (rotation and axial sliding), with
-//! the magnitude of a [`FrictionLaw`] at |v_t|. Action and reaction act at the midpoint of the two
-//! contact points, so the pair conserves angular momentum exactly.
+//! = v·n the approach rate of the deepest points, integrated over each wetted region with a
+//! fixed-order Gauss–Legendre rule after the substitution z = z_in + (z_out − z_in)u², which
+//! clusters the nodes at the wetted region's inner end, where p ∝ δ^n vanishes like a power: the
+//! force is continuous as regions open, shrink to a rim and merge, and without tilt it is F_N(δ)
+//! exactly up to rounding (the planar [`crate::revolute`] joint). On the journal the line load is
+//! −p n plus friction at the midpoint of the contact pair and the axial part p δ′ u_b at the
+//! journal's deepest point: −p (n − δ′ u_b) lies along the journal's surface normal there, and with
+//! ∂δ/∂t = n·v − δ′ u_b·v_rel at fixed z it makes the elastic force the gradient of the stored
+//! energy W = ∫ Φ(δ) dz / L_c (Φ = ∫ F_e dδ). A wetted region that ends at a journal end adds the
+//! point force ∓Φ(δ_end)/L_c u_b at the end's deepest point (W changes with the end's position);
+//! it cancels the slope term's axial part when the journal slides along a rim. Friction acts at
+//! every Gauss point in the tangent plane against the slip of the deepest points (rotation and
+//! axial sliding), with the magnitude of a [`FrictionLaw`] at |v_t|. The bearing receives the
+//! opposite forces at the same points, so the pair conserves angular momentum exactly.
+//!
+//! The end's point force follows the journal's material axial motion; the slide of the end
+//! circle's deepest point along the circle (zero when the tilt lies in the plane of the
+//! eccentricity) is left out of the force but not out of the energy report, which takes the end's
+//! exact rate: the dissipation closes the energy balance.
 //!
 //! # Thrust faces (revolute kind)
 //! The journal carries a collar on each side whose face (⟂ u_j, outer radius R_t) sits at
