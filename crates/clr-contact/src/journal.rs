@@ -35,17 +35,16 @@
 //! −p n plus friction at the midpoint of the contact pair and the axial part p δ′ u_b at the
 //! journal's deepest point: −p (n − δ′ u_b) lies along the journal's surface normal there, and with
 //! ∂δ/∂t = n·v − δ′ u_b·v_rel at fixed z it makes the elastic force the gradient of the stored
-//! energy W = ∫ Φ(δ) dz / L_c (Φ = ∫ F_e dδ). A wetted region that ends at a journal end adds the
-//! point force ∓Φ(δ_end)/L_c u_b at the end's deepest point (W changes with the end's position);
-//! it cancels the slope term's axial part when the journal slides along a rim. Friction acts at
-//! every Gauss point in the tangent plane against the slip of the deepest points (rotation and
-//! axial sliding), with the magnitude of a [`FrictionLaw`] at |v_t|. The bearing receives the
-//! opposite forces at the same points, so the pair conserves angular momentum exactly.
-//!
-//! The end's point force follows the journal's material axial motion; the slide of the end
-//! circle's deepest point along the circle (zero when the tilt lies in the plane of the
-//! eccentricity) is left out of the force but not out of the energy report, which takes the end's
-//! exact rate: the dissipation closes the energy balance.
+//! energy W = ∫ Φ(δ) dz / L_c (Φ = ∫ F_e dδ). A wetted region that ends at a journal end adds
+//! the generalized force −(±Φ(δ_end)/L_c) ∇z_end (W changes with the end's position z_end): a
+//! force pair and moments from the pose gradient of the end's fixed point, evaluated in
+//! forward-mode numbers over the scalar type. It cancels the slope term's axial part when the
+//! journal slides along a rim (a cylinder sliding in a cylinder stores nothing). So the elastic
+//! contact is conservative and the reported dissipation −P − dW/dt is that of damping and
+//! friction. Friction acts at every Gauss point in the tangent plane against the slip of the
+//! deepest points (rotation and axial sliding), with the magnitude of a [`FrictionLaw`] at |v_t|.
+//! The bearing receives the opposite forces at the same points, so the pair conserves angular
+//! momentum exactly.
 //!
 //! # Thrust faces (revolute kind)
 //! The journal carries a collar on each side whose face (⟂ u_j, outer radius R_t) sits at
@@ -779,30 +778,40 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         })
     }
 
-    /// The rate ż_e (m/s) at which the journal end s_end (±L_j/2, m) moves along the bore: the
-    /// end's fixed point evaluated in [`Rate`] numbers along the current rigid motions.
-    fn journal_end_rate(&self, s_end: f64) -> f64 {
+    /// Gradient of the z of the journal end s_end (±L_j/2, m) over the pose: ∂z_e/∂O_b,
+    /// ∂z_e/∂θ_b, ∂z_e/∂O_j, ∂z_e/∂θ_j (θ a world rotation of the body about its centre; – and
+    /// m), in the scalar type: the end's fixed point evaluated in [`Rate`] numbers, one
+    /// direction at a time.
+    fn journal_end_gradient(&self, s_end: f64) -> [V3<S>; 4] {
         let st = &self.state;
-        let moving = |x: &V3<S>, dx: Vector3<f64>| {
-            let x = x.value();
-            V3([0, 1, 2].map(|i| Rate { v: x[i], d: dx[i] }))
+        let (ub, uj) = (st.bearing_axis, st.journal_axis);
+        let moving = |x: &V3<S>, dx: V3<S>| {
+            V3([0, 1, 2].map(|i| Rate {
+                v: x.0[i],
+                d: dx.0[i],
+            }))
         };
-        let still = |x: &V3<S>| V3::constant(&x.value());
-        let (wb, wj) = (
-            st.bearing_angular_velocity.value(),
-            st.journal_angular_velocity.value(),
-        );
-        let rate_state = JournalState {
-            bearing_centre: moving(&st.bearing_centre, st.bearing_velocity.value()),
-            bearing_axis: moving(&st.bearing_axis, wb.cross(&st.bearing_axis.value())),
-            bearing_velocity: still(&st.bearing_velocity),
-            bearing_angular_velocity: still(&st.bearing_angular_velocity),
-            journal_centre: moving(&st.journal_centre, st.journal_velocity.value()),
-            journal_axis: moving(&st.journal_axis, wj.cross(&st.journal_axis.value())),
-            journal_velocity: still(&st.journal_velocity),
-            journal_angular_velocity: still(&st.journal_angular_velocity),
-        };
-        JournalGeometry::bare(self.joint, &rate_state).map_or(0.0, |g| g.journal_end(s_end).d)
+        let still = |x: &V3<S>| moving(x, V3::zero());
+        let mut grad = [V3::zero(); 4];
+        for (k, g) in grad.iter_mut().enumerate() {
+            for c in 0..3 {
+                let mut dir = [V3::zero(); 4];
+                dir[k].0[c] = S::from_f64(1.0);
+                let rate_state = JournalState {
+                    bearing_centre: moving(&st.bearing_centre, dir[0]),
+                    bearing_axis: moving(&ub, dir[1].cross(&ub)),
+                    bearing_velocity: still(&st.bearing_velocity),
+                    bearing_angular_velocity: still(&st.bearing_angular_velocity),
+                    journal_centre: moving(&st.journal_centre, dir[2]),
+                    journal_axis: moving(&uj, dir[3].cross(&uj)),
+                    journal_velocity: still(&st.journal_velocity),
+                    journal_angular_velocity: still(&st.journal_angular_velocity),
+                };
+                g.0[c] = JournalGeometry::bare(self.joint, &rate_state)
+                    .map_or(S::from_f64(0.0), |geo| geo.journal_end(s_end).d);
+            }
+        }
+        grad
     }
 
     /// Tilt γ between the journal and bore axes, rad.
@@ -1292,13 +1301,22 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             let phi_s = end
                 .penetration
                 .chain(phi, laws.radial.elastic_force(delta0));
-            apply(
-                f.ub.scale(phi_s * S::from_f64(-sign / lc)),
-                &end.journal_point,
-            );
-            // the stored energy's rate takes the end's exact rate (with the slide of the deepest
-            // point along the end circle), so the reported dissipation closes the balance
-            w_rate += sign * phi / lc * self.journal_end_rate(sign * 0.5 * j.journal_length);
+            // the generalized force −(±Φ/L_c) ∇z_e of the end's motion: a force pair and the
+            // moments about O_j and O_b (rigid-motion invariance of z_e makes them balance)
+            let c = phi_s * S::from_f64(-sign / lc);
+            let grad = self.journal_end_gradient(sign * 0.5 * j.journal_length);
+            force = force + grad[2].scale(c);
+            mj = mj + grad[3].scale(c);
+            mb = mb + grad[1].scale(c);
+            let st = &self.state;
+            let z_dot = (grad[0].dot(&st.bearing_velocity)
+                + grad[1].dot(&st.bearing_angular_velocity)
+                + grad[2].dot(&st.journal_velocity)
+                + grad[3].dot(&st.journal_angular_velocity))
+            .value();
+            // its power −c ż_e and the stored energy's rate ±Φ/L_c ż_e cancel in the dissipation
+            power += c.value() * z_dot;
+            w_rate += sign * phi / lc * z_dot;
         }
         out.force = force;
         out.journal_moment = mj;
@@ -1349,15 +1367,18 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
     }
 }
 
-/// A value and its rate along the current motion (forward mode, one direction): evaluates the
-/// journal end's fixed point to get its exact rate.
+/// A scalar and its derivative along one direction of the pose (forward mode over any [`Real`],
+/// so that the derivative itself carries the scalar's derivatives): evaluates the journal end's
+/// fixed point to get the end's pose gradient. Exact for the arithmetic, √, sin and cos the
+/// geometry uses; [`Real::chain`] and [`Real::chain2`] (the laws) are first order in the direction
+/// and are not used on it.
 #[derive(Debug, Clone, Copy, PartialEq)]
-struct Rate {
-    v: f64,
-    d: f64,
+struct Rate<S> {
+    v: S,
+    d: S,
 }
 
-impl Add for Rate {
+impl<S: Real> Add for Rate<S> {
     type Output = Self;
     fn add(self, o: Self) -> Self {
         Self {
@@ -1366,7 +1387,7 @@ impl Add for Rate {
         }
     }
 }
-impl Sub for Rate {
+impl<S: Real> Sub for Rate<S> {
     type Output = Self;
     fn sub(self, o: Self) -> Self {
         Self {
@@ -1375,7 +1396,7 @@ impl Sub for Rate {
         }
     }
 }
-impl Mul for Rate {
+impl<S: Real> Mul for Rate<S> {
     type Output = Self;
     fn mul(self, o: Self) -> Self {
         Self {
@@ -1384,7 +1405,7 @@ impl Mul for Rate {
         }
     }
 }
-impl Div for Rate {
+impl<S: Real> Div for Rate<S> {
     type Output = Self;
     fn div(self, o: Self) -> Self {
         Self {
@@ -1393,7 +1414,7 @@ impl Div for Rate {
         }
     }
 }
-impl Neg for Rate {
+impl<S: Real> Neg for Rate<S> {
     type Output = Self;
     fn neg(self) -> Self {
         Self {
@@ -1402,23 +1423,45 @@ impl Neg for Rate {
         }
     }
 }
-impl Real for Rate {
+impl<S: Real> Real for Rate<S> {
     fn from_f64(v: f64) -> Self {
-        Self { v, d: 0.0 }
+        Self {
+            v: S::from_f64(v),
+            d: S::from_f64(0.0),
+        }
     }
     fn value(&self) -> f64 {
-        self.v
+        self.v.value()
     }
     fn chain(self, f: f64, df: f64) -> Self {
         Self {
-            v: f,
-            d: df * self.d,
+            v: self.v.chain(f, df),
+            d: self.d * S::from_f64(df),
         }
     }
     fn chain2(a: Self, b: Self, f: f64, dfa: f64, dfb: f64) -> Self {
         Self {
-            v: f,
-            d: dfa * a.d + dfb * b.d,
+            v: S::chain2(a.v, b.v, f, dfa, dfb),
+            d: a.d * S::from_f64(dfa) + b.d * S::from_f64(dfb),
+        }
+    }
+    fn sqrt(self) -> Self {
+        let r = self.v.sqrt();
+        Self {
+            v: r,
+            d: self.d * (S::from_f64(0.5) / r),
+        }
+    }
+    fn sin(self) -> Self {
+        Self {
+            v: self.v.sin(),
+            d: self.d * self.v.cos(),
+        }
+    }
+    fn cos(self) -> Self {
+        Self {
+            v: self.v.cos(),
+            d: -(self.d * self.v.sin()),
         }
     }
 }
