@@ -1292,9 +1292,9 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             energy += wv * laws.radial.elastic_energy(d) / lc;
         }
         // a wetted journal end (the region's outer end moves with the journal): W changes by
-        // ±Φ(δ_end)/L_c per unit of end motion, the axial point force −(±Φ/L_c) u_b at the end's
-        // deepest point, which cancels the axial part of the slope term when the journal slides
-        // along a rim (a cylinder sliding in a cylinder stores nothing)
+        // ±Φ(δ_end)/L_c per unit of end motion, whence the generalized force −(±Φ/L_c)∇z_end,
+        // which cancels the axial part of the slope term when the journal slides along a rim (a
+        // cylinder sliding in a cylinder stores nothing)
         if region.outer_moves && delta0 > 0.0 {
             let sign = if k == 0 { -1.0 } else { 1.0 };
             let phi = laws.radial.elastic_energy(delta0);
