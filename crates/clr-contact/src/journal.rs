@@ -22,7 +22,7 @@
 //! The overlap runs between the bore's ends z = ±L_b/2 and the journal's ends, where the deepest
 //! point of the cross-section lies on the journal's end circle, s = ±L_j/2 along u_j (found by a
 //! fixed-point iteration z ← z − cos γ (s(z) − s_end), contraction ≈ R_j γ²/c). The overlap is
-//! split at the minimiser of δ (bisection–secant on δ′ = n·t); the wetted ends are the roots of δ
+//! split at the minimiser of δ (safeguarded secant on δ′ = n·t); the wetted ends are the roots of δ
 //! (a safeguarded Newton iteration started from the quadratic |e(z)|² = c²: the ellipse contains
 //! the circle of radius R_j, so that start lies on the wetted side).
 //!
@@ -37,8 +37,8 @@
 //! ∂δ/∂t = n·v − δ′ u_b·v_rel at fixed z it makes the elastic force the gradient of the stored
 //! energy W = ∫ Φ(δ) dz / L_c (Φ = ∫ F_e dδ). A wetted region that ends at a journal end adds
 //! the generalized force −(±Φ(δ_end)/L_c) ∇z_end (W changes with the end's position z_end): a
-//! force pair and moments from the pose gradient of the end's fixed point, evaluated in
-//! forward-mode numbers over the scalar type. It cancels the slope term's axial part when the
+//! force pair and moments from the pose gradient of the end, by the implicit-function rule on its
+//! defining equation with forward-mode numbers over the scalar type. It cancels the slope term's axial part when the
 //! journal slides along a rim (a cylinder sliding in a cylinder stores nothing). So the elastic
 //! contact is conservative and the reported dissipation −P − dW/dt is that of damping and
 //! friction. Friction acts at every Gauss point in the tangent plane against the slip of the
@@ -780,9 +780,11 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
 
     /// Gradient of the z of the journal end s_end (±L_j/2, m) over the pose: ∂z_e/∂O_b,
     /// ∂z_e/∂θ_b, ∂z_e/∂O_j, ∂z_e/∂θ_j (θ a world rotation of the body about its centre; – and
-    /// m), in the scalar type: the end's fixed point evaluated in [`Rate`] numbers, one
-    /// direction at a time.
-    fn journal_end_gradient(&self, s_end: f64) -> [V3<S>; 4] {
+    /// m), in the scalar type. The end z_e solves G(z, q) = s(z, q) − s_end = 0, s the journal
+    /// coordinate of the section's deepest point, so ∇z_e = −G_q/G_z (the implicit-function
+    /// rule), with G_z and each column of G_q from one section evaluated at z_e in [`Rate`]
+    /// numbers.
+    fn journal_end_gradient(&self, z_end: S) -> [V3<S>; 4] {
         let st = &self.state;
         let (ub, uj) = (st.bearing_axis, st.journal_axis);
         let moving = |x: &V3<S>, dx: V3<S>| {
@@ -792,23 +794,29 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             }))
         };
         let still = |x: &V3<S>| moving(x, V3::zero());
+        let zero = S::from_f64(0.0);
+        let derivative = |dir: &[V3<S>; 4], dz: S| {
+            let rate_state = JournalState {
+                bearing_centre: moving(&st.bearing_centre, dir[0]),
+                bearing_axis: moving(&ub, dir[1].cross(&ub)),
+                bearing_velocity: still(&st.bearing_velocity),
+                bearing_angular_velocity: still(&st.bearing_angular_velocity),
+                journal_centre: moving(&st.journal_centre, dir[2]),
+                journal_axis: moving(&uj, dir[3].cross(&uj)),
+                journal_velocity: still(&st.journal_velocity),
+                journal_angular_velocity: still(&st.journal_angular_velocity),
+            };
+            JournalGeometry::bare(self.joint, &rate_state).map_or(zero, |geo| {
+                geo.section(Rate { v: z_end, d: dz }).journal_coordinate.d
+            })
+        };
+        let g_z = derivative(&[V3::zero(); 4], S::from_f64(1.0));
         let mut grad = [V3::zero(); 4];
         for (k, g) in grad.iter_mut().enumerate() {
             for c in 0..3 {
                 let mut dir = [V3::zero(); 4];
                 dir[k].0[c] = S::from_f64(1.0);
-                let rate_state = JournalState {
-                    bearing_centre: moving(&st.bearing_centre, dir[0]),
-                    bearing_axis: moving(&ub, dir[1].cross(&ub)),
-                    bearing_velocity: still(&st.bearing_velocity),
-                    bearing_angular_velocity: still(&st.bearing_angular_velocity),
-                    journal_centre: moving(&st.journal_centre, dir[2]),
-                    journal_axis: moving(&uj, dir[3].cross(&uj)),
-                    journal_velocity: still(&st.journal_velocity),
-                    journal_angular_velocity: still(&st.journal_angular_velocity),
-                };
-                g.0[c] = JournalGeometry::bare(self.joint, &rate_state)
-                    .map_or(S::from_f64(0.0), |geo| geo.journal_end(s_end).d);
+                g.0[c] = -(derivative(&dir, zero) / g_z);
             }
         }
         grad
@@ -873,28 +881,30 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         } else {
             m0
         };
-        let b = f.uj.cross(&m0);
-        let mut phi = S::from_f64(0.0);
+        // Newton's method on the angle φ of m(φ) = m cos φ + (u_j × m) sin φ about the current m
+        // (at φ = 0: m′ = u_j × m, m″ = −m), the step taken as m ← (m − Δφ u_j × m)/|·|, which
+        // turns by atan Δφ: no trigonometry, and the error it adds, Δφ³/3, is below the quadratic
+        // term
+        let mut m = m0;
         for _ in 0..MAX_ITER {
-            let (s, c) = (phi.sin(), phi.cos());
-            let m = m0.scale(c) + b.scale(s);
-            let mp = b.scale(c) - m0.scale(s);
+            let b = f.uj.cross(&m);
             let em = self.ellipse(&m);
             let r = e + em;
-            let r1 = self.ellipse(&mp);
+            let r1 = self.ellipse(&b);
             let curvature = r1.dot(&r1) - r.dot(&em);
             if curvature.value() >= 0.0 || curvature.value().is_nan() {
-                // a centred circle (every point equally deep) or no maximum near: keep φ
+                // a centred circle (every point equally deep) or no maximum near: keep m
                 break;
             }
             let step = r.dot(&r1) / curvature;
-            phi = phi - step;
-            if step.value().abs() <= 1e-15 {
+            let turned = m - b.scale(step);
+            m = turned.scale(S::from_f64(1.0) / turned.norm());
+            // quadratic convergence: after a step below 1e-10 rad the error is ~ (R_j/e)·1e-20;
+            // a tighter test would chase the rounding noise of f′/f″ (~1e-14 rad)
+            if step.value().abs() <= 1e-10 {
                 break;
             }
         }
-        let (s, c) = (phi.sin(), phi.cos());
-        let m = m0.scale(c) + b.scale(s);
         let r = e + self.ellipse(&m);
         let rho = r.norm();
         let n = r.scale(S::from_f64(1.0) / rho);
@@ -930,7 +940,8 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             let sec = self.section(z);
             let step = f.cg * (sec.journal_coordinate - S::from_f64(s_end));
             z = z - step;
-            if step.value().abs() <= 1e-16 * self.joint.journal_length {
+            // linear convergence (factor ≈ R_j γ²/c): stop at the rounding level of z
+            if step.value().abs() <= 1e-15 * self.joint.journal_length {
                 break;
             }
         }
@@ -957,10 +968,10 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
     }
 
     /// The minimiser of δ on the overlap (values only: the integral does not depend on where a
-    /// wetted overlap is split, up to quadrature error): Illinois regula falsi on δ′ = n·t.
+    /// wetted overlap is split, up to quadrature error): safeguarded secant steps on δ′ = n·t.
     fn find_split(&self, lo: f64, hi: f64, ends: &[Section<S>; 2]) -> f64 {
-        let (mut a, mut fa) = (lo, ends[0].slope.value());
-        let (mut b, mut fb) = (hi, ends[1].slope.value());
+        let (mut a, fa) = (lo, ends[0].slope.value());
+        let (mut b, fb) = (hi, ends[1].slope.value());
         if self.frame.t.value().norm() == 0.0 {
             return 0.5 * (lo + hi);
         }
@@ -970,27 +981,42 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         if fb <= 0.0 {
             return hi;
         }
-        let mut side = 0;
-        for _ in 0..200 {
-            let c = (a * fb - b * fa) / (fb - fa);
-            let c = if c > a && c < b { c } else { 0.5 * (a + b) };
-            let fc = self.section(S::from_f64(c)).slope.value();
-            if fc == 0.0 || b - a <= 1e-15 * (hi - lo) {
-                return c;
-            }
-            if fc < 0.0 {
-                (a, fa) = (c, fc);
-                if side == -1 {
-                    fb *= 0.5;
+        // secant steps from the minimiser of the circle part |e(z)|² (closed form), kept inside
+        // the bracket [a, b] (δ′(a) < 0 < δ′(b)) by bisection
+        let fr = &self.frame;
+        let (t, e0) = (fr.t.value(), fr.e0.value());
+        let start = fr.a.value() - e0.dot(&t) / t.dot(&t);
+        let tol = 1e-10 * (hi - lo);
+        let mut x0 = start.clamp(a, b);
+        let mut f0 = self.section(S::from_f64(x0)).slope.value();
+        let probe = 1e-3 * (hi - lo);
+        let mut x1 = if x0 + probe < b {
+            x0 + probe
+        } else {
+            x0 - probe
+        };
+        for _ in 0..MAX_ITER {
+            let f1 = self.section(S::from_f64(x1)).slope.value();
+            for (x, fx) in [(x0, f0), (x1, f1)] {
+                if fx < 0.0 && x > a {
+                    a = x;
+                } else if fx > 0.0 && x < b {
+                    b = x;
                 }
-                side = -1;
+            }
+            if f1 == 0.0 || b - a <= tol {
+                return x1;
+            }
+            let secant = x1 - f1 * (x1 - x0) / (f1 - f0);
+            let next = if secant > a && secant < b {
+                secant
             } else {
-                (b, fb) = (c, fc);
-                if side == 1 {
-                    fa *= 0.5;
-                }
-                side = 1;
+                0.5 * (a + b)
+            };
+            if (next - x1).abs() <= tol {
+                return next;
             }
+            (x0, f0, x1) = (x1, f1, next);
         }
         0.5 * (a + b)
     }
@@ -1005,7 +1031,9 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         } else {
             0.5 * (outer + inner)
         });
-        let tol = 1e-15 * self.joint.bearing_length.max(self.joint.journal_length);
+        // quadratic convergence: a step below 1e-11 L leaves an error ~ 1e-22 L²·δ″/δ′; a tighter
+        // test would chase the rounding noise of δ/δ′
+        let tol = 1e-11 * self.joint.bearing_length.max(self.joint.journal_length);
         for _ in 0..MAX_ITER {
             let sec = self.section(z);
             if sec.penetration.value() > 0.0 {
@@ -1119,7 +1147,10 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             - self.state.bearing_point_velocity(bearing_point)
     }
 
-    /// Penetration and its rate (m, m/s) of group `g` (the memory's and the event's inputs).
+    /// Penetration and its rate (m, m/s) of group `g` (the memory's and the event's inputs):
+    /// for a radial group δ and v·n at the region's outer end (−c and 0 when the journal is out
+    /// of the bore), for a thrust face δ_t and its rate (−∞ and 0 for the cylindrical kind and
+    /// for an index ≥ [`GROUPS`]).
     pub fn gap(&self, g: usize) -> (f64, f64) {
         match g {
             RADIAL_A | RADIAL_B => match self.ends {
@@ -1304,7 +1335,7 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             // the generalized force −(±Φ/L_c) ∇z_e of the end's motion: a force pair and the
             // moments about O_j and O_b (rigid-motion invariance of z_e makes them balance)
             let c = phi_s * S::from_f64(-sign / lc);
-            let grad = self.journal_end_gradient(sign * 0.5 * j.journal_length);
+            let grad = self.journal_end_gradient(region.outer);
             force = force + grad[2].scale(c);
             mj = mj + grad[3].scale(c);
             mb = mb + grad[1].scale(c);
