@@ -916,3 +916,32 @@ fn dual_gradient_matches_central_differences() {
     }
     println!("worst relative gradient error {worst:e}");
 }
+
+/// The contact memory: `forces_with_memory` takes each group's δ̇⁻ from `ContactMemory`
+/// (rule 2 of `memory`: a contact without history that penetrates gets its current rate, floored)
+/// and equals `forces` with those impact velocities bit for bit; `commit` opens exactly the
+/// penetrating groups (radial A and B and the thrust face here; the other face stays closed).
+#[test]
+fn memory_slots_follow_the_groups() {
+    let joint = JournalClearance::revolute(RB, L, RJ, L, 2e-4, Some(4e-3)).unwrap();
+    let laws = laws(hertz_ln(), None);
+    let st = state(
+        v3(0.1 * C, -0.2 * C, 1.5e-4),
+        tilted(0.02, 0.3),
+        v3(0.01, 0.0, 0.002),
+        v3(0.0, 0.0, 3.0),
+    );
+    let g = joint.geometry(&st).unwrap();
+    let mut memory = clr_contact::ContactMemory::new(3 + GROUPS, 1e-4).unwrap();
+    let with_memory = g.forces_with_memory(&laws, &mut memory, 3);
+    let vdm: [f64; GROUPS] = std::array::from_fn(|k| g.gap(k).1.max(1e-4));
+    assert_eq!(with_memory, g.forces(&laws, &vdm));
+    g.commit(&mut memory, 3);
+    for k in 0..GROUPS {
+        let open = g.gap(k).0 > 0.0;
+        assert_eq!(memory.committed(3 + k).is_some(), open, "group {k}");
+    }
+    assert!(g.gap(RADIAL_A).0 > 0.0 && g.gap(RADIAL_B).0 > 0.0 && g.gap(THRUST_PLUS).0 > 0.0);
+    assert!(g.gap(THRUST_MINUS).0 < 0.0);
+    assert_eq!(memory.committed(0), None);
+}
