@@ -1259,17 +1259,23 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         };
         let end = &ends[k];
         let mut out = GroupForces::open(delta0, rate0, end.midpoint().value(), end.normal.value());
-        let Some(region) = self.regions[k] else {
+        // the overlap's end k: where it is, and whether it is a journal end (it moves with it)
+        let Some((lo, hi, lo_moves, hi_moves)) = self.overlap else {
             return out;
         };
+        let (end_z, end_moves) = if k == 0 {
+            (lo, lo_moves)
+        } else {
+            (hi, hi_moves)
+        };
+        let end_term = end_moves && delta0 > 0.0;
+        let region = self.regions[k];
+        if region.is_none() && !end_term {
+            return out;
+        }
         let j = self.joint;
         let f = &self.frame;
         let lc = j.contact_length();
-        let len = if k == 0 {
-            region.inner - region.outer
-        } else {
-            region.outer - region.inner
-        };
         let (mut force, mut mj, mut mb) = (V3::zero(), V3::zero(), V3::zero());
         let (mut fn_sum, mut point, mut normal, mut fric) =
             (0.0, Vector3::zeros(), Vector3::zeros(), Vector3::zeros());
@@ -1283,9 +1289,25 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             let v = self.state.journal_point_velocity(at) - self.state.bearing_point_velocity(at);
             power += fw.value().dot(&v.value());
         };
-        for q in 0..j.order {
+        let (nodes, span) = match region {
+            Some(r) => (j.order, r),
+            None => (
+                0,
+                Region {
+                    outer: end_z,
+                    inner: end_z,
+                    outer_moves: end_moves,
+                },
+            ),
+        };
+        let len = if k == 0 {
+            span.inner - span.outer
+        } else {
+            span.outer - span.inner
+        };
+        for q in 0..nodes {
             let u = j.nodes[q];
-            let z = region.inner + (region.outer - region.inner) * S::from_f64(u * u);
+            let z = span.inner + (span.outer - span.inner) * S::from_f64(u * u);
             let wq = len * S::from_f64(2.0 * u * j.weights[q]);
             let sec = self.section(z);
             if sec.penetration.value() <= 0.0 {
@@ -1322,11 +1344,12 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             w_rate += wv * laws.radial.elastic_force(d) * dt_delta / lc;
             energy += wv * laws.radial.elastic_energy(d) / lc;
         }
-        // a wetted journal end (the region's outer end moves with the journal): W changes by
+        // a wetted journal end (the overlap's end moves with the journal; it belongs to this group
+        // whether or not the split left the group a region of its own): W changes by
         // ±Φ(δ_end)/L_c per unit of end motion, whence the generalized force −(±Φ/L_c)∇z_end,
         // which cancels the axial part of the slope term when the journal slides along a rim (a
         // cylinder sliding in a cylinder stores nothing)
-        if region.outer_moves && delta0 > 0.0 {
+        if end_term {
             let sign = if k == 0 { -1.0 } else { 1.0 };
             let phi = laws.radial.elastic_energy(delta0);
             let phi_s = end
@@ -1335,7 +1358,7 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             // the generalized force −(±Φ/L_c) ∇z_e of the end's motion: a force pair and the
             // moments about O_j and O_b (rigid-motion invariance of z_e makes them balance)
             let c = phi_s * S::from_f64(-sign / lc);
-            let grad = self.journal_end_gradient(region.outer);
+            let grad = self.journal_end_gradient(end_z);
             force = force + grad[2].scale(c);
             mj = mj + grad[3].scale(c);
             mb = mb + grad[1].scale(c);
@@ -1358,8 +1381,10 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             out.point = point / fn_sum;
             out.normal = normal.normalize();
         }
-        let (a, b) = (region.outer.value(), region.inner.value());
-        out.wetted = Some((a.min(b), a.max(b)));
+        out.wetted = region.map(|r| {
+            let (a, b) = (r.outer.value(), r.inner.value());
+            (a.min(b), a.max(b))
+        });
         out.dissipated = -power - w_rate;
         out.elastic_energy = energy;
         out

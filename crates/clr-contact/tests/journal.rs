@@ -375,55 +375,96 @@ fn axial_load_settles_on_thrust_face() {
     }
 }
 
-/// Force and moment are continuous where the wetted regions open and merge: a journal tilted
-/// about x by γ and offset along x by e₀, swept in e₀ so that both ends open (rims) and the two
-/// regions merge (whole length wetted). At each transition (located by bisection to 1e-18 m) the
-/// force and moment at e₀ ± 1e-16 m differ by less than 1e-9 of the sweep's largest force
-/// (Hertz, n = 3/2, and linear laws).
+/// Force and moment at one state of a sweep, and whether a region is wetted and whether the
+/// two regions have merged.
+type SweepPoint = (Vector3<f64>, Vector3<f64>, bool, bool);
+
+/// Locate where `pick` (2: opened, 3: merged) changes in [lo, hi] by bisection down to `eps` and
+/// check that force and moment at the two sides (±`eps`) differ by less than 1e-9 of `scale`
+/// (N; moments 1e-9 of `scale`·L).
+fn assert_continuous(
+    eval: &dyn Fn(f64) -> SweepPoint,
+    pick: usize,
+    lo: f64,
+    hi: f64,
+    eps: f64,
+    scale: f64,
+) {
+    let flag = |x: f64| {
+        let r = eval(x);
+        if pick == 2 {
+            r.2
+        } else {
+            r.3
+        }
+    };
+    let (mut lo, mut hi) = (lo, hi);
+    let at_lo = flag(lo);
+    assert_ne!(at_lo, flag(hi), "no transition {pick} in the sweep");
+    while hi - lo > 0.01 * eps {
+        let mid = 0.5 * (lo + hi);
+        if flag(mid) == at_lo {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let (a, b) = (eval(lo - eps), eval(hi + eps));
+    assert_ne!(
+        a.2 == b.2 && a.3 == b.3,
+        true,
+        "the two sides must straddle the transition"
+    );
+    let (df, dm) = ((a.0 - b.0).norm(), (a.1 - b.1).norm());
+    println!("transition {pick} at {hi:e}: ΔF = {df:e} N (of {scale:e}), ΔM = {dm:e} N·m");
+    assert!(df <= 1e-9 * scale && dm <= 1e-9 * scale * L, "{df} {dm}");
+}
+
+/// Force and moment are continuous where the wetted regions open and merge (Hertz n = 3/2 with
+/// damping, and linear; Threlfall friction; axial sliding and spin): at each transition, located
+/// by bisection, force and moment on the two sides differ by less than 1e-9 of the sweep's
+/// largest force (a jump would show at full size; the smooth change over ±ε is ~1e-12). Sweeps:
+/// the offset e₀ of a journal tilted across it (both ends open, then the regions merge; ε =
+/// 1e-16 m), and the tilt γ of a journal offset by 0.6c (the rims open) and by 1.02c nearly in
+/// the tilt's plane (the merged contact splits; ε = 1e-15 rad), and from γ = 0 to 1e-15 rad.
 #[test]
 fn forces_continuous_through_opening_and_merging() {
     let joint = JournalClearance::cylindrical(RB, L, RJ, L).unwrap();
-    let gamma = 6e-3;
     for law in [hertz_ln(), elastic(ElasticLaw::linear(2e11 * L).unwrap())] {
         let laws = laws(law, Some(FrictionLaw::threlfall(0.1, 1e-2).unwrap()));
-        let eval = |e0: f64| {
-            let st = state(
-                v3(e0, 0.1 * C, 1e-4),
-                tilted(gamma, 0.5 * std::f64::consts::PI),
-                v3(0.0, 0.0, 1e-3),
-                v3(0.0, 0.0, 5.0),
-            );
+        let point = |oj: Vector3<f64>, uj: Vector3<f64>| {
+            let st = state(oj, uj, v3(0.0, 0.0, 1e-3), v3(0.0, 0.0, 5.0));
             let g = joint.geometry(&st).unwrap();
             let f = g.forces(&laws, &[0.1; GROUPS]);
-            let merged = g.wetted(RADIAL_A).is_some_and(|w| w.1 == g.split());
+            let (lo, hi) = g.overlap().unwrap();
+            let wet: f64 = [RADIAL_A, RADIAL_B]
+                .iter()
+                .filter_map(|&k| g.wetted(k))
+                .map(|w| w.1 - w.0)
+                .sum();
+            let merged = (wet - (hi - lo)).abs() <= 1e-12 * L;
             let opened = g.wetted(RADIAL_A).is_some() || g.wetted(RADIAL_B).is_some();
             (f.force.value(), f.journal_moment.value(), opened, merged)
         };
-        let big = eval(1.2 * C).0.norm();
-        for pick in [2usize, 3] {
-            let state_of = |e0: f64| {
-                let r = eval(e0);
-                if pick == 2 {
-                    r.2
-                } else {
-                    r.3
-                }
-            };
-            let (mut lo, mut hi) = (0.0, 1.2 * C);
-            assert!(!state_of(lo) && state_of(hi));
-            while hi - lo > 1e-18 {
-                let mid = 0.5 * (lo + hi);
-                if state_of(mid) {
-                    hi = mid;
-                } else {
-                    lo = mid;
-                }
-            }
-            let (a, b) = (eval(lo - 1e-16), eval(hi + 1e-16));
-            let (df, dm) = ((a.0 - b.0).norm(), (a.1 - b.1).norm());
-            println!("transition {pick} at e0 = {hi:e}: ΔF = {df:e} N (of {big:e}), ΔM = {dm:e}");
-            assert!(df <= 1e-9 * big && dm <= 1e-9 * big * L, "{df} {dm}");
-        }
+        let across = |e0: f64| {
+            point(
+                v3(e0, 0.1 * C, 1e-4),
+                tilted(6e-3, 0.5 * std::f64::consts::PI),
+            )
+        };
+        let scale = across(1.2 * C).0.norm();
+        assert_continuous(&across, 2, 0.0, 1.2 * C, 1e-16, scale);
+        assert_continuous(&across, 3, 0.0, 1.2 * C, 1e-16, scale);
+        let rims = |g: f64| point(v3(0.6 * C, 0.0, 1e-4), tilted(g, 1.2));
+        assert_continuous(&rims, 2, 0.0, 0.02, 1e-15, rims(0.02).0.norm());
+        let split = |g: f64| point(v3(1.02 * C, 0.0, -1e-4), tilted(g, 0.2));
+        assert_continuous(&split, 3, 0.0, 0.02, 1e-15, split(0.0).0.norm());
+        // and from no tilt to the least tilt (the split jumps from the overlap's middle to an end
+        // there; a journal end's term must not follow it)
+        let (a, b) = (split(0.0), split(1e-15));
+        assert!(
+            (a.0 - b.0).norm() <= 1e-9 * a.0.norm() && (a.1 - b.1).norm() <= 1e-9 * a.0.norm() * L
+        );
     }
 }
 
