@@ -410,9 +410,8 @@ fn assert_continuous(
         }
     }
     let (a, b) = (eval(lo - eps), eval(hi + eps));
-    assert_ne!(
-        a.2 == b.2 && a.3 == b.3,
-        true,
+    assert!(
+        a.2 != b.2 || a.3 != b.3,
         "the two sides must straddle the transition"
     );
     let (df, dm) = ((a.0 - b.0).norm(), (a.1 - b.1).norm());
