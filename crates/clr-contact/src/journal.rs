@@ -2,6 +2,12 @@
 //! tilted journal of finite length in a bore of finite length, and its contact forces as a
 //! distributed line contact along the overlap (`docs/contact.md`, "Spatial journal in bearing").
 //!
+//! The contact scenarios are those of Marques, Isaac, Dourado & Flores, Mech. Mach. Theory 116
+//! (2017) 123–144 (radial and axial clearance) and Tian, Liu, Machado & Flores, Nonlinear Dyn. 64
+//! (2011) 25–47 (cylindrical joints with misalignment); the section-based formulation below is
+//! this crate's (derivations in `docs/contact.md`), reducing without tilt to the planar joint of
+//! Flores, Ambrósio, Claro & Lankarani, Comput. Struct. 82 (2004) 1359–1369.
+//!
 //! SI units throughout. Bearing (bore) on body i: centre O_b, unit axis u_b, radius R_b, length
 //! L_b; journal on body j: centre O_j, unit axis u_j, radius R_j < R_b, length L_j; radial
 //! clearance c = R_b − R_j. The tilt γ is the angle between u_j and u_b (u_j is flipped so that
@@ -38,8 +44,9 @@
 //! energy W = ∫ Φ(δ) dz / L_c (Φ = ∫ F_e dδ). A wetted region that ends at a journal end adds
 //! the generalized force −(±Φ(δ_end)/L_c) ∇z_end (W changes with the end's position z_end): a
 //! force pair and moments from the pose gradient of the end, by the implicit-function rule on its
-//! defining equation with forward-mode numbers over the scalar type. It cancels the slope term's axial part when the
-//! journal slides along a rim (a cylinder sliding in a cylinder stores nothing). So the elastic
+//! defining equation with forward-mode numbers over the scalar type. It cancels the slope term's
+//! axial part when the journal slides along a rim (a cylinder sliding in a cylinder stores
+//! nothing). So the elastic
 //! contact is conservative and the reported dissipation −P − dW/dt is that of damping and
 //! friction. Friction acts at every Gauss point in the tangent plane against the slip of the
 //! deepest points (rotation and axial sliding), with the magnitude of a [`FrictionLaw`] at |v_t|.
@@ -51,7 +58,7 @@
 //! s = −k h on the journal axis, h = (L_b + c_a)/2, against the bearing's end face z = −k L_b/2
 //! (k = +1 stops motion along +u_b). The deepest point of the tilted collar circle is
 //! X_k = O_j − k h u_j + R_t k (u_b − cos γ u_j)/sin γ, and
-//! δ_t,k = k a − h cos γ + L_b/2 + R_t sin γ (= k a − c_a/2 + R_t sin γ for small tilt). Point
+//! δ_t,k = k a − h cos γ + L_b/2 + R_t sin γ = k a − c_a/2 + h (1 − cos γ) + R_t sin γ. Point
 //! contact with the thrust law along n = k u_b, friction in the face plane. At γ = 0 exactly the
 //! flat face touches everywhere and the force acts at the collar's centre.
 //!
