@@ -209,6 +209,25 @@ pub(crate) fn check_finite(
     }
 }
 
+/// Check that a journal of radius R_j fits its bearing of radius `bearing_radius` (named
+/// `bearing_symbol`, e.g. "R_i"), leaving a positive clearance.
+pub(crate) fn check_journal_fits(
+    law: &'static str,
+    bearing_symbol: &str,
+    bearing_radius: f64,
+    journal_radius: f64,
+) -> Result<(), crate::ContactError> {
+    if journal_radius >= bearing_radius {
+        return Err(crate::ContactError::invalid(
+            law,
+            "journal radius R_j (m)",
+            journal_radius,
+            format!("must be smaller than the bearing radius {bearing_symbol} = {bearing_radius} m so that the clearance {bearing_symbol} - R_j is positive"),
+        ));
+    }
+    Ok(())
+}
+
 /// Check that every `(name, value)` is positive and finite.
 pub(crate) fn check_positive(
     law: &'static str,

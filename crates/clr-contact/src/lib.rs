@@ -1,5 +1,6 @@
-//! Contact force laws, friction laws, planar clearance-joint kinematics, and shape contact in
-//! the plane ([`shapes`]) and in space ([`shapes3d`]).
+//! Contact force laws, friction laws, planar clearance-joint kinematics, the spatial
+//! journal-in-bearing clearance joint ([`journal`]), and shape contact in the plane ([`shapes`])
+//! and in space ([`shapes3d`]).
 //!
 //! `clr-contact` is meant to be embedded in other codes as much as used inside clr: plain `f64`
 //! functions and small validated structs, SI units everywhere, no allocation in force
@@ -24,6 +25,7 @@ pub mod restitution;
 // Geometry, kinematics and contact state.
 pub mod body;
 pub mod gears;
+pub mod journal;
 pub mod memory;
 pub mod multipoint;
 pub mod revolute;
@@ -36,6 +38,7 @@ pub use error::ContactError;
 
 pub use body::{BodyState, GeneralizedForce};
 pub use gears::InvoluteGear;
+pub use journal::{JournalClearance, JournalError, JournalLaws, JournalState};
 pub use memory::ContactMemory;
 pub use multipoint::{
     ContactClass, GuideSurface, MultipointDetector, SineGuide, SliderShape, StraightGuide,

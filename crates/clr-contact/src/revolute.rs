@@ -58,7 +58,9 @@
 
 use nalgebra::Vector2;
 
-use crate::body::{check_finite, check_positive, perp, rotate, BodyState, GeneralizedForce};
+use crate::body::{
+    check_finite, check_journal_fits, check_positive, perp, rotate, BodyState, GeneralizedForce,
+};
 use crate::error::ContactError;
 use crate::friction::FrictionLaw;
 use crate::normal::NormalLaw;
@@ -214,14 +216,7 @@ impl RevoluteClearance {
                 ("journal radius R_j (m)", journal_radius),
             ],
         )?;
-        if journal_radius >= bearing_radius {
-            return Err(ContactError::invalid(
-                LAW,
-                "journal radius R_j (m)",
-                journal_radius,
-                format!("must be smaller than the bearing radius R_i = {bearing_radius} m so that the clearance R_i - R_j is positive"),
-            ));
-        }
+        check_journal_fits(LAW, "R_i", bearing_radius, journal_radius)?;
         check_finite(
             LAW,
             &[
