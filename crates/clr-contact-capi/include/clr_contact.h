@@ -6,6 +6,18 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// Index of the radial contact at the low-z end of the overlap in the per-group arrays.
+#define CLR_JOURNAL_RADIAL_A 0
+
+// Index of the radial contact at the high-z end.
+#define CLR_JOURNAL_RADIAL_B 1
+
+// Index of the thrust face on the −u_b side.
+#define CLR_JOURNAL_THRUST_MINUS 2
+
+// Index of the thrust face on the +u_b side.
+#define CLR_JOURNAL_THRUST_PLUS 3
+
 // Short bearing (Ocvirk), L/D ≲ 0.5.
 #define CLR_BEARING_SHORT 0
 
@@ -61,6 +73,9 @@ typedef struct ClrFrictionLaw ClrFrictionLaw;
 
 // Opaque handle of a hydrodynamic journal bearing (immutable: may be shared between threads).
 typedef struct ClrHydrodynamicBearing ClrHydrodynamicBearing;
+
+// Opaque handle of a journal-in-bearing joint (immutable: may be shared between threads).
+typedef struct ClrJournalJoint ClrJournalJoint;
 
 // Opaque handle of a LuGre friction model (Canudas de Wit et al. 1995), whose bristle deflection
 // z (m) is a state the caller integrates.
@@ -206,6 +221,51 @@ typedef struct ClrTranslationalForces {
   // Generalized force on the slider body (j) about its reference point.
   struct ClrGeneralizedForce slider;
 } ClrTranslationalForces;
+
+// The pose and velocity of both bodies at the joint, world frame, SI units.
+typedef struct ClrJournalState {
+  // Bore centre O_b, m.
+  double bearing_centre[3];
+  // Bore axis u_b (any length > 0; normalized).
+  double bearing_axis[3];
+  // Velocity of the bearing body's material point at O_b, m/s.
+  double bearing_velocity[3];
+  // Angular velocity of the bearing body, rad/s.
+  double bearing_angular_velocity[3];
+  // Journal centre O_j, m.
+  double journal_centre[3];
+  // Journal axis u_j (normalized).
+  double journal_axis[3];
+  // Velocity of the journal body's material point at O_j, m/s.
+  double journal_velocity[3];
+  // Angular velocity of the journal body, rad/s.
+  double journal_angular_velocity[3];
+} ClrJournalState;
+
+// What the joint gives at one state: the resultant on the journal (the bearing gets −force and
+// `bearing_moment`) and each contact group's report.
+typedef struct ClrJournalForces {
+  // Force on the journal, N (world).
+  double force[3];
+  // Moment on the journal about O_j, N·m.
+  double journal_moment[3];
+  // Moment on the bearing about O_b, N·m.
+  double bearing_moment[3];
+  // Tilt γ between the journal and bore axes, rad.
+  double tilt;
+  // Largest penetration of each group, m (≤ 0: open).
+  double penetration[4];
+  // Its rate, m/s (> 0 approaching).
+  double rate[4];
+  // Normal force of each group, N.
+  double normal_force[4];
+  // Force-weighted contact point of each group, m (world).
+  double point[4][3];
+  // Power dissipated by damping and friction, W.
+  double dissipated;
+  // Elastic energy stored in the contact, J.
+  double elastic_energy;
+} ClrJournalForces;
 
 // The film force on the journal in the frame of the line of centres, N.
 typedef struct ClrFilmForce {
@@ -685,6 +745,56 @@ enum ClrStatus clr_translational_joint_forces(const struct ClrTranslationalJoint
 // # Safety
 // `joint` is NULL or a handle from `clr_translational_joint_new` not freed yet.
 void clr_translational_joint_free(struct ClrTranslationalJoint *joint);
+
+// Create a spatial revolute clearance joint: bore radius and length R_b, L_b, journal radius and
+// length R_j < R_b, L_j (m), total axial end play c_a (m) between the thrust faces, thrust
+// (collar) radius R_t (m; ≤ 0: R_j). On success `*out` receives a handle to free with
+// `clr_journal_joint_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_journal_joint_new_revolute(double bearing_radius,
+                                              double bearing_length,
+                                              double journal_radius,
+                                              double journal_length,
+                                              double axial_clearance,
+                                              double thrust_radius,
+                                              struct ClrJournalJoint **out);
+
+// Create a spatial cylindrical clearance joint (no thrust faces): bore radius and length, journal
+// radius and length (m). On success `*out` receives a handle to free with
+// `clr_journal_joint_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_journal_joint_new_cylindrical(double bearing_radius,
+                                                 double bearing_length,
+                                                 double journal_radius,
+                                                 double journal_length,
+                                                 struct ClrJournalJoint **out);
+
+// Forces of the joint at `state`: `radial` is the normal law of the whole contact length
+// L_c = min(L_b, L_j) (the force per unit length is F_N/L_c), `thrust` that of a thrust face
+// (NULL: `radial`), `friction` a stateless friction law (NULL: frictionless), and
+// `impact_velocities` the four groups' δ̇⁻ (m/s, kept by the caller; see the module notes).
+//
+// # Safety
+// `joint`, `radial` are NULL or live handles; `thrust`, `friction` are NULL or live handles;
+// `state` is NULL or points to a `ClrJournalState`; `impact_velocities` is NULL or points to 4
+// doubles; `out` is NULL or writable.
+enum ClrStatus clr_journal_joint_forces(const struct ClrJournalJoint *joint,
+                                        const struct ClrNormalLaw *radial,
+                                        const struct ClrNormalLaw *thrust,
+                                        const struct ClrFrictionLaw *friction,
+                                        const struct ClrJournalState *state,
+                                        const double *impact_velocities,
+                                        struct ClrJournalForces *out);
+
+// Free a journal joint. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `joint` is NULL or a handle from `clr_journal_joint_new_*` not freed yet.
+void clr_journal_joint_free(struct ClrJournalJoint *joint);
 
 // Create a bearing from the bearing radius R and journal radius r (m, 0 < r < R), the axial
 // length L (m), the dynamic viscosity μ (Pa·s) and the model (`CLR_BEARING_SHORT` or

@@ -1,5 +1,6 @@
 //! C ABI of `clr-contact`: normal-force laws, friction laws (stateless and LuGre), the planar
-//! revolute and translational clearance joints, the multipoint slider-in-guide contact
+//! revolute and translational clearance joints, the spatial journal-in-bearing joint
+//! ([`journal`]), the multipoint slider-in-guide contact
 //! ([`multipoint`]), and whole models loaded from model-file text
 //! and run as `clr run` runs them ([`model`]), for user force subroutines of other codes (C, C++, Fortran through `bind(C)`, MATLAB
 //! `loadlibrary`, Python `ctypes`).
@@ -28,6 +29,7 @@
 
 pub mod error;
 pub mod ffi;
+pub mod journal;
 pub mod lubrication;
 pub mod model;
 pub mod multipoint;
@@ -41,6 +43,7 @@ mod multipoint_case;
 
 pub use error::{CapiError, ClrStatus};
 pub use ffi::*;
+pub use journal::*;
 pub use lubrication::*;
 pub use model::*;
 pub use multipoint::*;
