@@ -420,3 +420,27 @@ fn notes_have_no_runs_of_spaces() {
         );
     }
 }
+
+/// A misspelt field or element type in a spatial model file is refused at its line with the
+/// closest valid name, as in planar files.
+#[test]
+fn spatial_typos_get_a_suggestion() {
+    let top = include_str!("../models/examples/heavy_top.toml");
+    for (from, to, want) in [
+        (
+            "principal_inertia =",
+            "principle_inertia =",
+            "did you mean `principal_inertia`?",
+        ),
+        (
+            "type = \"spherical\"",
+            "type = \"sperical\"",
+            "did you mean `spherical`?",
+        ),
+    ] {
+        let text = top.replacen(from, to, 1);
+        let e = load_str("top.toml", &text, &[]).err().expect("refused");
+        assert!(e.message.contains(want), "{e}");
+        assert!(e.line.is_some(), "{e}");
+    }
+}

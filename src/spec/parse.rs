@@ -111,7 +111,7 @@ fn refuse_unused_solver_fields(
 
 /// A schema error of the description as a [`SpecError`]: the path gets the field a message
 /// names (`missing field `mass``), the message a suggestion.
-fn schema_error(file: &str, src: &str, e: &FieldError) -> SpecError {
+pub(super) fn schema_error(file: &str, src: &str, e: &FieldError) -> SpecError {
     let mut path = parse_path(&e.path);
     let message = e.message.trim();
     let named = |prefix: &str| {

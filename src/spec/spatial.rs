@@ -41,14 +41,8 @@ impl SpatialSpec {
         root: toml::Table,
         notes: Vec<String>,
     ) -> Result<Self, SpecError> {
-        let desc = SpatialDesc::from_toml_table(root).map_err(|e| {
-            SpecError::at(
-                file,
-                src,
-                &super::parse::parse_path(&e.path),
-                e.message.clone(),
-            )
-        })?;
+        let desc = SpatialDesc::from_toml_table(root)
+            .map_err(|e| super::parse::schema_error(file, src, &e))?;
         Self::from_desc(file, src, desc, notes)
     }
 
