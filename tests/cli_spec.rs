@@ -439,7 +439,9 @@ fn spatial_typos_get_a_suggestion() {
         ),
     ] {
         let text = top.replacen(from, to, 1);
-        let e = load_str("top.toml", &text, &[]).err().expect("refused");
+        let Err(e) = load_str("top.toml", &text, &[]) else {
+            panic!("`{to}` was accepted");
+        };
         assert!(e.message.contains(want), "{e}");
         assert!(e.line.is_some(), "{e}");
     }
