@@ -17,7 +17,7 @@ import warnings as _warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native, contact, errors, inertia, shapes, spatial
-from .contact import FrictionLaw, NormalLaw, RevoluteJoint
+from .contact import FrictionLaw, JournalJoint, NormalLaw, RevoluteJoint
 from .errors import (
     ClrError,
     ContactError,
@@ -57,6 +57,7 @@ __all__ = [
     "NormalLaw",
     "FrictionLaw",
     "RevoluteJoint",
+    "JournalJoint",
     *errors.__all__,
 ]
 

@@ -1,4 +1,5 @@
-"""Contact force laws, friction laws and the planar revolute clearance joint of clr-contact
+"""Contact force laws, friction laws, the planar revolute clearance joint and the spatial
+journal-in-bearing joint of clr-contact
 (``clr_sim.contact``; also importable under its former name ``clr_contact``).
 
 Every law is evaluated in Rust; the functions and methods here accept scalars or numpy arrays
@@ -33,6 +34,7 @@ __all__ = [
     "NormalLaw",
     "FrictionLaw",
     "RevoluteJoint",
+    "JournalJoint",
     "FilmLaw",
     "damping_chi",
     "effective_restitution",
@@ -281,6 +283,79 @@ class RevoluteJoint:
             flat(bi, (6,)),
             flat(bj, (6,)),
             flat(v0, ()),
+        )
+        return {k: (v.reshape(lead + v.shape[1:]) if lead else v[0]) for k, v in out.items()}
+
+
+class JournalJoint:
+    """A spatial revolute or cylindrical clearance joint: a journal of radius R_j and length L_j
+    in a bore of radius R_b > R_j and length L_b (m), tilted and sliding axially
+    (docs/contact.md, "Spatial journal in bearing").
+
+    With ``axial_clearance`` (m, total end play) it is a revolute joint with thrust faces of
+    radius ``thrust_radius`` (m; None: R_j); without, a cylindrical joint.
+    """
+
+    __slots__ = ("_core",)
+
+    STATE_FIELDS = (
+        "bearing_centre", "bearing_axis", "bearing_velocity", "bearing_angular_velocity",
+        "journal_centre", "journal_axis", "journal_velocity", "journal_angular_velocity",
+    )
+
+    def __init__(self, bearing_radius: float, bearing_length: float, journal_radius: float,
+                 journal_length: float, axial_clearance: Optional[float] = None,
+                 thrust_radius: Optional[float] = None):
+        self._core = _native.JournalJointCore(
+            float(bearing_radius), float(bearing_length), float(journal_radius),
+            float(journal_length),
+            None if axial_clearance is None else float(axial_clearance),
+            None if thrust_radius is None else float(thrust_radius),
+        )
+
+    @property
+    def clearance(self) -> float:
+        """Radial clearance R_b − R_j (m)."""
+        return self._core.clearance
+
+    def forces(self, radial: NormalLaw, friction: Optional[FrictionLaw], state,
+               impact_velocities, thrust: Optional[NormalLaw] = None):
+        """Forces for the world-frame ``state`` of shape (..., 24): the bore centre (m), bore
+        axis, velocity of the bearing body at the bore centre (m/s) and its angular velocity
+        (rad/s), then the same four for the journal (``STATE_FIELDS``, 3 each), and the four
+        contact groups' impact velocities δ̇⁻ (m/s, shape (..., 4): radial end A, radial end B,
+        thrust −, thrust +; the caller keeps them). ``radial`` is the normal law of the whole
+        contact length min(L_b, L_j), ``thrust`` that of a thrust face (None: ``radial``),
+        ``friction`` a stateless law (None: frictionless).
+
+        Returns a dict of arrays with the leading shape: ``force`` on the journal (N, (..., 3);
+        the bearing gets the opposite), ``journal_moment`` about the journal centre and
+        ``bearing_moment`` about the bore centre (N·m, (..., 3)), ``penetration`` (m),
+        ``rate`` (m/s) and ``normal_force`` (N) per group (..., 4), ``tilt`` (rad),
+        ``dissipated`` (W) and ``elastic_energy`` (J).
+        """
+        st = np.asarray(state, dtype=np.float64)
+        v0 = np.asarray(impact_velocities, dtype=np.float64)
+        if st.ndim == 0 or st.shape[-1] != 24:
+            raise ContactError(
+                f"`state` must have a last axis of 24 ({', '.join(self.STATE_FIELDS)}, 3 each), "
+                f"got shape {st.shape}"
+            )
+        if v0.ndim == 0 or v0.shape[-1] != 4:
+            raise ContactError(
+                f"`impact_velocities` must have a last axis of 4 (radial A, radial B, thrust -, "
+                f"thrust +), got shape {v0.shape}"
+            )
+        lead = np.broadcast_shapes(st.shape[:-1], v0.shape[:-1])
+        flat = lambda a, tail: np.ascontiguousarray(np.broadcast_to(a, lead + tail)).reshape(
+            (-1,) + tail
+        )
+        out = self._core.forces(
+            radial._core,
+            None if thrust is None else thrust._core,
+            None if friction is None else friction._core,
+            flat(st, (24,)),
+            flat(v0, (4,)),
         )
         return {k: (v.reshape(lead + v.shape[1:]) if lead else v[0]) for k, v in out.items()}
 

@@ -23,6 +23,7 @@ use pyo3::types::PyDict;
 mod convert;
 mod errors;
 mod inertia;
+mod journal;
 mod models;
 mod sweep;
 
@@ -543,6 +544,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_class::<NormalLawCore>()?;
     m.add_class::<FrictionLawCore>()?;
     m.add_class::<RevoluteJointCore>()?;
+    m.add_class::<journal::JournalJointCore>()?;
     m.add_class::<FilmLawCore>()?;
     m.add_function(wrap_pyfunction!(damping_chi, m)?)?;
     m.add_function(wrap_pyfunction!(effective_restitution_py, m)?)?;

@@ -195,3 +195,37 @@ def test_name_tables():
     assert dict(cc.elastic_kinds())["liu"] == ["E* (Pa)", "clearance (m)", "length (m)"]
     assert [k for k, _ in cc.friction_kinds()] == ["coulomb", "ambrosio", "threlfall", "stribeck"]
     assert cc.preset_names() == ["Hertz", "LN", "Gonthier", "Bai", "Wang", "Modified"]
+
+
+def test_journal_without_tilt_is_the_planar_joint():
+    """The spatial journal joint with its axis along the bore's z axis and no axial motion equals
+    the planar revolute clearance joint of contact-laws.md §7.7 (the distributed line contact
+    integrates to F_N(δ) at zero tilt, docs/contact.md): normal force and force on the journal
+    to 1e-12 relative; a tilted journal turns part of the load into a moment."""
+    joint = cc.JournalJoint(RI, L, RJ, L, axial_clearance=1e-4)
+    assert joint.clearance == pytest.approx(C, rel=1e-12)
+    e = C + 10e-6
+    normal = cc.NormalLaw.preset("LN", 0.5)
+    friction = cc.FrictionLaw("ambrosio", [0.1, 1e-4, 1e-3])
+    planar = cc.RevoluteJoint(RI, RJ).forces(
+        normal, friction, np.zeros(6), [e * 0.6, e * 0.8, 0.0, 0.3, 0.4, 10.0], 0.5
+    )
+    state = np.zeros(24)
+    state[3:6] = [0.0, 0.0, 1.0]  # bore axis
+    state[12:15] = [e * 0.6, e * 0.8, 0.0]  # journal centre
+    state[15:18] = [0.0, 0.0, 1.0]  # journal axis
+    state[18:21] = [0.3, 0.4, 0.0]  # journal velocity
+    state[21:24] = [0.0, 0.0, 10.0]  # journal angular velocity
+    out = joint.forces(normal, friction, state, [0.5] * 4)
+    assert out["normal_force"][:2].sum() == pytest.approx(planar["normal_force"], rel=1e-12)
+    np.testing.assert_allclose(out["force"][:2], planar["journal"][:2], rtol=1e-12)
+    assert out["force"][2] == 0.0 and out["tilt"] == 0.0
+    tilted = state.copy()
+    tilted[15:18] = [np.sin(2e-3), 0.0, np.cos(2e-3)]
+    both = joint.forces(normal, None, np.stack([state, tilted]), [0.5] * 4)
+    assert both["tilt"][1] == pytest.approx(2e-3, rel=1e-12)
+    assert np.abs(both["journal_moment"][1]).max() > 1e-3 * both["normal_force"][1].sum() * L
+    with pytest.raises(cc.ContactError, match="last axis of 24"):
+        joint.forces(normal, None, np.zeros(6), [0.5] * 4)
+    with pytest.raises(cc.ContactError, match="axial_clearance"):
+        cc.JournalJoint(RI, L, RJ, L, thrust_radius=RJ)
