@@ -59,13 +59,14 @@
 //! (k = +1 stops motion along +u_b). The deepest point of the tilted collar circle is
 //! X_k = O_j − k h u_j + R_t k (u_b − cos γ u_j)/sin γ, and
 //! δ_t,k = k a − h cos γ + L_b/2 + R_t sin γ = k a − c_a/2 + h (1 − cos γ) + R_t sin γ (the
-//! group's gap). The face is a ring law along the collar circle X(φ) = O_j − k h u_j
-//! + R_t (cos φ e₁ + sin φ e₂), e₁ towards the deepest point: δ(φ) = δ₀ + R_t sin γ cos φ with
-//! δ₀ = k a − c_a/2 + h (1 − cos γ), force per unit arc F_N(δ(φ))/(2π R_t) along n = k u_b and
-//! friction in the face plane, over the analytic wetted arc |φ| < φ_e = acos(−δ₀/(R_t sin γ))
-//! (π for the full ring), each half by the same Gauss–Legendre rule after φ = ±φ_e (1 − u²).
-//! Without tilt the total is F_N(δ); force and moment are continuous through γ = 0 and as the
-//! arc closes; W = ∫ Φ(δ(φ)) dφ/2π over the ring's material points, so the face is conservative.
+//! group's gap). The face is a ring law along the collar circle
+//! X(φ) = O_j − k h u_j + R_t (cos φ e₁ + sin φ e₂), e₁ towards the deepest point:
+//! δ(φ) = δ₀ + R_t sin γ cos φ with δ₀ = k a − c_a/2 + h (1 − cos γ), force per unit arc
+//! F_N(δ(φ))/(2π R_t) along n = k u_b and friction in the face plane, over the analytic wetted
+//! arc |φ| < φ_e = acos(−δ₀/(R_t sin γ)) (π for the full ring), each half by the same
+//! Gauss–Legendre rule after φ = ±φ_e (1 − u²). Without tilt the total is F_N(δ); force and
+//! moment are continuous through γ = 0 and as the arc closes; W = ∫ Φ(δ(φ)) dφ/2π over the
+//! ring's material points, so the face is conservative.
 //!
 //! # Genericity
 //! The geometry and forces are written over a scalar type [`Real`] (implemented for f64) so that

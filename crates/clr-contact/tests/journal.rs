@@ -342,12 +342,12 @@ fn thrust_ring_is_conservative() {
     assert_conservative(&joint, &cases);
 }
 
+/// A rigid motion of the journal: centre (m), axis, velocity (m/s), angular velocity (rad/s).
+type Motion = (Vector3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>);
+
 /// dW/dt = −P and zero reported dissipation (to 1e-6 of |P|) for a Hertz law without damping or
 /// friction, along the rigid motions (centre, axis, velocity, angular velocity) of the journal.
-fn assert_conservative(
-    joint: &JournalClearance,
-    cases: &[(Vector3<f64>, Vector3<f64>, Vector3<f64>, Vector3<f64>)],
-) {
+fn assert_conservative(joint: &JournalClearance, cases: &[Motion]) {
     let laws = laws(elastic(ElasticLaw::hertz(5e9).unwrap()), None);
     for &(oj, uj, vj, wj) in cases {
         let at = |t: f64| {

@@ -47,10 +47,12 @@ const L: f64 = 15e-3;
 const PREFIX: &str = "contact.spatial.revolute";
 
 type Res<T> = Result<T, JournalError>;
+/// A family of cases: computes them all, or fails with the joint's error.
+type Family = fn() -> Res<Vec<Case>>;
 
 pub fn cases(filter: &Filter) -> Vec<Case> {
     let mut out = Vec::new();
-    let families: [(&str, fn() -> Res<Vec<Case>>); 5] = [
+    let families: [(&str, Family); 5] = [
         ("rim_sampling", rim_sampling),
         ("planar", planar),
         ("moment_tilt", moment_tilt),
