@@ -58,9 +58,15 @@
 //! s = −k h on the journal axis, h = (L_b + c_a)/2, against the bearing's end face z = −k L_b/2
 //! (k = +1 stops motion along +u_b). The deepest point of the tilted collar circle is
 //! X_k = O_j − k h u_j + R_t k (u_b − cos γ u_j)/sin γ, and
-//! δ_t,k = k a − h cos γ + L_b/2 + R_t sin γ = k a − c_a/2 + h (1 − cos γ) + R_t sin γ. Point
-//! contact with the thrust law along n = k u_b, friction in the face plane. At γ = 0 exactly the
-//! flat face touches everywhere and the force acts at the collar's centre.
+//! δ_t,k = k a − h cos γ + L_b/2 + R_t sin γ = k a − c_a/2 + h (1 − cos γ) + R_t sin γ (the
+//! group's gap). The face is a ring law along the collar circle
+//! X(φ) = O_j − k h u_j + R_t (cos φ e₁ + sin φ e₂), e₁ towards the deepest point:
+//! δ(φ) = δ₀ + R_t sin γ cos φ with δ₀ = k a − c_a/2 + h (1 − cos γ), force per unit arc
+//! F_N(δ(φ))/(2π R_t) along n = k u_b and friction in the face plane, over the analytic wetted
+//! arc |φ| < φ_e = acos(−δ₀/(R_t sin γ)) (π for the full ring), each half by the same
+//! Gauss–Legendre rule after φ = ±φ_e (1 − u²). Without tilt the total is F_N(δ); force and
+//! moment are continuous through γ = 0 and as the arc closes; W = ∫ Φ(δ(φ)) dφ/2π over the
+//! ring's material points, so the face is conservative.
 //!
 //! # Genericity
 //! The geometry and forces are written over a scalar type [`Real`] (implemented for f64) so that
@@ -640,14 +646,22 @@ pub struct JournalGeometry<'a, S> {
     thrust: [Option<ThrustPoint<S>>; 2],
 }
 
-/// The deepest point of one thrust collar.
+/// One thrust collar: its deepest point (the group's gap) and the ring it is the deepest point of.
 #[derive(Debug, Clone, Copy, PartialEq)]
 struct ThrustPoint<S> {
+    /// δ_t = δ₀ + R_t sin γ, the deepest point's penetration, m.
     penetration: S,
     /// k u_b.
     normal: V3<S>,
     journal_point: V3<S>,
     bearing_point: V3<S>,
+    /// The collar circle's centre O_j − k h u_j, m.
+    centre: V3<S>,
+    /// Unit radial direction of the collar circle towards its deepest point (any direction ⟂ u_j
+    /// without tilt), and u_j × it: X(φ) = centre + R_t (cos φ e₁ + sin φ e₂).
+    radial: [V3<S>; 2],
+    /// δ₀ = k a − c_a/2 + h (1 − cos γ), the penetration of the circle's centre, m.
+    centre_penetration: S,
 }
 
 /// Forces, moments and reports of one contact group (radial region or thrust face).
@@ -1127,23 +1141,43 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         // h (1 − cos γ) = h sin²γ / (1 + cos γ): no cancellation at small tilt
         let sag = S::from_f64(h) * sin2 / (S::from_f64(1.0) + f.cg);
         let r_t = S::from_f64(th.radius);
+        // without tilt any direction ⟂ u_j serves (the ring is then uniformly loaded); built from
+        // the pose so that dual numbers carry the derivatives of the ring's material points
+        let fallback = {
+            let u = f.uj.value();
+            let p = V3::constant(&if u.x.abs() < 0.9 {
+                Vector3::x()
+            } else {
+                Vector3::y()
+            });
+            let q = p - f.uj.scale(p.dot(&f.uj));
+            q.scale(S::from_f64(1.0) / q.norm())
+        };
         for (slot, k) in [(0, -1.0), (1, 1.0)] {
             let centre = f.oj - f.uj.scale_f(k * h);
-            let point = if sin_g.value() > 0.0 {
+            let e1 = if sin_g.value() > 0.0 {
                 let towards = f.ub - f.uj.scale(f.cg);
-                centre + towards.scale(S::from_f64(k) * r_t / sin_g)
+                towards.scale(S::from_f64(k) / sin_g)
+            } else {
+                fallback
+            };
+            let point = if sin_g.value() > 0.0 {
+                centre + e1.scale(r_t)
             } else {
                 centre
             };
             // δ = k a − h cos γ + L_b/2 + R_t sin γ = k a − c_a/2 + h (1 − cos γ) + R_t sin γ
-            let delta =
-                f.a * S::from_f64(k) - S::from_f64(0.5 * th.axial_clearance) + sag + r_t * sin_g;
+            let delta0 = f.a * S::from_f64(k) - S::from_f64(0.5 * th.axial_clearance) + sag;
+            let delta = delta0 + r_t * sin_g;
             let normal = f.ub.scale_f(k);
             self.thrust[slot] = Some(ThrustPoint {
                 penetration: delta,
                 normal,
                 journal_point: point,
                 bearing_point: point - normal.scale(delta),
+                centre,
+                radial: [e1, f.uj.cross(&e1)],
+                centre_penetration: delta0,
             });
         }
     }
@@ -1397,35 +1431,95 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         out
     }
 
+    /// Half the wetted arc φ_e of a thrust ring (rad): δ(φ) = δ₀ + A cos φ > 0 for |φ| < φ_e,
+    /// A = R_t sin γ; π when the whole ring touches, `None` when it is dry. Analytic,
+    /// φ_e = acos(−δ₀/A), in the scalar type.
+    fn wetted_half_arc(delta0: S, amplitude: S) -> Option<S> {
+        let (d, a) = (delta0.value(), amplitude.value());
+        if d + a <= 0.0 {
+            None
+        } else if d - a >= 0.0 {
+            Some(S::from_f64(std::f64::consts::PI))
+        } else {
+            let x = -(delta0 / amplitude);
+            let xv = x.value();
+            Some(x.chain(xv.acos(), -1.0 / (1.0 - xv * xv).sqrt()))
+        }
+    }
+
+    /// The thrust face as a ring law: force per unit arc F_N(δ(φ))/(2π R_t) along the collar
+    /// circle, integrated over the wetted arc |φ| < φ_e by Gauss–Legendre on each half after the
+    /// substitution φ = ±φ_e (1 − u²) (nodes clustered at the arc's ends, where p ∝ δ^n
+    /// vanishes). Without tilt δ is uniform and the total is F_N(δ); force and moment are
+    /// continuous through γ = 0 and as the arc closes to the full ring.
     fn thrust_forces(&self, k: usize, laws: &JournalLaws, impact_velocity: f64) -> GroupForces<S> {
         let (delta, rate) = self.gap(THRUST_MINUS + k);
         let Some(t) = self.thrust[k] else {
             return GroupForces::open(delta, rate, Vector3::zeros(), Vector3::zeros());
         };
-        let xm = (t.journal_point + t.bearing_point).scale_f(0.5);
-        let mut out = GroupForces::open(delta, rate, xm.value(), t.normal.value());
-        if delta <= 0.0 {
+        let xm0 = (t.journal_point + t.bearing_point).scale_f(0.5);
+        let mut out = GroupForces::open(delta, rate, xm0.value(), t.normal.value());
+        let Some(r_t) = self.joint.thrust.map(|th| th.radius) else {
             return out;
-        }
+        };
+        let amplitude = t.penetration - t.centre_penetration;
+        let Some(half) = Self::wetted_half_arc(t.centre_penetration, amplitude) else {
+            return out;
+        };
+        let j = self.joint;
         let f = &self.frame;
-        let v = self.relative_velocity(&t.journal_point, &t.bearing_point);
-        let (fq, p, ft) = Self::pair_force(
-            &laws.thrust,
-            laws.friction.as_ref(),
-            1.0,
-            (t.penetration, &t.normal, &v),
-            impact_velocity,
-        );
-        out.force = fq;
-        out.journal_moment = (xm - f.oj).cross(&fq);
-        out.bearing_moment = -(xm - f.ob).cross(&fq);
-        out.normal_force = p.value();
-        out.friction = ft.value();
-        let v_mid = (self.state.journal_point_velocity(&xm)
-            - self.state.bearing_point_velocity(&xm))
-        .value();
-        out.dissipated = -fq.value().dot(&v_mid) - laws.thrust.elastic_force(delta) * rate;
-        out.elastic_energy = laws.thrust.elastic_energy(delta);
+        let (mut force, mut mj, mut mb) = (V3::zero(), V3::zero(), V3::zero());
+        let (mut fn_sum, mut point, mut fric) = (0.0, Vector3::zeros(), Vector3::zeros());
+        let (mut dissipated, mut energy) = (0.0, 0.0);
+        for side in [1.0, -1.0] {
+            for q in 0..j.order {
+                let u = j.nodes[q];
+                let phi = half * S::from_f64(side * (1.0 - u * u));
+                // dφ/(2π) of the substituted rule
+                let wq = half * S::from_f64(u * j.weights[q] / std::f64::consts::PI);
+                let arm =
+                    (t.radial[0].scale(phi.cos()) + t.radial[1].scale(phi.sin())).scale_f(r_t);
+                let xj = t.centre + arm;
+                let d = t.centre_penetration + arm.dot(&t.normal);
+                if d.value() <= 0.0 {
+                    continue;
+                }
+                let xb = xj - t.normal.scale(d);
+                let v = self.relative_velocity(&xj, &xb);
+                let (fq, p, ft) = Self::pair_force(
+                    &laws.thrust,
+                    laws.friction.as_ref(),
+                    1.0,
+                    (d, &t.normal, &v),
+                    impact_velocity,
+                );
+                let xm = (xj + xb).scale_f(0.5);
+                let fw = fq.scale(wq);
+                force = force + fw;
+                mj = mj + (xm - f.oj).cross(&fw);
+                mb = mb - (xm - f.ob).cross(&fw);
+                let (wv, pv, dv) = (wq.value(), p.value(), d.value());
+                fn_sum += wv * pv;
+                point += wv * pv * xm.value();
+                fric += wv * ft.value();
+                let v_mid = (self.state.journal_point_velocity(&xm)
+                    - self.state.bearing_point_velocity(&xm))
+                .value();
+                dissipated += -fw.value().dot(&v_mid)
+                    - wv * laws.thrust.elastic_force(dv) * v.dot(&t.normal).value();
+                energy += wv * laws.thrust.elastic_energy(dv);
+            }
+        }
+        out.force = force;
+        out.journal_moment = mj;
+        out.bearing_moment = mb;
+        out.normal_force = fn_sum;
+        out.friction = fric;
+        if fn_sum > 0.0 {
+            out.point = point / fn_sum;
+        }
+        out.dissipated = dissipated;
+        out.elastic_energy = energy;
         out
     }
 }

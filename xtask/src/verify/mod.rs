@@ -19,6 +19,7 @@ pub mod ode;
 mod shapes;
 mod spatial;
 mod spatial_jacobian;
+mod spatial_journal;
 mod spatial_ref;
 mod spatial_slider_crank;
 mod wear;
@@ -107,6 +108,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "contact.spatial",
         run: spatial::contact_cases,
+    },
+    Group {
+        name: "contact.spatial.revolute",
+        run: spatial_journal::cases,
     },
     Group {
         name: "models",
