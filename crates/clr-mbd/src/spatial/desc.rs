@@ -417,6 +417,8 @@ pub struct JournalClearanceDesc {
 }
 
 /// One `[[clearance]]` of a spatial model: a ball in a socket, or a journal in a bearing.
+// plain data read once per model file: the variants' sizes do not matter
+#[allow(clippy::large_enum_variant)]
 #[derive(Debug, Clone, PartialEq)]
 pub enum SpatialClearance {
     /// `type = "spherical"`.
