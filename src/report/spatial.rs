@@ -544,7 +544,16 @@ impl SpatialScene {
             }
         }
         let mut sockets = Vec::new();
+        // journal joints are not drawn yet (only their anchors)
         for c in &d.clearances {
+            let c = match c {
+                clr_mbd::spatial::SpatialClearance::Spherical(c) => c,
+                clr_mbd::spatial::SpatialClearance::Journal(j) => {
+                    attach(&j.bearing);
+                    attach(&j.journal);
+                    continue;
+                }
+            };
             attach(&c.socket);
             attach(&c.ball);
             let (socket_body, socket_at) = local(&c.socket);

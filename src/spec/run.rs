@@ -939,8 +939,10 @@ pub fn unit_of(column: &str) -> &'static str {
     }
     match column.rsplit('.').next().unwrap_or("") {
         "x" | "y" | "z" | "u" | "v" | "ux" | "uy" | "penetration" | "ex" | "ey" | "ez"
-        | "lugre_z" | "lugre_zx" | "lugre_zy" | "lugre_zz" | "film_thickness" => "m",
-        "theta" | "rz" => "rad",
+        | "lugre_z" | "lugre_zx" | "lugre_zy" | "lugre_zz" | "film_thickness" | "axial_offset" => {
+            "m"
+        }
+        "theta" | "rz" | "tilt" => "rad",
         "vx" | "vy" | "vz" | "rate" => "m/s",
         "omega" | "wx" | "wy" | "wz" => "rad/s",
         "ax" | "ay" | "az" => "m/s^2",

@@ -74,7 +74,7 @@ impl SpatialSpec {
             clearances: desc
                 .clearances
                 .iter()
-                .map(|c| (c.name.clone(), Some(c.socket_radius - c.ball_radius)))
+                .map(|c| (c.name().to_string(), Some(c.radial_clearance())))
                 .collect(),
             resolved: serde_json::Value::Null,
             notes,

@@ -342,3 +342,103 @@ t_end = 0.01
 "#
     )
 }
+
+/// A journal joint with the journal hanging in its bore (both axes along z, gravity along −y,
+/// weight m g = 19.62 N).
+fn journal_in_bore(kind: &str, extra: &str) -> String {
+    format!(
+        r#"
+[model]
+space = "spatial"
+gravity = [0.0, -9.81, 0.0]
+[[body]]
+name = "pin"
+mass = 2.0
+principal_inertia = [1e-4, 1e-4, 1e-4]
+position = [0.0, 0.0, 0.0]
+[[clearance]]
+name = "J"
+type = "{kind}"
+bearing = {{ body = "ground", at = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0] }}
+journal = {{ body = "pin", at = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0] }}
+bearing_radius = 0.010
+journal_radius = 0.0095
+bearing_length = 0.02
+journal_length = 0.02
+normal = {{ law = "linear", stiffness = 1e8, damping = "hunt-crossley", restitution = 0.5 }}
+{extra}
+[output]
+t_end = 0.5
+intervals = 10
+"#
+    )
+}
+
+/// An aligned journal settles on its bore where the linear law carries its weight:
+/// δ = m g / k (closed form; at zero tilt the integrated line load is F_N(δ) exactly, clr-contact
+/// `journal` module docs), so the two radial regions together carry m g and the journal stays
+/// aligned and axially in place. Tolerance 1e-3 relative: the damped settling after 0.5 s.
+#[test]
+fn aligned_journal_settles_at_the_penetration_of_its_weight() {
+    for (kind, extra) in [("cylindrical", ""), ("revolute", "axial_clearance = 2e-4")] {
+        let d = desc(&journal_in_bore(kind, extra));
+        let mut m = d.compile().unwrap();
+        let r = m.simulate(&d.sim_options().unwrap()).unwrap();
+        let w = 2.0 * 9.81;
+        let delta = w / 1e8;
+        let last = |c: &str| *col(&r, c).last().unwrap();
+        let pen = last("J.radial_a.penetration");
+        assert!(
+            (pen - delta).abs() < 1e-3 * delta,
+            "{kind}: δ = {pen:e}, {delta:e}"
+        );
+        let f = last("J.radial_a.normal_force") + last("J.radial_b.normal_force");
+        assert!((f - w).abs() < 1e-3 * w, "{kind}: F = {f}");
+        assert!((last("J.Fy") - w).abs() < 1e-3 * w);
+        // nothing loads tilt: it stays at the integration-error level (measured 2e-8 rad); the
+        // axial position is neutral for the cylindrical kind (measured drift 7e-6 m in 0.5 s,
+        // not explained yet: docs/spatial.md) and held within its end play by the revolute one
+        let (tilt, axial) = (last("J.tilt"), last("J.axial_offset"));
+        assert!(tilt.abs() < 1e-6, "{kind}: γ = {tilt:e}");
+        if kind == "revolute" {
+            assert!(axial.abs() <= 1e-4, "{kind}: a = {axial:e}");
+        }
+        assert!(!r.impacts.is_empty(), "the first touch is an impact");
+    }
+}
+
+/// Journal joints' field errors name the field: radii order, millimetres, thrust fields on the
+/// cylindrical kind, a missing axial clearance, an unknown kind (listing the kinds).
+#[test]
+fn journal_joint_errors_name_the_field() {
+    let cases = [
+        (
+            "revolute",
+            "axial_clearance = 2e-4\njournal_radius = 0.011",
+            "J.journal_radius",
+        ),
+        (
+            "revolute",
+            "axial_clearance = 2e-4\nbearing_length = 20.0",
+            "mm",
+        ),
+        ("cylindrical", "axial_clearance = 2e-4", "J.axial_clearance"),
+        ("revolute", "", "J.axial_clearance"),
+    ];
+    for (kind, extra, expect) in cases {
+        let mut text = journal_in_bore(kind, extra);
+        // a repeated key replaces the default one
+        for k in ["journal_radius", "bearing_length"] {
+            if extra.contains(k) {
+                let line = text.lines().find(|l| l.starts_with(k)).unwrap().to_string();
+                text = text.replacen(&format!("{line}\n"), "", 1);
+            }
+        }
+        let e = desc(&text).compile().err().expect("refused");
+        assert!(e.to_string().contains(expect), "{kind} {extra}: {e}");
+    }
+    let text = journal_in_bore("prismatic", "");
+    let e = SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap_err();
+    assert_eq!(e.path, "clearance[0].type", "{e:?}");
+    assert!(e.message.contains("cylindrical"), "{e:?}");
+}

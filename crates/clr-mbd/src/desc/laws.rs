@@ -308,6 +308,13 @@ impl NormalLawDesc {
         c.refuse(&given, used)
     }
 
+    /// Whether the law takes the axial `length` L (liu, johnson, pereira, presets with length).
+    pub(crate) fn takes_length(&self) -> bool {
+        let norm = self.law.trim().to_ascii_lowercase().replace('_', "-");
+        matches!(norm.as_str(), "liu" | "johnson" | "pereira")
+            || (norm == "preset" && self.preset_uses_length())
+    }
+
     /// `law = "preset"` with a label whose elastic part takes the axial length.
     fn preset_uses_length(&self) -> bool {
         self.preset

@@ -4,16 +4,17 @@
 
 use std::collections::HashMap;
 
-use clr_contact::ContactMemory;
+use clr_contact::{ContactMemory, NormalLaw};
 use nalgebra::{Matrix3, Vector3};
 
 use super::constraint::{Prim, PrimKind};
 use super::desc::{
-    DriverKind, End, JointKind, Orientation, SpatialBody, SpatialDesc, SpatialForce,
-    SphericalClearance, VectorFrame,
+    ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, SpatialBody,
+    SpatialClearance, SpatialDesc, SpatialForce, SphericalClearance, VectorFrame,
 };
 use super::force::Force3;
 use super::frame::{exp_map, perpendicular, quaternion_of, rotation};
+use super::journal::Journal;
 use super::kin::GROUND;
 use super::model::{Inertia3, Owner, SpatialModel, Workspace};
 use super::sphere::Sphere;
@@ -397,17 +398,44 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         .map(|f| Ok((f.name().to_string(), force(&cx, f, &joint_frames)?)))
         .collect::<Result<Vec<_>, MbdError>>()?;
     let mut spheres = Vec::new();
+    let mut journals = Vec::new();
     let mut n_bristle = 0;
-    for (k, s) in d.clearances.iter().enumerate() {
-        let sp = sphere(&cx, s, k, &mut n_bristle)?;
-        spheres.push(sp);
+    // memory slots: one per ball, then four per journal
+    let n_spheres = d
+        .clearances
+        .iter()
+        .filter(|c| matches!(c, SpatialClearance::Spherical(_)))
+        .count();
+    for c in &d.clearances {
+        match c {
+            SpatialClearance::Spherical(s) => {
+                let sp = sphere(&cx, s, spheres.len(), &mut n_bristle)?;
+                spheres.push(sp);
+            }
+            SpatialClearance::Journal(j) => {
+                let slot = n_spheres + clr_contact::journal::GROUPS * journals.len();
+                journals.push(journal(&cx, j, slot)?);
+            }
+        }
     }
     let min_v = spheres
         .iter()
         .map(|s: &Sphere| s.law.min_impact_velocity())
+        .chain(journals.iter().flat_map(|j: &Journal| {
+            [
+                j.radial.min_impact_velocity(),
+                j.thrust.min_impact_velocity(),
+            ]
+        }))
         .fold(f64::INFINITY, f64::min);
-    let memory = ContactMemory::new(spheres.len(), if min_v.is_finite() { min_v } else { 1e-4 })
+    let n_slots = spheres.len() + clr_contact::journal::GROUPS * journals.len();
+    let memory = ContactMemory::new(n_slots, if min_v.is_finite() { min_v } else { 1e-4 })
         .map_err(|e| invalid("clearance", e.to_string()))?;
+    let journal_points = journals
+        .iter()
+        .enumerate()
+        .flat_map(|(k, j): (usize, &Journal)| (0..j.n_groups()).map(move |g| (k, g)))
+        .collect();
     let gravity = finite3("model.gravity", d.model.gravity)?;
     let nb = bodies.len();
     let m = row;
@@ -420,6 +448,7 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         y: vec![0.0; 6 * nb * m],
         lambda: vec![0.0; m],
         reports: vec![Default::default(); spheres.len()],
+        journal_reports: vec![Default::default(); journals.len()],
         zdot: vec![0.0; n_bristle],
         ..Default::default()
     };
@@ -438,6 +467,8 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         motions,
         forces,
         spheres,
+        journals,
+        journal_points,
         memory,
         gravity,
         alpha: d.solver.baumgarte_alpha,
@@ -456,7 +487,14 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
 fn input_warnings(d: &SpatialDesc) -> Vec<crate::initial_data::Warning> {
     let mut out = Vec::new();
     for c in &d.clearances {
-        crate::desc::checks::moduli_warnings(&c.name, c, &mut out);
+        match c {
+            SpatialClearance::Spherical(s) => {
+                crate::desc::checks::moduli_warnings(&s.name, s, &mut out);
+            }
+            SpatialClearance::Journal(j) => {
+                crate::desc::checks::moduli_warnings(&j.name, j, &mut out);
+            }
+        }
     }
     out
 }
@@ -1010,4 +1048,194 @@ fn sphere(
         memory: k,
         bristle,
     })
+}
+
+/// Compile a revolute or cylindrical clearance joint; `slot` is its first contact-memory slot.
+fn journal(cx: &Ctx, d: &JournalClearanceDesc, slot: usize) -> Result<Journal, MbdError> {
+    let name = &d.name;
+    let a = cx.end(&format!("{name}.bearing"), &d.bearing)?;
+    let b = cx.end(&format!("{name}.journal"), &d.journal)?;
+    if a.k == b.k {
+        return Err(MbdError::SameBody {
+            item: name.clone(),
+            body: d.journal.body.clone(),
+        });
+    }
+    let axis = |e: &REnd, f: &str| {
+        e.axis.ok_or_else(|| {
+            invalid(
+                format!("{name}.{f}.axis"),
+                "give the axis of the bore or journal in its body frame, e.g. axis = [0, 0, 1]",
+            )
+        })
+    };
+    let (ui, uj) = (axis(&a, "bearing")?, axis(&b, "journal")?);
+    let joint = journal_geometry(d)?;
+    let (radial, thrust, friction) = journal_laws(d, &joint)?;
+    let laws = clr_contact::JournalLaws::new(
+        radial,
+        thrust,
+        match friction {
+            Some(f) => clr_contact::journal::JournalFriction::Law(f),
+            None => clr_contact::journal::JournalFriction::None,
+        },
+    )
+    .map_err(|e| invalid(format!("{name}.friction"), e.to_string()))?;
+    Ok(Journal {
+        name: name.clone(),
+        i: a.k,
+        si: a.s,
+        ui,
+        j: b.k,
+        sj: b.s,
+        uj,
+        joint,
+        laws,
+        radial,
+        thrust,
+        friction,
+        memory: slot,
+    })
+}
+
+/// The validated geometry of a journal joint (errors name the field).
+fn journal_geometry(d: &JournalClearanceDesc) -> Result<clr_contact::JournalClearance, MbdError> {
+    let name = &d.name;
+    for (f, v) in [
+        ("bearing_radius", d.bearing_radius),
+        ("bearing_length", d.bearing_length),
+        ("journal_radius", d.journal_radius),
+        ("journal_length", d.journal_length),
+    ] {
+        if v > MAX_SPHERE_RADIUS {
+            return Err(invalid(
+                format!("{name}.{f}"),
+                format!(
+                    "{v} m is larger than {MAX_SPHERE_RADIUS} m: lengths are in m (a length in \
+                     mm, {v} mm, is {:e} m)",
+                    v * 1e-3
+                ),
+            ));
+        }
+        if !(v > 0.0 && v.is_finite()) {
+            return Err(invalid(
+                format!("{name}.{f}"),
+                format!("{v} m must be positive"),
+            ));
+        }
+    }
+    let (rb, rj) = (d.bearing_radius, d.journal_radius);
+    if rj >= rb {
+        return Err(invalid(
+            format!("{name}.journal_radius"),
+            format!(
+                "{rj} m must be smaller than bearing_radius = {rb} m (equal radii are the ideal \
+                 joint: use a [[joint]] of the same type)"
+            ),
+        ));
+    }
+    let geometry = match d.kind {
+        ClearanceKind::Revolute => {
+            let Some(ca) = d.axial_clearance else {
+                return Err(invalid(
+                    format!("{name}.axial_clearance"),
+                    "a revolute clearance joint needs its total axial end play in m (the \
+                     cylindrical kind has no thrust faces)",
+                ));
+            };
+            if !(ca > 0.0 && ca <= MAX_SPHERE_RADIUS) {
+                return Err(invalid(
+                    format!("{name}.axial_clearance"),
+                    format!("{ca} m must be positive and at most {MAX_SPHERE_RADIUS} m (in m)"),
+                ));
+            }
+            if let Some(rt) = d.thrust_radius {
+                if !(rt > 0.0 && rt <= MAX_SPHERE_RADIUS) {
+                    return Err(invalid(
+                        format!("{name}.thrust_radius"),
+                        format!("{rt} m must be positive and at most {MAX_SPHERE_RADIUS} m"),
+                    ));
+                }
+            }
+            clr_contact::JournalClearance::revolute(
+                rb,
+                d.bearing_length,
+                rj,
+                d.journal_length,
+                ca,
+                d.thrust_radius,
+            )
+        }
+        _ => {
+            for (f, given) in [
+                ("axial_clearance", d.axial_clearance.is_some()),
+                ("thrust_radius", d.thrust_radius.is_some()),
+                ("thrust_normal", d.thrust_normal.is_some()),
+            ] {
+                if given {
+                    return Err(invalid(
+                        format!("{name}.{f}"),
+                        "a cylindrical clearance joint has no thrust faces: remove it, or use \
+                         type = \"revolute\"",
+                    ));
+                }
+            }
+            clr_contact::JournalClearance::cylindrical(rb, d.bearing_length, rj, d.journal_length)
+        }
+    }
+    .map_err(|e| invalid(name.clone(), e.to_string()))?;
+    match d.quadrature_order {
+        Some(n) => geometry
+            .with_quadrature_order(n)
+            .map_err(|e| invalid(format!("{name}.quadrature_order"), e.to_string())),
+        None => Ok(geometry),
+    }
+}
+
+/// The radial law (line laws with their length L_c = min(L_b, L_j)), the thrust law (default:
+/// the radial law object) and the stateless friction law of a journal joint.
+fn journal_laws(
+    d: &JournalClearanceDesc,
+    joint: &clr_contact::JournalClearance,
+) -> Result<(NormalLaw, NormalLaw, Option<clr_contact::FrictionLaw>), MbdError> {
+    let name = &d.name;
+    let path = format!("{name}.normal");
+    if d.normal.length.is_some() {
+        return Err(invalid(
+            format!("{path}.length"),
+            "the line laws' length is the joint's contact length min(bearing_length, \
+             journal_length): remove it",
+        ));
+    }
+    let mut normal = d.normal.clone();
+    if normal.takes_length() {
+        normal.length = Some(joint.contact_length());
+    }
+    let radii = Some((d.bearing_radius, d.journal_radius));
+    let radial = normal
+        .build(&path, radii)
+        .map_err(|e| invalid(e.path, e.message))?;
+    let thrust = match &d.thrust_normal {
+        Some(t) => t
+            .build(&format!("{name}.thrust_normal"), None)
+            .map_err(|e| invalid(e.path, e.message))?,
+        None => radial,
+    };
+    let friction =
+        match &d.friction {
+            None => None,
+            Some(f) => match f
+                .build_contact(&format!("{name}.friction"))
+                .map_err(|e| invalid(e.path, e.message))?
+            {
+                ContactFriction::Static(l) if l.mu_max() == 0.0 => None,
+                ContactFriction::Static(l) => Some(l),
+                ContactFriction::LuGre(_) => return Err(invalid(
+                    format!("{name}.friction.law"),
+                    "LuGre friction is not available on a journal joint (its bristle state per \
+                     Gauss point is not carried): use coulomb, ambrosio, threlfall or stribeck",
+                )),
+            },
+        };
+    Ok((radial, thrust, friction))
 }

@@ -359,8 +359,147 @@ pub struct SphericalClearance {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ClearanceKind {
-    /// Ball in socket.
+    /// Ball in socket ([`SphericalClearance`]).
     Spherical,
+    /// Journal in bearing with thrust faces ([`JournalClearanceDesc`]).
+    Revolute,
+    /// Journal in bearing without thrust faces ([`JournalClearanceDesc`]).
+    Cylindrical,
+}
+
+/// A spatial revolute or cylindrical clearance joint (`type = "revolute"` or `"cylindrical"` in
+/// `[[clearance]]`): a journal of finite length in a bore of finite length, which can tilt, touch
+/// at the bore's rims and (revolute) slide axially against its thrust faces (clr-contact
+/// `journal`, docs/contact.md "Spatial journal in bearing"). A misaligned bearing is a bearing
+/// axis tilted in its body.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JournalClearanceDesc {
+    /// Unique name.
+    pub name: String,
+    /// `"revolute"` or `"cylindrical"`.
+    #[serde(rename = "type")]
+    pub kind: ClearanceKind,
+    /// Centre of the bore (mid-length) and its axis, on the bearing body.
+    pub bearing: End,
+    /// Centre of the journal (mid-length) and its axis, on the journal body.
+    pub journal: End,
+    /// Bore radius R_b, m.
+    pub bearing_radius: f64,
+    /// Bore length L_b, m.
+    pub bearing_length: f64,
+    /// Journal radius R_j < R_b, m.
+    pub journal_radius: f64,
+    /// Journal length L_j, m.
+    pub journal_length: f64,
+    /// Total axial end play c_a between the collars and the bearing's end faces, m (revolute
+    /// only, required there).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub axial_clearance: Option<f64>,
+    /// Outer radius R_t of the thrust collars, m (revolute only; default R_j).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thrust_radius: Option<f64>,
+    /// Gauss–Legendre order per wetted region (1..=32; default 10).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub quadrature_order: Option<usize>,
+    /// Radial normal-force law: the total force F_N(δ) of a journal of contact length
+    /// L_c = min(L_b, L_j), integrated along the wetted length as F_N/L_c per unit length. Every
+    /// law of the planar revolute clearance joint; the line laws that take a `length` (liu,
+    /// johnson, pereira, presets with length) get L_c (do not give `length`).
+    pub normal: NormalLawDesc,
+    /// Point law of the thrust faces (revolute only; default: the radial law object).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub thrust_normal: Option<NormalLawDesc>,
+    /// Friction law (default none): stateless laws only (LuGre is refused), applied at every
+    /// Gauss point and thrust point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionLawDesc>,
+}
+
+/// One `[[clearance]]` of a spatial model: a ball in a socket, or a journal in a bearing.
+// plain data read once per model file: the variants' sizes do not matter
+#[allow(clippy::large_enum_variant)]
+#[derive(Debug, Clone, PartialEq)]
+pub enum SpatialClearance {
+    /// `type = "spherical"`.
+    Spherical(SphericalClearance),
+    /// `type = "revolute"` or `"cylindrical"`.
+    Journal(JournalClearanceDesc),
+}
+
+impl SpatialClearance {
+    /// The joint's name.
+    pub fn name(&self) -> &str {
+        match self {
+            Self::Spherical(s) => &s.name,
+            Self::Journal(j) => &j.name,
+        }
+    }
+    /// Radial clearance, m (socket − ball radius, or bore − journal radius).
+    pub fn radial_clearance(&self) -> f64 {
+        match self {
+            Self::Spherical(s) => s.socket_radius - s.ball_radius,
+            Self::Journal(j) => j.bearing_radius - j.journal_radius,
+        }
+    }
+}
+
+impl From<SphericalClearance> for SpatialClearance {
+    fn from(s: SphericalClearance) -> Self {
+        Self::Spherical(s)
+    }
+}
+
+impl From<JournalClearanceDesc> for SpatialClearance {
+    fn from(j: JournalClearanceDesc) -> Self {
+        Self::Journal(j)
+    }
+}
+
+impl Serialize for SpatialClearance {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        match self {
+            Self::Spherical(c) => c.serialize(s),
+            Self::Journal(c) => c.serialize(s),
+        }
+    }
+}
+
+/// Marks an error message of a `[[clearance]]` table whose path continues inside the table
+/// (joined back by [`SpatialDesc::from_toml_table`]).
+const INNER_PATH: &str = "\u{1}at ";
+
+impl<'de> Deserialize<'de> for SpatialClearance {
+    /// By its `type`: the table is read as the matching struct, and an error keeps the path of
+    /// the field inside it.
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        use serde::de::Error;
+        let v = toml::Value::deserialize(d)?;
+        // the kind as serde reads it (its message lists the kinds, which the Python builder's
+        // probes parse)
+        let kind = match v.get("type") {
+            Some(t) => ClearanceKind::deserialize(t.clone())
+                .map_err(|e| D::Error::custom(format!("{INNER_PATH}type\u{1}{}", e.message())))?,
+            None => return Err(D::Error::missing_field("type")),
+        };
+        let inner = |e: serde_path_to_error::Error<toml::de::Error>| {
+            D::Error::custom(format!(
+                "{INNER_PATH}{}\u{1}{}",
+                e.path(),
+                e.inner().message()
+            ))
+        };
+        match kind {
+            ClearanceKind::Revolute | ClearanceKind::Cylindrical => {
+                serde_path_to_error::deserialize(v)
+                    .map(Self::Journal)
+                    .map_err(inner)
+            }
+            ClearanceKind::Spherical => serde_path_to_error::deserialize(v)
+                .map(Self::Spherical)
+                .map_err(inner),
+        }
+    }
 }
 
 /// A whole spatial model as data (`[model] space = "spatial"`). Sections: `[model]`,
@@ -384,7 +523,7 @@ pub struct SpatialDesc {
     pub forces: Vec<SpatialForce>,
     /// Clearance joints.
     #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
-    pub clearances: Vec<SphericalClearance>,
+    pub clearances: Vec<SpatialClearance>,
     /// Integrator settings (as planar models).
     #[serde(default)]
     pub solver: SolverSettings,
@@ -401,7 +540,15 @@ impl SpatialDesc {
     /// [`crate::FieldError`] at the offending field.
     pub fn from_toml_table(table: toml::Table) -> Result<Self, crate::FieldError> {
         serde_path_to_error::deserialize::<_, Self>(toml::Value::Table(table)).map_err(|e| {
-            crate::FieldError::new(e.path().to_string(), e.inner().message().to_string())
+            let (path, msg) = (e.path().to_string(), e.inner().message().to_string());
+            // a [[clearance]] table's own error: the path continues inside it
+            match msg
+                .strip_prefix(INNER_PATH)
+                .and_then(|m| m.split_once('\u{1}'))
+            {
+                Some((inner, m)) => crate::FieldError::new(format!("{path}.{inner}"), m),
+                None => crate::FieldError::new(path, msg),
+            }
         })
     }
 

@@ -29,6 +29,7 @@ mod force;
 pub mod frame;
 mod init;
 mod jacobian;
+mod journal;
 mod kin;
 mod model;
 mod newton;
@@ -40,9 +41,11 @@ mod sphere;
 mod system;
 
 pub use desc::{
-    ClearanceKind, DriverKind, End, JointKind, Orientation, Space, SpatialBody, SpatialDesc,
-    SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint, SphericalClearance, VectorFrame,
+    ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, Space,
+    SpatialBody, SpatialClearance, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo,
+    SpatialJoint, SphericalClearance, VectorFrame,
 };
+pub use journal::JournalReport;
 pub use model::SpatialModel;
 pub use newton::SpatialLinearization;
 pub use sphere::SphereReport;

@@ -24,6 +24,7 @@ use nalgebra::{Matrix3, Vector3};
 
 use super::constraint::{Prim, Rows};
 use super::force::Force3;
+use super::journal::{Journal, JournalReport};
 use super::kin::Kinematics;
 use super::sphere::{Sphere, SphereReport};
 use crate::timefn::TimeFn;
@@ -74,6 +75,11 @@ pub struct SpatialModel {
     pub(crate) motions: Vec<TimeFn>,
     pub(crate) forces: Vec<(String, Force3)>,
     pub(crate) spheres: Vec<Sphere>,
+    /// Revolute and cylindrical clearance joints.
+    pub(crate) journals: Vec<Journal>,
+    /// The journals' tracked contact groups (journal, group), after the balls in the contact
+    /// probes and events.
+    pub(crate) journal_points: Vec<(usize, usize)>,
     pub(crate) memory: ContactMemory,
     pub(crate) gravity: Vector3<f64>,
     pub(crate) alpha: f64,
@@ -107,6 +113,7 @@ pub(crate) struct Workspace {
     pub(crate) w: DenseLu,
     pub(crate) lambda: Vec<f64>,
     pub(crate) reports: Vec<SphereReport>,
+    pub(crate) journal_reports: Vec<JournalReport>,
     pub(crate) zdot: Vec<f64>,
     pub(crate) p_diss: f64,
     pub(crate) p_in: f64,
@@ -197,6 +204,10 @@ impl SpatialModel {
             if zd != usize::MAX {
                 ws.zdot[zd..zd + 3].copy_from_slice(zdot.as_slice());
             }
+        }
+        for (k, jn) in self.journals.iter().enumerate() {
+            ws.journal_reports[k] = jn.apply(&ws.kin, &mut self.memory, Some(&mut ws.qf));
+            ws.p_diss += ws.journal_reports[k].dissipated;
         }
         ws.g.fill(0.0);
         let mut rows = Rows {

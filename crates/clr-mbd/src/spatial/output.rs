@@ -8,7 +8,12 @@
 //! body when b is the ground); per spherical clearance joint `C.penetration C.rate
 //! C.normal_force C.friction_force C.contact C.ex C.ey C.ez C.ftx C.fty C.ftz` (m, m/s, N, N, 1/0,
 //! eccentricity in m world, friction force on the ball in N world), then `C.lugre_zx C.lugre_zy
-//! C.lugre_zz` with LuGre friction; `energy.kinetic energy.potential energy.elastic energy.total
+//! C.lugre_zz` with LuGre friction; per revolute or cylindrical clearance joint, per contact
+//! group G (`radial_a radial_b`, then `thrust_minus thrust_plus` for the revolute kind)
+//! `J.G.penetration J.G.normal_force` (m, N), then `J.Fx J.Fy J.Fz J.Mx J.My J.Mz` (resultant
+//! contact force on the journal, N, and its moment about the journal centre, N·m, world),
+//! `J.tilt` (rad) and `J.axial_offset` (m, journal centre along the bore axis from the bore
+//! centre); `energy.kinetic energy.potential energy.elastic energy.total
 //! energy.dissipated energy.work_in energy.balance` (J, as planar runs); `violation.position
 //! violation.velocity violation.quaternion` (‖Φ‖∞, ‖Φ̇‖∞ and max |‖p‖ − 1|).
 
@@ -47,6 +52,16 @@ impl SpatialModel {
                 }
             }
         }
+        for jn in &self.journals {
+            for g in &super::journal::GROUP_NAMES[..jn.n_groups()] {
+                for s in ["penetration", "normal_force"] {
+                    c.push(format!("{}.{g}.{s}", jn.name));
+                }
+            }
+            for s in ["Fx", "Fy", "Fz", "Mx", "My", "Mz", "tilt", "axial_offset"] {
+                c.push(format!("{}.{s}", jn.name));
+            }
+        }
         c.extend(crate::results::ENERGY_COLUMNS.map(String::from));
         for s in ["position", "velocity", "quaternion"] {
             c.push(format!("violation.{s}"));
@@ -79,6 +94,12 @@ impl SpatialModel {
             + self
                 .ws
                 .reports
+                .iter()
+                .map(|r| r.elastic_energy)
+                .sum::<f64>()
+            + self
+                .ws
+                .journal_reports
                 .iter()
                 .map(|r| r.elastic_energy)
                 .sum::<f64>();
@@ -162,6 +183,14 @@ impl SpatialModel {
                 data.extend_from_slice(&y[zoff + o..zoff + o + 3]);
             }
         }
+        for (k, jn) in self.journals.iter().enumerate() {
+            let r = &self.ws.journal_reports[k];
+            for g in 0..jn.n_groups() {
+                data.extend([r.penetration[g], r.normal_force[g]]);
+            }
+            data.extend(r.force.iter().chain(r.moment.iter()));
+            data.extend([r.tilt, r.axial_offset]);
+        }
         let e = self.energies_evaluated(y);
         let (ed, win) = (y[nq + nv], y[nq + nv + 1]);
         data.extend([
@@ -183,6 +212,9 @@ impl SpatialModel {
         for s in &self.spheres {
             let (d, r) = s.gap_rate(&self.ws.kin);
             self.memory.commit(s.memory, d, r);
+        }
+        for jn in &self.journals {
+            jn.commit(&self.ws.kin, &mut self.memory);
         }
     }
 }

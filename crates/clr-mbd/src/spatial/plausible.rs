@@ -40,6 +40,11 @@ impl SpatialModel {
             }
         }
         out.extend(self.spheres.iter().flat_map(|s| [(s.i, s.si), (s.j, s.sj)]));
+        out.extend(
+            self.journals
+                .iter()
+                .flat_map(|s| [(s.i, s.si), (s.j, s.sj)]),
+        );
         out
     }
 
@@ -123,6 +128,20 @@ impl SpatialModel {
             out.extend(friction(name, mu));
             out.extend(restitution(name, &s.law));
         }
+        for s in &self.journals {
+            let name = &s.name;
+            let fields = [
+                format!("{name}.bearing_radius"),
+                format!("{name}.journal_radius"),
+            ];
+            let (rb, c) = (s.joint.bearing_radius(), s.joint.clearance());
+            out.extend(joint_radii(fields, "bearing", rb, c, sc.size));
+            out.extend(friction(name, s.friction.map_or(0.0, |f| f.mu_max())));
+            out.extend(restitution(name, &s.radial));
+            if s.thrust != s.radial {
+                out.extend(restitution(&format!("{name}.thrust_normal"), &s.thrust));
+            }
+        }
     }
 
     /// A ball outside its socket by more than the clearance at t0 is refused: the first step
@@ -143,6 +162,26 @@ impl SpatialModel {
                 });
             }
         }
+        for s in &self.journals {
+            for g in 0..s.n_groups() {
+                let depth = s.gap(&self.ws.kin, g);
+                let cl = match g {
+                    0 | 1 => s.joint.clearance(),
+                    _ => s.joint.axial_clearance().unwrap_or(f64::INFINITY),
+                };
+                if depth > REFUSE_PENETRATION * cl {
+                    return Err(MbdError::InitialPenetration {
+                        element: format!("{}.{}", s.name, super::journal::GROUP_NAMES[g]),
+                        what: "journal into the bearing",
+                        t: t0,
+                        penetration: depth,
+                        clearance: cl,
+                        ratio: depth / cl,
+                        hint: String::new(),
+                    });
+                }
+            }
+        }
         Ok(())
     }
 
@@ -154,6 +193,24 @@ impl SpatialModel {
             if let Some(depth) = r.column(&format!("{}.penetration", s.name)) {
                 let scale = (PENETRATION_FRACTION, s.clearance(), "its clearance");
                 out.extend(deep(&s.name, &depth, scale));
+            }
+        }
+        for s in &self.journals {
+            for (k, g) in super::journal::GROUP_NAMES[..s.n_groups()]
+                .iter()
+                .enumerate()
+            {
+                if let Some(depth) = r.column(&format!("{}.{g}.penetration", s.name)) {
+                    let scale = match k {
+                        0 | 1 => (PENETRATION_FRACTION, s.joint.clearance(), "its clearance"),
+                        _ => (
+                            PENETRATION_FRACTION,
+                            s.joint.axial_clearance().unwrap_or(f64::INFINITY),
+                            "its axial clearance",
+                        ),
+                    };
+                    out.extend(deep(&format!("{}.{g}", s.name), &depth, scale));
+                }
             }
         }
         self.check_peak_forces(r, sc, &mut out);
@@ -191,6 +248,13 @@ impl SpatialModel {
         for s in &self.spheres {
             if let Some(f) = r.column(&format!("{}.normal_force", s.name)) {
                 out.extend(peak_force(&s.name, &f, load));
+            }
+        }
+        for s in &self.journals {
+            for g in &super::journal::GROUP_NAMES[..s.n_groups()] {
+                if let Some(f) = r.column(&format!("{}.{g}.normal_force", s.name)) {
+                    out.extend(peak_force(&format!("{}.{g}", s.name), &f, load));
+                }
             }
         }
     }

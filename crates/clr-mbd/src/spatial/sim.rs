@@ -14,18 +14,29 @@ use crate::{InitialConditionsMode, JacobianMode, Results, SimOptions};
 
 impl ContactProbe for SpatialModel {
     fn tracked(&self) -> Vec<(usize, String)> {
-        self.spheres
-            .iter()
-            .enumerate()
-            .map(|(k, s)| (k, s.name.clone()))
-            .collect()
+        let balls = self.spheres.iter().map(|s| s.name.clone());
+        let groups = self.journal_points.iter().map(|&(j, g)| {
+            format!(
+                "{}.{}",
+                self.journals[j].name,
+                super::journal::GROUP_NAMES[g]
+            )
+        });
+        balls.chain(groups).enumerate().collect()
     }
     fn joint_gap(&mut self, k: usize, y: &[f64]) -> f64 {
         self.ws.kin.update(self.bodies.len(), y);
-        self.spheres[k].gap(&self.ws.kin)
+        self.contact_gap(k)
     }
     fn joint_probe(&mut self, k: usize, y: &[f64]) -> Probe {
         self.ws.kin.update(self.bodies.len(), y);
+        let ns = self.spheres.len();
+        if k >= ns {
+            let (j, g) = self.journal_points[k - ns];
+            let r = self.journals[j].apply(&self.ws.kin, &mut self.memory, None);
+            let (_, rate) = self.journals[j].gap_rate(&self.ws.kin, g);
+            return Probe::new(r.penetration[g], rate, r.normal_force[g]);
+        }
         let mut zd = nalgebra::Vector3::zeros();
         let z = self.bristle(k, y);
         let r = self.spheres[k].apply(&self.ws.kin, &mut self.memory, z, &mut zd, None);
@@ -34,6 +45,23 @@ impl ContactProbe for SpatialModel {
 }
 
 impl SpatialModel {
+    /// Number of tracked contacts: one per ball, one per journal contact group.
+    pub(crate) fn n_contacts(&self) -> usize {
+        self.spheres.len() + self.journal_points.len()
+    }
+
+    /// Penetration (m) of tracked contact `k` at the kinematics in the workspace: the event
+    /// function of its onsets.
+    pub(crate) fn contact_gap(&self, k: usize) -> f64 {
+        let ns = self.spheres.len();
+        if k < ns {
+            self.spheres[k].gap(&self.ws.kin)
+        } else {
+            let (j, g) = self.journal_points[k - ns];
+            self.journals[j].gap(&self.ws.kin, g)
+        }
+    }
+
     /// Bristle vector of spherical joint `k` in y (zero without LuGre).
     fn bristle(&self, k: usize, y: &[f64]) -> nalgebra::Vector3<f64> {
         match self.spheres[k].bristle {
@@ -59,6 +87,17 @@ impl SpatialModel {
                  rows yet",
                 self.n_bristle
             ));
+        }
+        if opts.solver == crate::SolverKind::Ndf
+            && opts.jacobian == JacobianMode::Analytic
+            && !self.journals.is_empty()
+        {
+            notes.push(
+                "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
+                 \"finite_difference\"): the revolute/cylindrical clearance joints have no \
+                 analytic Jacobian blocks yet"
+                    .to_string(),
+            );
         }
         if opts.linear_solver == crate::LinearSolver::Sparse {
             notes.push("spatial models: the augmented equations are solved dense".to_string());
@@ -159,7 +198,9 @@ impl SpatialModel {
             )
         })?;
         self.events_on = opts.contact_events;
-        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic && self.n_bristle == 0;
+        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic
+            && self.n_bristle == 0
+            && self.journals.is_empty();
         let (nq, nv) = (self.n_q(), self.n_v());
         let mut solver = AnySolver::new(opts, |ode| {
             if opts.scale_velocity_error {
@@ -213,7 +254,7 @@ impl Engine for SpatialModel {
     ) -> Result<StepEnd, Stop> {
         // LuGre bristles start undeflected at a new contact (as the planar joints); the onset
         // restarts the integrator anyway
-        if let Some(o) = onset.and_then(|k| self.spheres[k].bristle) {
+        if let Some(o) = onset.and_then(|k| self.spheres.get(k).and_then(|s| s.bristle)) {
             let z = self.bristle_offset() + o;
             y[z..z + 3].fill(0.0);
         }
@@ -267,6 +308,33 @@ impl SpatialModel {
                     s.name,
                     100.0 * DEPTH_LIMIT
                 )));
+            }
+        }
+        for jn in &self.journals {
+            let state = jn.state(&self.ws.kin);
+            let geo = match jn.geometry(&state) {
+                Ok(g) => g,
+                Err(e) => {
+                    return Err(Stop::Unphysical(format!(
+                        "clearance `{}` at t = {t:.6} s: {e}",
+                        jn.name
+                    )))
+                }
+            };
+            for g in 0..jn.n_groups() {
+                let d = geo.gap(g).0;
+                let r = jn.joint.journal_radius();
+                if d > DEPTH_LIMIT * r {
+                    return Err(Stop::Unphysical(format!(
+                        "clearance `{}` at t = {t:.6} s: the journal is {d:.3e} m deep in its \
+                         bearing ({}), more than {:.0} % of its radius: the loop probably cannot \
+                         close at this pose, or the normal law is far too soft for the load; \
+                         check the lengths and the stiffness",
+                        jn.name,
+                        super::journal::GROUP_NAMES[g],
+                        100.0 * DEPTH_LIMIT
+                    )));
+                }
             }
         }
         Ok(())

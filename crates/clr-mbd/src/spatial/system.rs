@@ -53,18 +53,18 @@ impl OdeSystem for SpatialModel {
 
     fn n_events(&self) -> usize {
         if self.events_on {
-            self.spheres.len()
+            self.n_contacts()
         } else {
             0
         }
     }
 
-    /// One event per spherical clearance joint: its penetration δ (m); a rising crossing is a
-    /// contact onset.
+    /// One event per spherical clearance joint and per contact group of a journal joint: its
+    /// penetration δ (m); a rising crossing is a contact onset.
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
         self.ws.kin.update(self.bodies.len(), y);
-        for (k, s) in self.spheres.iter().enumerate() {
-            g[k] = s.gap(&self.ws.kin);
+        for (k, gk) in g.iter_mut().enumerate().take(self.n_contacts()) {
+            *gk = self.contact_gap(k);
         }
     }
 
