@@ -836,7 +836,7 @@ class SpatialModel(Model):
     an ``axis``; orientations are written by :func:`clr_sim.spatial.quaternion`,
     :func:`~clr_sim.spatial.axis_angle`, :func:`~clr_sim.spatial.euler` and
     :func:`~clr_sim.spatial.matrix`. A planar method (``translational``, ``drive_angle``,
-    ``revolute_clearance``, ...) raises :class:`clr_sim.errors.ModelError` naming the spatial
+    ``translational_clearance``, ...) raises :class:`clr_sim.errors.ModelError` naming the spatial
     one to use. The planar joint kind (``type = "planar"``) is :meth:`planar_joint`: ``planar``
     alone would read as the space.
     """
@@ -1053,6 +1053,71 @@ class SpatialModel(Model):
             friction=friction,
         )
 
+    def revolute_clearance(
+        self,
+        name: str,
+        *,
+        bearing: Anchor,
+        journal: Anchor,
+        bearing_radius: float,
+        bearing_length: float,
+        journal_radius: float,
+        journal_length: float,
+        axial_clearance: float,
+        normal: Table,
+        thrust_radius: Optional[float] = None,
+        thrust_normal: Optional[Table] = None,
+        quadrature_order: Optional[int] = None,
+        friction: Optional[Table] = None,
+    ) -> "Model":
+        """Spatial revolute clearance joint (``[[clearance]] type = "revolute"``): a journal of
+        radius ``journal_radius`` and length ``journal_length`` (m) about the axis of the anchor
+        ``journal`` in a bore of ``bearing_radius`` and ``bearing_length`` (m) about the axis of
+        ``bearing`` (both anchors need ``axis``; a misaligned bearing is a tilted axis), tilting
+        and sliding; thrust faces with the total end play ``axial_clearance`` (m) at
+        ``thrust_radius`` (m; default the journal radius). ``normal`` is the law of the whole
+        contact length min(L_b, L_j) (laws that take a length get it), ``thrust_normal`` that of a
+        thrust face (default ``normal``), ``friction`` a stateless law (LuGre refused);
+        ``quadrature_order`` of the line contact (default 10). docs/spatial.md."""
+        return self._add(
+            "clearance", "revolute", name, bearing=bearing, journal=journal,
+            bearing_radius=bearing_radius, bearing_length=bearing_length,
+            journal_radius=journal_radius, journal_length=journal_length,
+            axial_clearance=axial_clearance, thrust_radius=thrust_radius,
+            quadrature_order=quadrature_order, normal=normal, thrust_normal=thrust_normal,
+            friction=friction,
+        )
+
+    def cylindrical_clearance(
+        self,
+        name: str,
+        *,
+        bearing: Anchor,
+        journal: Anchor,
+        bearing_radius: float,
+        bearing_length: float,
+        journal_radius: float,
+        journal_length: float,
+        normal: Table,
+        quadrature_order: Optional[int] = None,
+        friction: Optional[Table] = None,
+        axial_clearance: Optional[float] = None,
+        thrust_radius: Optional[float] = None,
+        thrust_normal: Optional[Table] = None,
+    ) -> "Model":
+        """Spatial cylindrical clearance joint (``[[clearance]] type = "cylindrical"``): as
+        :meth:`revolute_clearance` without thrust faces (the journal slides and turns freely
+        along the bore); ``axial_clearance``, ``thrust_radius`` and ``thrust_normal`` are
+        refused (they are listed because the file's table accepts them for the revolute kind)."""
+        return self._add(
+            "clearance", "cylindrical", name, bearing=bearing, journal=journal,
+            bearing_radius=bearing_radius, bearing_length=bearing_length,
+            journal_radius=journal_radius, journal_length=journal_length,
+            axial_clearance=axial_clearance, thrust_radius=thrust_radius,
+            quadrature_order=quadrature_order, normal=normal, thrust_normal=thrust_normal,
+            friction=friction,
+        )
+
 
 def _elsewhere(method: str, space: str, use: str):
     """A method of the other space's builder: raises a ModelError that names the one to use."""
@@ -1086,7 +1151,6 @@ _PLANAR_ONLY = {
     "spherical_clearance()",
     "contact": "spatial models have no shape contact yet; a ball in a socket is "
     "spherical_clearance()",
-    "revolute_clearance": "use spherical_clearance() (a ball in a socket)",
     "translational_clearance": "spatial models have no translational clearance joint yet",
     "slider_on_beam": "spatial models have no flexible beams yet",
 }
@@ -1106,6 +1170,8 @@ _SPATIAL_ONLY = {
     "drive_prismatic_displacement": "use drive_displacement(), or build the model with "
     "Model(..., space=\"spatial\")",
     "spherical_clearance": "use revolute_clearance() (a journal in a bearing), or build the "
+    "model with Model(..., space=\"spatial\")",
+    "cylindrical_clearance": "use revolute_clearance() (a journal in a bearing), or build the "
     "model with Model(..., space=\"spatial\")",
 }
 
@@ -1171,6 +1237,8 @@ SPATIAL_METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("force", "force"): "force",
     ("force", "torque"): "torque",
     ("clearance", "spherical"): "spherical_clearance",
+    ("clearance", "revolute"): "revolute_clearance",
+    ("clearance", "cylindrical"): "cylindrical_clearance",
 }
 
 #: The table of element methods of each kind of builder.

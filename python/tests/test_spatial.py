@@ -199,6 +199,19 @@ def every_kind() -> clr_sim.Model:
                           normal=clr_sim.normal("hertz", 0.9, stiffness=1e9,
                                                 damping="lankarani-nikravesh"),
                           friction=clr_sim.friction("coulomb", mu=0.1, v_reg=1e-4))
+    # journals centred in their bores, axes along z (gravity axial: the revolute one rests on a
+    # thrust face, the cylindrical one slides)
+    steel = {"youngs_modulus": 207e9, "poisson_ratio": 0.3}
+    journal_law = clr_sim.normal("liu", 0.9, damping="lankarani-nikravesh",
+                                 bearing_material=steel, journal_material=steel)
+    for kind, y0 in (("revolute", -4.0), ("cylindrical", -6.0)):
+        m.body(f"{kind}_pin", mass=0.1, principal_inertia=(1e-5, 1e-5, 1e-5),
+               position=(0.0, y0, 0.0))
+        getattr(m, f"{kind}_clearance")(
+            f"{kind}_joint", bearing=spatial.at("ground", 0.0, y0, 0.0, axis=z),
+            journal=spatial.at(f"{kind}_pin", axis=z), bearing_radius=0.01,
+            bearing_length=0.015, journal_radius=0.0099, journal_length=0.015,
+            normal=journal_law, **({"axial_clearance": 1e-4} if kind == "revolute" else {}))
     m.solver(rtol=1e-6)
     m.output(t_end=0.01, intervals=10)
     return m
