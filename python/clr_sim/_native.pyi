@@ -86,6 +86,27 @@ class RevoluteJointCore:
         impact_velocity: _F64,
     ) -> Dict[str, npt.NDArray[np.float64]]: ...
 
+class JournalJointCore:
+    def __init__(
+        self,
+        bearing_radius: float,
+        bearing_length: float,
+        journal_radius: float,
+        journal_length: float,
+        axial_clearance: Optional[float] = None,
+        thrust_radius: Optional[float] = None,
+    ) -> None: ...
+    @property
+    def clearance(self) -> float: ...
+    def forces(
+        self,
+        radial: NormalLawCore,
+        thrust: Optional[NormalLawCore],
+        friction: Optional[FrictionLawCore],
+        states: npt.NDArray[np.float64],
+        impact_velocities: npt.NDArray[np.float64],
+    ) -> Dict[str, npt.NDArray[np.float64]]: ...
+
 def damping_chi(name: str, c_e: _F64) -> _F64: ...
 def effective_restitution(chi: _F64) -> _F64: ...
 def damping_names() -> List[str]: ...

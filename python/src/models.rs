@@ -551,11 +551,14 @@ fn is_spatial_space(space: Option<&str>) -> PyResult<bool> {
 /// The first lines of a spatial probe file.
 const SPATIAL_HEADER: &str = "[model]\nspace = \"spatial\"\n";
 
-/// The names serde lists in `message`: `expected one of `a`, `b`, `c``, `expected `a` or
-/// `b`` for two, `expected `a`` for one.
+/// The names the reader lists in `message`: its own lists (`valid fields here: a, b`,
+/// `valid: a, b`), or serde's (`expected one of `a`, `b`, `c``, `expected `a` or `b`` for two,
+/// `expected `a`` for one).
 fn expected_names(message: &str) -> Option<Vec<String>> {
-    let list =
-        names_after(message, "expected one of ").or_else(|| names_after(message, "expected "))?;
+    let list = names_after(message, "valid fields here: ")
+        .or_else(|| names_after(message, "valid: "))
+        .or_else(|| names_after(message, "expected one of "))
+        .or_else(|| names_after(message, "expected "))?;
     Some(
         list.iter()
             .flat_map(|n| n.split(" or "))

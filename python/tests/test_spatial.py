@@ -313,8 +313,8 @@ def test_a_method_of_the_other_space_names_the_one_to_use():
     assert e.value.where.startswith(__file__)
     with pytest.raises(clr_sim.FieldError, match="drive_revolute_angle"):
         m.drive_angle("motor", body="top", motion=clr_sim.motion("constant", value=0.0))
-    with pytest.raises(clr_sim.FieldError, match="spherical_clearance"):
-        m.revolute_clearance("B")
+    with pytest.raises(clr_sim.FieldError, match="translational_clearance"):
+        m.translational_clearance("B")
     planar = clr_sim.Model("p", gravity=(0.0, -9.81))
     with pytest.raises(clr_sim.FieldError, match="revolute_clearance") as e:
         planar.spherical_clearance("cup")
