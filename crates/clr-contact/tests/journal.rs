@@ -16,46 +16,9 @@ use clr_contact::journal::{
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, LuGre, Material, NormalLaw};
 use nalgebra::{Rotation3, Unit, Vector3};
 
-const RB: f64 = 10e-3;
-const RJ: f64 = 9.9e-3;
-const C: f64 = RB - RJ;
-const L: f64 = 15e-3;
-
-fn v3(x: f64, y: f64, z: f64) -> Vector3<f64> {
-    Vector3::new(x, y, z)
-}
-
-/// Unit axis tilted by γ from z towards the azimuth ψ (rad).
-fn tilted(gamma: f64, psi: f64) -> Vector3<f64> {
-    v3(
-        gamma.sin() * psi.cos(),
-        gamma.sin() * psi.sin(),
-        gamma.cos(),
-    )
-}
-
-/// Bearing at the origin along z, at rest; journal at `oj` along `uj` with the given velocities.
-fn state(
-    oj: Vector3<f64>,
-    uj: Vector3<f64>,
-    vj: Vector3<f64>,
-    wj: Vector3<f64>,
-) -> JournalState<f64> {
-    JournalState::new(
-        Vector3::zeros(),
-        Vector3::z(),
-        Vector3::zeros(),
-        Vector3::zeros(),
-        oj,
-        uj,
-        vj,
-        wj,
-    )
-}
-
-fn still(oj: Vector3<f64>, uj: Vector3<f64>) -> JournalState<f64> {
-    state(oj, uj, Vector3::zeros(), Vector3::zeros())
-}
+#[path = "support/journal_setup.rs"]
+mod journal_setup;
+use journal_setup::{state, still, tilted, v3, C, L, RB, RJ};
 
 fn hertz_ln() -> NormalLaw {
     NormalLaw::new(
