@@ -1071,27 +1071,34 @@ normal = {law}
     )
 }
 
-fn planar_reduction_cases(out: &mut Vec<Case>) {
+/// The planar engine's clearance slider–crank of `mbd.clearance_slider_crank` (verify/mbd.rs:
+/// steel LN c_e = 0.9 over a 10 mm bearing, no friction) at crank speed `omega` (rad/s), run with
+/// `opts`: the reference of the planar reductions.
+fn planar_slider_crank(omega: f64, opts: &SimOptions) -> Result<Results, String> {
     use crate::minimal_slider_crank::{R_BEARING, R_JOURNAL};
     use clr_contact::{FrictionLaw, JournalBearing, Material, NormalLaw};
+    let jb = JournalBearing {
+        bearing: Material::steel(),
+        journal: Material::steel(),
+        r_bearing: R_BEARING,
+        r_journal: R_JOURNAL,
+        length: 0.01,
+    };
+    let normal = NormalLaw::preset("LN", &jb, 0.9).map_err(|e| e.to_string())?;
+    let friction = FrictionLaw::coulomb(0.0, 1.0).map_err(|e| e.to_string())?;
+    let mut planar =
+        super::mbd::clearance_slider_crank(omega, normal, friction, R_BEARING, R_JOURNAL)?;
+    planar.simulate(opts).map_err(|e| e.to_string())
+}
+
+fn planar_reduction_cases(out: &mut Vec<Case>) {
     let src = "the planar engine on the same mechanism (verify/mbd.rs clearance_slider_crank: \
                5000 rpm, steel LN c_e = 0.9, no friction), the spatial model moving in the x–y \
                plane";
     let omega = 5000.0 * std::f64::consts::PI / 30.0;
     let runs = |rtol: f64| -> Result<(Results, Results), String> {
         let opts = dopri(0.010, 10, rtol);
-        let jb = JournalBearing {
-            bearing: Material::steel(),
-            journal: Material::steel(),
-            r_bearing: R_BEARING,
-            r_journal: R_JOURNAL,
-            length: 0.01,
-        };
-        let normal = NormalLaw::preset("LN", &jb, 0.9).map_err(|e| e.to_string())?;
-        let friction = FrictionLaw::coulomb(0.0, 1.0).map_err(|e| e.to_string())?;
-        let mut planar =
-            super::mbd::clearance_slider_crank(omega, normal, friction, R_BEARING, R_JOURNAL)?;
-        let p = planar.simulate(&opts).map_err(|e| e.to_string())?;
+        let p = planar_slider_crank(omega, &opts)?;
         let s = run_spatial(&slider_crank_text(omega), &opts)?;
         Ok((p, s))
     };
@@ -1154,26 +1161,13 @@ normal = {{ law = "preset", preset = "LN", restitution = 0.9, bearing_material =
 /// `mbd.spatial.revolute_clearance.planar_reduction`: the spatial revolute clearance joint in
 /// the planar clearance slider–crank against the planar engine (issue 32).
 fn journal_reduction_cases(out: &mut Vec<Case>) {
-    use crate::minimal_slider_crank::{R_BEARING, R_JOURNAL};
-    use clr_contact::{FrictionLaw, JournalBearing, Material, NormalLaw};
     let src = "the planar engine on the same mechanism (verify/mbd.rs clearance_slider_crank: \
                5000 rpm, steel LN c_e = 0.9, no friction), the spatial model with a revolute \
                clearance joint (axes along z, 10 mm long) moving in the x–y plane";
     let omega = 5000.0 * std::f64::consts::PI / 30.0;
     let runs = |rtol: f64| -> Result<(Results, Results), String> {
         let opts = dopri(0.010, 10, rtol);
-        let jb = JournalBearing {
-            bearing: Material::steel(),
-            journal: Material::steel(),
-            r_bearing: R_BEARING,
-            r_journal: R_JOURNAL,
-            length: 0.01,
-        };
-        let normal = NormalLaw::preset("LN", &jb, 0.9).map_err(|e| e.to_string())?;
-        let friction = FrictionLaw::coulomb(0.0, 1.0).map_err(|e| e.to_string())?;
-        let mut planar =
-            super::mbd::clearance_slider_crank(omega, normal, friction, R_BEARING, R_JOURNAL)?;
-        let p = planar.simulate(&opts).map_err(|e| e.to_string())?;
+        let p = planar_slider_crank(omega, &opts)?;
         let mut s = run_spatial(&journal_slider_crank_text(omega), &opts)?;
         // at zero tilt both radial regions open and close together: compare the planar
         // impacts with region A's
