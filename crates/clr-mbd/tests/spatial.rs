@@ -444,3 +444,24 @@ fn journal_joint_errors_name_the_field() {
     assert_eq!(e.path, "clearance[0].type", "{e:?}");
     assert!(e.message.contains("cylindrical"), "{e:?}");
 }
+
+/// An axial end play in millimetres written as metres (0.2 for 0.2 mm) on the shipped
+/// misaligned-pin example is reported at its field: above a quarter of the 20 mm bearing length
+/// (clr_mbd::plausible::CLEARANCE_FRACTION; the example's own 0.2 mm is 1 %).
+#[test]
+fn an_axial_clearance_in_millimetres_warns() {
+    let pin = include_str!("../../../models/examples/spatial_revolute_clearance.toml")
+        .replace("axial_clearance = 2e-4", "axial_clearance = 0.2");
+    let pin = pin.replacen("t_end = ", "t_end = 0.002 # ", 1);
+    let d = desc(&pin);
+    let r = d
+        .compile()
+        .unwrap()
+        .simulate(&d.sim_options().unwrap())
+        .unwrap();
+    assert!(
+        r.warnings.iter().any(|w| w.field == "pin.axial_clearance"),
+        "{:?}",
+        r.warnings
+    );
+}

@@ -15,7 +15,7 @@ use crate::desc::laws::ContactFriction;
 use crate::error::MbdError;
 use crate::plausible::{
     check_energy, deep, friction, gyration_radius, joint_radii, peak_force, restitution, tip_speed,
-    Warning, PENETRATION_FRACTION, REFUSE_PENETRATION,
+    warn, Warning, CLEARANCE_FRACTION, PENETRATION_FRACTION, REFUSE_PENETRATION,
 };
 use crate::results::Results;
 
@@ -136,6 +136,22 @@ impl SpatialModel {
             ];
             let (rb, c) = (s.joint.bearing_radius(), s.joint.clearance());
             out.extend(joint_radii(fields, "bearing", rb, c, sc.size));
+            let lb = s.joint.bearing_length();
+            if let Some(ca) = s
+                .joint
+                .axial_clearance()
+                .filter(|&ca| ca > CLEARANCE_FRACTION * lb)
+            {
+                out.push(warn(
+                    format!("{name}.axial_clearance"),
+                    format!(
+                        "an axial end play of {ca:.3e} m is {:.0} % of the bearing length \
+                         {lb:.3e} m (thrust faces keep a fraction of a millimetre): lengths are \
+                         in metres (0.2 mm is 2e-4)",
+                        100.0 * ca / lb
+                    ),
+                ));
+            }
             out.extend(friction(name, s.friction.map_or(0.0, |f| f.mu_max())));
             out.extend(restitution(name, &s.radial));
             if s.thrust != s.radial {
