@@ -430,7 +430,7 @@ impl FlapParams {
 
     /// Combined auxiliary lever arm + flap in the lever frame (origin at O2, x along O2→J4):
     /// (mass, inertia about the combined centre of mass, centre of mass).
-    fn aux_lever_with_flap(&self) -> (f64, f64, [f64; 2]) {
+    pub(crate) fn aux_lever_with_flap(&self) -> (f64, f64, [f64; 2]) {
         let c = self.aux_lever_arm_length;
         let (ml, mf) = (self.aux_lever_arm_mass, self.flap_mass);
         let rl = [0.5 * c, 0.0];
@@ -848,6 +848,25 @@ pub(crate) fn simulate(
     Ok(res)
 }
 
+/// The ideal-joint reference of `p` (every clearance set to 0), recorded every
+/// `reference_interval` s with `flap.angle` and `flap.alpha`: what [`run`] compares a clearance
+/// run with, for models that simulate the same linkage another way (the spatial flap,
+/// [`crate::flap_spatial`]).
+///
+/// # Errors
+/// Invalid parameters or settings, build or simulation errors.
+pub fn run_ideal_reference(
+    model: &str,
+    p: &FlapParams,
+    settings: &RunSettings,
+) -> Result<Results, ModelsError> {
+    let ideal = FlapParams {
+        clearances: [0.0; 4],
+        ..p.clone()
+    };
+    simulate(model, &ideal, settings, true)
+}
+
 /// Stroboscopic (Poincaré-section) spread of the journal-centre position of joint `j`: the
 /// eccentricity is sampled at t = t0 + (k + i/N)·T for every whole period k after `t0` and each
 /// of the N phases i; per phase the RMS distance of the samples from their mean is taken, and
@@ -910,6 +929,37 @@ pub(crate) fn errors_against_ideal(
     (err, aerr)
 }
 
+/// The flap angle error (max, RMS) and acceleration oscillation (peak, RMS) after `t0` (s) of
+/// the errors `err` (rad) and `aerr` (rad/s²) at times `t` (s).
+pub(crate) fn error_metrics(t: &[f64], err: &[f64], aerr: &[f64], t0: f64) -> Vec<Metric> {
+    vec![
+        Metric::new(
+            "flap_angle_error_max",
+            common::peak_abs(t, err, t0),
+            "rad",
+            "largest |flap angle − ideal flap angle| after the transient",
+        ),
+        Metric::new(
+            "flap_angle_error_rms",
+            common::time_rms(t, err, t0),
+            "rad",
+            "time RMS of the flap angle error after the transient",
+        ),
+        Metric::new(
+            "flap_acceleration_oscillation_peak",
+            common::peak_abs(t, aerr, t0),
+            "rad/s^2",
+            "largest |flap angular acceleration − ideal| after the transient",
+        ),
+        Metric::new(
+            "flap_acceleration_oscillation_rms",
+            common::time_rms(t, aerr, t0),
+            "rad/s^2",
+            "time RMS of the flap angular acceleration − ideal after the transient",
+        ),
+    ]
+}
+
 /// Metrics against the ideal run; appends `flap.error` and `flap.alpha_error`.
 fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
     let t = col(res, "t");
@@ -918,31 +968,8 @@ fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
     let (al, ali) = (col(res, "flap.alpha"), col(ideal, "flap.alpha"));
     let (err, aerr) = errors_against_ideal(&t, (&a, &al), &ti, (&ai, &ali));
     let t0 = p.transient;
-    let mut m = vec![
-        Metric::new(
-            "flap_angle_error_max",
-            common::peak_abs(&t, &err, t0),
-            "rad",
-            "largest |flap angle − ideal flap angle| after the transient",
-        ),
-        Metric::new(
-            "flap_angle_error_rms",
-            common::time_rms(&t, &err, t0),
-            "rad",
-            "time RMS of the flap angle error after the transient",
-        ),
-        Metric::new(
-            "flap_acceleration_oscillation_peak",
-            common::peak_abs(&t, &aerr, t0),
-            "rad/s^2",
-            "largest |flap angular acceleration − ideal| after the transient",
-        ),
-        Metric::new(
-            "flap_acceleration_oscillation_rms",
-            common::time_rms(&t, &aerr, t0),
-            "rad/s^2",
-            "time RMS of the flap angular acceleration − ideal after the transient",
-        ),
+    let mut m = error_metrics(&t, &err, &aerr, t0);
+    m.extend([
         Metric::new(
             "flap_angle_amplitude_ideal",
             common::peak_abs(&ti, &ai, t0),
@@ -955,7 +982,7 @@ fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
             "rad/s^2",
             "largest |flap angular acceleration| of the ideal mechanism after the transient",
         ),
-    ];
+    ]);
     let mut spreads = Vec::new();
     for (k, j) in JOINTS.iter().enumerate() {
         let c = p.clearances[k];

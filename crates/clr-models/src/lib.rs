@@ -18,6 +18,7 @@ pub mod findings;
 pub mod flap;
 pub mod flap_flex;
 pub mod flap_map;
+pub mod flap_spatial;
 pub mod guide;
 pub mod guide_map;
 pub mod lubrication_wear;

@@ -14,6 +14,7 @@ pub mod models_dual_guide;
 mod models_dual_guide_map;
 pub mod models_flap_flex;
 mod models_flap_map;
+mod models_flap_misalignment;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
@@ -120,6 +121,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "models",
         run: models_flap_flex::cases,
+    },
+    Group {
+        name: "models.flap_misalignment",
+        run: models_flap_misalignment::cases,
     },
     Group {
         name: "models",
