@@ -17,6 +17,10 @@ const MAKERS: &[(&str, Maker)] = &[
         crate::verify::models_flap_flex::figures,
     ),
     (
+        "models.flap misalignment",
+        crate::verify::models_flap_misalignment::figures,
+    ),
+    (
         "models.guide dual",
         crate::verify::models_dual_guide::figures,
     ),

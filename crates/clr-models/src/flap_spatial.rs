@@ -823,7 +823,7 @@ fn figures(dir: &Path, cases: &[(MisalignmentCase, Vec<Metric>)]) -> Result<(), 
                         }
                     )
                 };
-                f = f.line(&name, pts.clone()).points("", pts);
+                f = f.line(&name, pts);
             }
             f
         };
@@ -841,7 +841,8 @@ fn figures(dir: &Path, cases: &[(MisalignmentCase, Vec<Metric>)]) -> Result<(), 
                 "Clearance size (J4) with misaligned bearings: flap acceleration oscillation",
             )
             .x_label("radial clearance of J4 (mm)")
-            .y_label("oscillation RMS (rad/s²)"),
+            .y_label("oscillation RMS (rad/s²)")
+            .log_y(),
             "size",
             &osc,
         ),
@@ -851,7 +852,8 @@ fn figures(dir: &Path, cases: &[(MisalignmentCase, Vec<Metric>)]) -> Result<(), 
         lines(
             Figure::new("Clearance position (0.1 mm) with misaligned bearings: flap acceleration oscillation")
                 .x_label("clearance joint (1 actuator, 2 lever pivot, 3 lever-rod, 4 rod-aux lever)")
-                .y_label("oscillation RMS (rad/s²)"),
+                .y_label("oscillation RMS (rad/s²)")
+                .log_y(),
             "position",
             &osc,
         ),

@@ -77,7 +77,7 @@ pub fn studies() -> Vec<Study> {
             description: "rigid flap linkage in space, spatial revolute clearance joints of the \
                           paper's 15 mm bearing length, bore axes misaligned 0/0.05/0.1/0.2° \
                           about and across the link: clearance size and position (49 runs of \
-                          1.25 s + 8 planar, ~15 min; docs/models/flap.md#misalignment)",
+                          1.25 s + 8 planar, ~9 min; docs/models/flap.md#misalignment)",
             run: |dir| crate::flap_spatial::study(dir).map(|c| c.len()),
             map: None,
         },

@@ -14,7 +14,7 @@ pub mod models_dual_guide;
 mod models_dual_guide_map;
 pub mod models_flap_flex;
 mod models_flap_map;
-mod models_flap_misalignment;
+pub mod models_flap_misalignment;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
