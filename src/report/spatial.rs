@@ -28,6 +28,9 @@ pub struct SpatialScene {
     pub joints: Vec<JointDraw>,
     /// Ball-and-socket clearance joints.
     pub sockets: Vec<SocketDraw>,
+    /// Journal-in-bearing (spatial revolute and cylindrical) clearance joints.
+    #[serde(default)]
+    pub journals: Vec<JournalDraw>,
     /// A point whose trajectory is drawn.
     pub trace: Option<TracePoint>,
 }
@@ -76,6 +79,46 @@ pub struct SocketDraw {
     pub ball_radius: f64,
 }
 
+/// A journal-in-bearing clearance joint: the bore (a translucent cylinder with its two rims) on
+/// the bearing body, the journal (a solid cylinder) on the other; the page magnifies the
+/// journal's radial offset and tilt in the bore by the clearance magnification, and marks each
+/// radial region in contact at the journal's end on the side of that end's offset, each thrust
+/// face in contact at the journal's end face.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct JournalDraw {
+    /// Name (its result columns are `name.radial_a.normal_force`, …).
+    pub name: String,
+    /// Body of the bearing (`None`: the ground).
+    pub bearing_body: Option<String>,
+    /// Bore centre (mid-length) in that body's centre-of-mass frame, m.
+    pub bearing_at: [f64; 3],
+    /// Bore axis in that body's frame (unit vector).
+    pub bearing_axis: [f64; 3],
+    /// Body of the journal (`None`: the ground).
+    pub journal_body: Option<String>,
+    /// Journal centre (mid-length) in that body's centre-of-mass frame, m.
+    pub journal_at: [f64; 3],
+    /// Journal axis in that body's frame (unit vector).
+    pub journal_axis: [f64; 3],
+    /// Bore radius R_b, m.
+    pub bearing_radius: f64,
+    /// Bore length L_b, m.
+    pub bearing_length: f64,
+    /// Journal radius R_j < R_b, m.
+    pub journal_radius: f64,
+    /// Journal length L_j, m.
+    pub journal_length: f64,
+}
+
+/// Per journal and frame, the normal forces stored in [`SpatialFrames::journals`], N, in this
+/// order (radial region A at the bore's low end, B at its high end, thrust faces − and +).
+pub const JOURNAL_VALUES: [&str; 4] = [
+    "radial_a.normal_force",
+    "radial_b.normal_force",
+    "thrust_minus.normal_force",
+    "thrust_plus.normal_force",
+];
+
 /// The point whose trajectory is drawn.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct TracePoint {
@@ -106,6 +149,10 @@ pub struct SpatialFrames {
     pub pose: Vec<Vec<f32>>,
     /// Per socket: the eight [`SOCKET_VALUES`] per frame, flattened (m, N, 1/0).
     pub sockets: Vec<Vec<f32>>,
+    /// Per journal: the four [`JOURNAL_VALUES`] per frame, flattened, N (0 for a column the
+    /// results lack, as the thrust faces of a cylindrical joint).
+    #[serde(default)]
+    pub journals: Vec<Vec<f32>>,
     /// The traced point's world place `[x, y, z]` per frame, flattened, m (empty without one).
     pub trace: Vec<f32>,
 }
@@ -214,6 +261,11 @@ impl SpatialScene {
             self.body_index(&item, s.socket_body.as_deref())?;
             self.body_index(&item, s.ball_body.as_deref())?;
         }
+        for j in &self.journals {
+            let item = format!("journal `{}`", j.name);
+            self.body_index(&item, j.bearing_body.as_deref())?;
+            self.body_index(&item, j.journal_body.as_deref())?;
+        }
         if let Some(tr) = &self.trace {
             self.body_index("the trace", Some(&tr.body))?;
         }
@@ -254,23 +306,18 @@ impl SpatialFrames {
         let sockets = scene
             .sockets
             .iter()
-            .map(|s| {
-                let cols: Vec<Option<Vec<f64>>> = SOCKET_VALUES
-                    .iter()
-                    .map(|c| results.column(&format!("{}.{c}", s.name)))
-                    .collect();
-                rows.iter()
-                    .flat_map(|&r| {
-                        cols.iter()
-                            .map(move |c| c.as_ref().map_or(0.0, |c| c[r] as f32))
-                    })
-                    .collect()
-            })
+            .map(|s| values_at(results, &s.name, &SOCKET_VALUES, rows))
+            .collect();
+        let journals = scene
+            .journals
+            .iter()
+            .map(|j| values_at(results, &j.name, &JOURNAL_VALUES, rows))
             .collect();
         let mut frames = SpatialFrames {
             t: rows.iter().map(|&r| t[r]).collect(),
             pose,
             sockets,
+            journals,
             trace: Vec::new(),
         };
         if let Some(tr) = &scene.trace {
@@ -337,6 +384,19 @@ pub fn plots(scene: &SpatialScene, results: &Results, max: usize) -> Vec<Plot> {
             forces.lines.push(frames::time_line(&s.name, &t, &f, max));
         }
     }
+    for j in &scene.journals {
+        for v in JOURNAL_VALUES {
+            let Some(f) = results.column(&format!("{}.{v}", j.name)) else {
+                continue;
+            };
+            // a group that never touches adds nothing but a flat line at zero
+            if f.iter().any(|&x| x != 0.0) {
+                let group = v.trim_end_matches(".normal_force");
+                let label = format!("{}.{group}", j.name);
+                forces.lines.push(frames::time_line(&label, &t, &f, max));
+            }
+        }
+    }
     let mut out = Vec::new();
     if !forces.lines.is_empty() {
         out.push(forces);
@@ -392,6 +452,21 @@ pub(super) fn scripts() -> String {
         three = include_str!("assets/three/three.bundle.min.js"),
         stage = include_str!("assets/report3d.js"),
     )
+}
+
+/// The columns `name.<value>` of `results` at `rows`, interleaved per row (0 for a missing
+/// column).
+fn values_at(results: &Results, name: &str, values: &[&str], rows: &[usize]) -> Vec<f32> {
+    let cols: Vec<Option<Vec<f64>>> = values
+        .iter()
+        .map(|c| results.column(&format!("{name}.{c}")))
+        .collect();
+    rows.iter()
+        .flat_map(|&r| {
+            cols.iter()
+                .map(move |c| c.as_ref().map_or(0.0, |c| c[r] as f32))
+        })
+        .collect()
 }
 
 /// Synthetic spatial results for tests (here and in `clr animate`): a top (body `top`) on a
@@ -452,6 +527,7 @@ pub fn spinning_top(rows: usize) -> (SpatialScene, Results) {
             at: [0.0; 3],
             axis: None,
         }],
+        journals: Vec::new(),
         sockets: vec![SocketDraw {
             name: "cup".into(),
             socket_body: None,
@@ -483,8 +559,8 @@ fn spin_axis() -> [f64; 3] {
 impl SpatialScene {
     /// The drawing of a spatial model description: every body through the points its joints,
     /// forces and sockets attach to (centre-of-mass frame), the joints with their axes, the
-    /// sockets, and the trace of the first clearance joint's ball (else of the last body's
-    /// centre of mass).
+    /// sockets and journals, and the trace of the first ball (else of the first journal's
+    /// centre, else of the last body's centre of mass).
     pub fn from_desc(d: &clr_mbd::spatial::SpatialDesc) -> Self {
         use clr_mbd::spatial::{End, SpatialForce};
         let com = |body: &str| {
@@ -544,13 +620,28 @@ impl SpatialScene {
             }
         }
         let mut sockets = Vec::new();
-        // journal joints are not drawn yet (only their anchors)
+        let mut journals = Vec::new();
         for c in &d.clearances {
             let c = match c {
                 clr_mbd::spatial::SpatialClearance::Spherical(c) => c,
                 clr_mbd::spatial::SpatialClearance::Journal(j) => {
                     attach(&j.bearing);
                     attach(&j.journal);
+                    let (bearing_body, bearing_at) = local(&j.bearing);
+                    let (journal_body, journal_at) = local(&j.journal);
+                    journals.push(JournalDraw {
+                        name: j.name.clone(),
+                        bearing_body,
+                        bearing_at,
+                        bearing_axis: unit(j.bearing.axis.unwrap_or([0.0, 0.0, 1.0])),
+                        journal_body,
+                        journal_at,
+                        journal_axis: unit(j.journal.axis.unwrap_or([0.0, 0.0, 1.0])),
+                        bearing_radius: j.bearing_radius,
+                        bearing_length: j.bearing_length,
+                        journal_radius: j.journal_radius,
+                        journal_length: j.journal_length,
+                    });
                     continue;
                 }
             };
@@ -577,17 +668,38 @@ impl SpatialScene {
                 body: b.clone(),
                 at: *ball_at,
             }),
-            _ => d.bodies.last().map(|b| TracePoint {
-                body: b.name.clone(),
-                at: [0.0; 3],
-            }),
+            _ => match journals.first() {
+                Some(JournalDraw {
+                    journal_body: Some(b),
+                    journal_at,
+                    ..
+                }) => Some(TracePoint {
+                    body: b.clone(),
+                    at: *journal_at,
+                }),
+                _ => d.bodies.last().map(|b| TracePoint {
+                    body: b.name.clone(),
+                    at: [0.0; 3],
+                }),
+            },
         };
         Self {
             bodies,
             joints,
             sockets,
+            journals,
             trace,
         }
+    }
+}
+
+/// `v` scaled to unit length (unchanged when zero: the reader refuses a zero axis).
+fn unit(v: [f64; 3]) -> [f64; 3] {
+    let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if n > 0.0 {
+        [v[0] / n, v[1] / n, v[2] / n]
+    } else {
+        v
     }
 }
 
@@ -713,6 +825,47 @@ mod tests {
         assert!(html.contains("window.clrSpatialStage = function"));
         // the classic scripts stay closed where they should: no "</script" inside them
         assert_eq!(html.matches("</script>").count(), 4);
+    }
+
+    /// A journal joint of a model file is drawn with its bodies, centres and unit axes (in the
+    /// centre-of-mass frames), and its frames carry the four group forces of the results.
+    #[test]
+    fn a_journal_joint_is_drawn_from_its_description_with_its_group_forces() {
+        let text = include_str!("../../models/examples/spatial_revolute_clearance.toml");
+        let d = clr_mbd::spatial::SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap();
+        let scene = SpatialScene::from_desc(&d);
+        let [j] = scene.journals.as_slice() else {
+            panic!("{:?}", scene.journals)
+        };
+        assert_eq!(j.bearing_body, None);
+        assert_eq!(j.journal_body.as_deref(), Some("pendulum"));
+        // the journal at the frame origin, the centre of mass 0.1 m along x
+        assert_eq!(j.journal_at, [-0.1, 0.0, 0.0]);
+        let n = j.bearing_axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+        assert!((n - 1.0).abs() < 1e-15, "{n}");
+        assert_eq!(scene.trace.as_ref().map(|t| t.at), Some([-0.1, 0.0, 0.0]));
+        let mut columns: Vec<String> = ["t", "pendulum.x", "pendulum.y", "pendulum.z"]
+            .map(String::from)
+            .to_vec();
+        columns.extend(["qw", "qx", "qy", "qz"].map(|c| format!("pendulum.{c}")));
+        columns.extend(JOURNAL_VALUES.map(|v| format!("pin.{v}")));
+        let row = [0.0, 0.1, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.5, 2.5, 0.0, 4.0];
+        let results = Results {
+            columns,
+            data: [row, row].concat(),
+            ..Results::default()
+        };
+        let frames = SpatialFrames::new(&scene, &results, &[0, 1]).unwrap();
+        assert_eq!(
+            frames.journals,
+            vec![vec![1.5, 2.5, 0.0, 4.0, 1.5, 2.5, 0.0, 4.0]]
+        );
+        let titles: Vec<String> = plots(&scene, &results, 10)[0]
+            .lines
+            .iter()
+            .map(|l| l.label.clone())
+            .collect();
+        assert_eq!(titles, ["pin.radial_a", "pin.radial_b", "pin.thrust_plus"]);
     }
 
     #[test]

@@ -740,7 +740,13 @@ fn generic_metrics(r: &clr_mbd::Results, s: Meta<'_>) -> Vec<Metric> {
     let mut m = Vec::new();
     for (c, radial) in s.clearances {
         let start = m.len();
-        let impacts = || r.impacts.iter().filter(|i| &i.joint == c);
+        // a spatial journal's impacts are its contact groups' (`c.radial_a`, …)
+        let group = format!("{c}.");
+        let impacts = || {
+            r.impacts
+                .iter()
+                .filter(|i| &i.joint == c || i.joint.starts_with(&group))
+        };
         if let Some(f) = r.column(&format!("{c}.normal_force")) {
             m.push(Metric::new(
                 &format!("{c}.peak_normal_force"),
@@ -764,7 +770,8 @@ fn generic_metrics(r: &clr_mbd::Results, s: Meta<'_>) -> Vec<Metric> {
             &format!("{c}.impacts"),
             impacts().count() as f64,
             "-",
-            "impacts (located contact onsets to separation) of the clearance joint",
+            "impacts (located contact onsets to separation) of the clearance joint (of all its \
+             contact groups for a spatial journal)",
         ));
         if let Some(first) = impacts().map(|i| i.onset).reduce(f64::min) {
             m.push(Metric::new(

@@ -21,7 +21,8 @@ pub struct SpatialSpec {
     pub description: String,
     /// Integrator settings.
     pub options: SimOptions,
-    /// Each spherical clearance joint by name with its radial clearance R_s − R_b (m).
+    /// Each clearance joint by name with its radial clearance (m), and each contact group of a
+    /// journal joint (`J.radial_a`, …) with `None`: what the generic metrics cover.
     pub clearances: Vec<(String, Option<f64>)>,
     /// The description as run (for `summary.json`).
     pub resolved: serde_json::Value,
@@ -71,11 +72,7 @@ impl SpatialSpec {
             name,
             description: desc.model.description.clone().unwrap_or_default(),
             options: SimOptions::default(),
-            clearances: desc
-                .clearances
-                .iter()
-                .map(|c| (c.name().to_string(), Some(c.radial_clearance())))
-                .collect(),
+            clearances: clearance_metrics_of(&desc),
             resolved: serde_json::Value::Null,
             notes,
             desc: Box::new(SpatialDesc::default()),
@@ -204,4 +201,23 @@ impl SpatialSpec {
             .map_err(|e| SpecError::plain(what, "", e.message))?;
         Ok(())
     }
+}
+
+/// The clearance joints the generic metrics cover: each joint with its radial clearance, and
+/// for a journal joint each contact group (`J.radial_a`, `J.radial_b`, and for the revolute kind
+/// `J.thrust_minus`, `J.thrust_plus`), whose columns and impacts carry the group's name.
+fn clearance_metrics_of(desc: &SpatialDesc) -> Vec<(String, Option<f64>)> {
+    use clr_mbd::spatial::{ClearanceKind, SpatialClearance};
+    let mut v = Vec::new();
+    for c in &desc.clearances {
+        v.push((c.name().to_string(), Some(c.radial_clearance())));
+        if let SpatialClearance::Journal(j) = c {
+            let groups: &[&str] = match j.kind {
+                ClearanceKind::Revolute => &["radial_a", "radial_b", "thrust_minus", "thrust_plus"],
+                _ => &["radial_a", "radial_b"],
+            };
+            v.extend(groups.iter().map(|g| (format!("{}.{g}", j.name), None)));
+        }
+    }
+    v
 }

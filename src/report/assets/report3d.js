@@ -7,10 +7,12 @@
 // Data (spatial.rs): scene.bodies[k].points are in the body's centre-of-mass frame;
 // frames.pose[k] is [x, y, z, qw, qx, qy, qz] per frame (world, body → world); frames.sockets[s]
 // is [ex, ey, ez, F_N, ftx, fty, ftz, contact] per frame (e = ball − socket centre, world; the
-// normal force acts on the ball along −e/|e|); frames.trace is the traced point [x, y, z] per
-// frame. World axes are three.js's: y up.
+// normal force acts on the ball along −e/|e|); frames.journals[j] is [F_A, F_B, F_thrust−,
+// F_thrust+] per frame (normal forces of the journal's radial regions at the bore's low and high
+// ends and of its thrust faces, N); frames.trace is the traced point [x, y, z] per frame.
+// World axes are three.js's: y up.
 //
-// A headless test reads window.clrReport.spatial ({webgl, renders, ball(name), body(name)}).
+// A headless test reads window.clrReport.spatial ({webgl, renders, ball(name), journal(name), body(name)}).
 'use strict';
 (() => {
   const COLOURS = [0x4f7fc8, 0xd9822b, 0x3c9a5f, 0x9b59b6, 0xc0392b, 0x16a0a0, 0x8d6e63, 0x7f8c8d];
@@ -68,6 +70,11 @@
         const a = fr.sockets[s];
         return a && a.length >= 8 * n ? [0, 1, 2, 3, 4, 5, 6, 7].map((j) => mix(a, 8, i, j, f)) : null;
       },
+      /** The four journal forces of journal j at (i, f). */
+      journal(j, i, f) {
+        const a = (fr.journals || [])[j];
+        return a && a.length >= 4 * n ? [0, 1, 2, 3].map((c) => mix(a, 4, i, c, f)) : null;
+      },
       trace(i, f) {
         const a = fr.trace;
         return a && a.length >= 3 * n ? new THREE.Vector3(mix(a, 3, i, 0, f), mix(a, 3, i, 1, f), mix(a, 3, i, 2, f)) : null;
@@ -96,6 +103,7 @@
       }
       for (const j of sc.joints) add(j.body, j.at, i, 0);
       for (const s of sc.sockets) add(s.socket_body, s.socket_at, i, s.socket_radius);
+      for (const j of sc.journals || []) add(j.bearing_body, j.bearing_at, i, j.bearing_radius + 0.5 * j.bearing_length);
       const tr = motion.trace(i, 0);
       if (tr) box.expandByPoint(tr);
     }
@@ -182,7 +190,7 @@
     const fmtTime = timeFormat(motion.t0, motion.t1, motion.n);
     const box3 = bounds(view, motion);
     const size = Math.max(box3.getSize(new THREE.Vector3()).length(), 1e-6);
-    const handle = { webgl: 'pending', renders: 0, ball: () => null, body: () => null };
+    const handle = { webgl: 'pending', renders: 0, ball: () => null, journal: () => null, body: () => null };
     clrReport.spatial = handle;
     // three.js reports WebGL failures (shader compilation, lost context) on the console only
     const consoleError = console.error.bind(console);
@@ -193,12 +201,18 @@
 
     // clearance magnification as on the planar page: the clearance drawn as 8 % of the socket
     // radius by default, up to 85 %
-    const sized = scene3.sockets.filter((s) => s.socket_radius > s.ball_radius && s.socket_radius > 0);
-    const magDefault = Math.max(1, Math.min(...sized.map((s) => (0.08 * s.socket_radius) / (s.socket_radius - s.ball_radius)), Infinity) || 1);
-    const magMax = Math.max(2, magDefault * 2, ...sized.map((s) => (0.85 * s.socket_radius) / (s.socket_radius - s.ball_radius)));
+    // (sockets and journal bores alike: [outer radius, inner radius])
+    const journals3 = scene3.journals || [];
+    const radii = [...scene3.sockets.map((s) => [s.socket_radius, s.ball_radius]), ...journals3.map((j) => [j.bearing_radius, j.journal_radius])];
+    const sized = radii.filter(([R, r]) => R > r && R > 0);
+    const magDefault = Math.max(1, Math.min(...sized.map(([R, r]) => (0.08 * R) / (R - r)), Infinity) || 1);
+    const magMax = Math.max(2, magDefault * 2, ...sized.map(([R, r]) => (0.85 * R) / (R - r)));
     let fmax = 0;
     view.frames.sockets.forEach((a) => {
       for (let i = 0; i + 7 < a.length; i += 8) fmax = Math.max(fmax, Math.abs(a[i + 3]), Math.hypot(a[i + 4], a[i + 5], a[i + 6]));
+    });
+    (view.frames.journals || []).forEach((a) => {
+      for (const v of a) fmax = Math.max(fmax, Math.abs(v));
     });
     const opt = { mag: isFinite(magDefault) ? magDefault : 1, force: 1 };
     const pb = { t: motion.t0, playing: false, last: 0, span: 10, listeners: [] };
@@ -244,6 +258,7 @@
     const parentOf = (name) => (bodyIndex(name) >= 0 ? bodies[bodyIndex(name)] : world);
     for (const j of scene3.joints) parentOf(j.body).add(jointGroup(j, size));
     const sockets = scene3.sockets.map((s, k) => makeSocket(s, k));
+    const journals = journals3.map((j, k) => makeJournal(j, k));
     const trace = makeTrace();
 
     function makeSocket(s, k) {
@@ -259,6 +274,104 @@
         return a;
       };
       return { s, k, shell, inner, normal: arrowOf(CONTACT), friction: arrowOf(FRICTION) };
+    }
+
+    /** A bore (translucent, with its two rims) on the bearing body and a journal cylinder in
+     * the world, placed per frame by placeJournal; markers and arrows for the four groups. */
+    function makeJournal(j, k) {
+      const shade = material(0x868e96, { transparent: true, opacity: 0.25, depthWrite: false, side: 2 }); // side 2 = THREE.DoubleSide (the bundle exports no constants)
+      const bore = new THREE.Group();
+      bore.add(new THREE.Mesh(new THREE.CylinderGeometry(j.bearing_radius, j.bearing_radius, j.bearing_length, 40, 1, true), shade));
+      for (const y of [-0.5, 0.5]) {
+        const rim = new THREE.Mesh(new THREE.TorusGeometry(j.bearing_radius, 0.03 * j.bearing_radius, 8, 48), material(0x495057));
+        rim.rotation.x = Math.PI / 2;
+        rim.position.y = y * j.bearing_length;
+        bore.add(rim);
+      }
+      bore.position.set(...j.bearing_at);
+      bore.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), new THREE.Vector3(...j.bearing_axis).normalize());
+      parentOf(j.bearing_body).add(bore);
+      const colour = COLOURS[(bodyIndex(j.journal_body) + COLOURS.length) % COLOURS.length];
+      const pin = new THREE.Mesh(new THREE.CylinderGeometry(1, 1, 1, 40), material(colour));
+      world.add(pin);
+      const marks = [0, 1, 2, 3].map(() => {
+        const m = ball(0.12 * j.bearing_radius, material(CONTACT));
+        world.add(m);
+        return m;
+      });
+      const arrows = [0, 1, 2, 3].map(() => {
+        const a = new THREE.ArrowHelper(new THREE.Vector3(1, 0, 0), new THREE.Vector3(), 1, CONTACT);
+        world.add(a);
+        return a;
+      });
+      return { j, k, bore, pin, marks, arrows };
+    }
+
+    /** World place and axis of point `at` / direction `axis` of body `name` at (i, f). */
+    function onBody(name, at, axis, i, f) {
+      const p = name == null ? null : motion.pose(bodyIndex(name), i, f);
+      const x = new THREE.Vector3(...at);
+      const u = new THREE.Vector3(...axis).normalize();
+      if (p) {
+        x.applyQuaternion(p.q).add(p.p);
+        u.applyQuaternion(p.q);
+      }
+      return { x, u };
+    }
+
+    /** The journal's true state at (i, f): bore centre and axis, journal centre and axis (world),
+     * and the four group forces. */
+    function journalState(jr, i, f) {
+      const j = jr.j;
+      const b = onBody(j.bearing_body, j.bearing_at, j.bearing_axis, i, f);
+      const p = onBody(j.journal_body, j.journal_at, j.journal_axis, i, f);
+      if (p.u.dot(b.u) < 0) p.u.negate();
+      return { ob: b.x, ub: b.u, oj: p.x, uj: p.u, forces: motion.journal(jr.k, i, f) || [0, 0, 0, 0] };
+    }
+
+    /** The clearance magnification m and the drawn inner radius R − m·c (at least 0.15 R) of
+     * an outer radius R and inner radius r. */
+    function magnified(R, r) {
+      const c = Math.max(R - r, 0);
+      const m = c > 0 ? opt.mag : 1;
+      return { m, r: Math.max(R - m * c, 0.15 * R) };
+    }
+
+    function placeJournal(jr, i, f) {
+      const j = jr.j;
+      const { ob, ub, oj, uj, forces } = journalState(jr, i, f);
+      const { m, r } = magnified(j.bearing_radius, j.journal_radius);
+      // radial offset and tilt magnified m times, the axial offset as it is
+      const e = oj.clone().sub(ob);
+      const ax = ub.clone().multiplyScalar(e.dot(ub));
+      const centre = ob.clone().add(ax).addScaledVector(e.sub(ax), m);
+      const lean = uj.clone().addScaledVector(ub, -uj.dot(ub));
+      const u = ub.clone().addScaledVector(lean, m).normalize();
+      jr.pin.position.copy(centre);
+      jr.pin.quaternion.setFromUnitVectors(new THREE.Vector3(0, 1, 0), u);
+      jr.pin.scale.set(r, j.journal_length, r);
+      const perN = fmax > 0 ? (0.15 * size * opt.force) / fmax : 0;
+      [-1, 1].forEach((side, g) => {
+        // region A at the journal's low end, B at its high end: the contact lies on the side
+        // of that end's offset from the bore axis
+        const end = centre.clone().addScaledVector(u, 0.5 * side * j.journal_length);
+        const off = end.clone().sub(ob);
+        off.addScaledVector(ub, -off.dot(ub));
+        const on = forces[g] > 0 && off.lengthSq() > 0;
+        const n = on ? off.normalize() : new THREE.Vector3(1, 0, 0);
+        const at = end.clone().addScaledVector(n, r);
+        jr.marks[g].visible = on;
+        jr.marks[g].position.copy(at);
+        arrowTo(jr.arrows[g], at, n.clone().negate(), on ? forces[g] * perN : 0);
+      });
+      [-1, 1].forEach((side, t) => {
+        const g = 2 + t;
+        const at = centre.clone().addScaledVector(u, 0.5 * side * j.journal_length);
+        const on = forces[g] > 0;
+        jr.marks[g].visible = on;
+        jr.marks[g].position.copy(at);
+        arrowTo(jr.arrows[g], at, u.clone().multiplyScalar(-side), on ? forces[g] * perN : 0);
+      });
     }
 
     function makeTrace() {
@@ -285,9 +398,7 @@
     function place(sk, i, f) {
       const s = sk.s;
       const { centre, e, fn, ft, on } = socketState(sk, i, f);
-      const c = Math.max(s.socket_radius - s.ball_radius, 0);
-      const m = c > 0 ? opt.mag : 1;
-      const r = Math.max(s.socket_radius - m * c, 0.15 * s.socket_radius);
+      const { m, r } = magnified(s.socket_radius, s.ball_radius);
       sk.inner.position.copy(centre).addScaledVector(e, m);
       sk.inner.scale.setScalar(r);
       sk.inner.material.emissive.setHex(on ? 0x550000 : 0x000000);
@@ -317,6 +428,7 @@
         g.quaternion.copy(p.q);
       });
       for (const sk of sockets) place(sk, i, f);
+      for (const jr of journals) placeJournal(jr, i, f);
       const tr = motion.trace(i, f);
       if (trace && tr) trace.position.copy(tr);
       render();
@@ -354,11 +466,13 @@
     function publishState() {
       const balls = {};
       for (const sk of sockets) balls[sk.s.name] = handle.ball(sk.s.name);
+      const pins = {};
+      for (const jr of journals) pins[jr.j.name] = handle.journal(jr.j.name);
       const poses = {};
       for (const b of scene3.bodies) poses[b.name] = handle.body(b.name);
       const state = {
         time: pb.t, webgl: handle.webgl, renders: handle.renders, ink: inkSample(), view: current,
-        balls, bodies: poses, errors: clrReport.errors,
+        balls, journals: pins, bodies: poses, errors: clrReport.errors,
       };
       let el = document.getElementById('clr-state');
       if (!el) {
@@ -374,6 +488,13 @@
       const [i, f] = motion.locate(pb.t);
       const { centre, e } = socketState(sk, i, f);
       return centre.add(e).toArray();
+    };
+    /** A journal's true centre and axis (world, unmagnified) and which groups touch. */
+    handle.journal = (name) => {
+      const jr = journals.find((x) => x.j.name === name);
+      if (!jr) return null;
+      const { oj, uj, forces } = journalState(jr, ...motion.locate(pb.t));
+      return { centre: oj.toArray(), axis: uj.toArray(), touching: forces.map((v) => v > 0) };
     };
     handle.body = (name) => {
       const k = bodyIndex(name);
