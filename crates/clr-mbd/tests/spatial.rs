@@ -465,3 +465,27 @@ fn an_axial_clearance_in_millimetres_warns() {
         r.warnings
     );
 }
+
+/// A journal as long as its bore warns at `journal_length` (the kink of the contact energy at
+/// zero axial offset, clr_mbd spatial plausible.rs); the shipped example's longer pin does not.
+#[test]
+fn a_journal_as_long_as_its_bore_warns() {
+    let example = include_str!("../../../models/examples/spatial_revolute_clearance.toml")
+        .replacen("t_end = ", "t_end = 0.002 # ", 1);
+    for (text, warns) in [
+        (
+            example.replace("journal_length = 0.0202", "journal_length = 0.020"),
+            true,
+        ),
+        (example.clone(), false),
+    ] {
+        let d = desc(&text);
+        let r = d
+            .compile()
+            .unwrap()
+            .simulate(&d.sim_options().unwrap())
+            .unwrap();
+        let found = r.warnings.iter().any(|w| w.field == "pin.journal_length");
+        assert_eq!(found, warns, "{:?}", r.warnings);
+    }
+}

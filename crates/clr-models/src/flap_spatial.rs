@@ -1,7 +1,7 @@
 //! The rigid flap linkage written in space (issue 32, study `flap_misalignment`): the same
 //! bodies, joints, actuator and hinge load as [`crate::flap`], in the plane z = 0 of a spatial
-//! model, with every clearance joint a spatial revolute clearance joint (a journal of the
-//! paper's bearing length L = 15 mm in a bore of the same length, with thrust faces; clr-mbd
+//! model, with every clearance joint a spatial revolute clearance joint (a bore of the paper's
+//! bearing length L = 15 mm, the journal between its thrust collars 0.1 mm longer; clr-mbd
 //! `spatial::JournalClearanceDesc`) whose bore axis can be misaligned.
 //!
 //! **Misalignment.** The bore axis of each clearance joint is turned by α about the bearing
@@ -30,8 +30,10 @@
 //! piston 20 × 20 mm; the auxiliary lever arm with the flap I_xx = I_yy = I_zz (it turns about
 //! the ideal joint O2 only, so these values never enter its motion).
 //!
-//! **Axial end play** c_a = 0.1 mm per clearance joint (reconstruction), thrust collars of the
-//! journal radius, the radial normal law (the flap's preset over L_c = 15 mm) also on the thrust
+//! **Axial end play** c_a = 0.1 mm per clearance joint (reconstruction), a journal of length
+//! L + c_a between its collars (a pin longer than its bore, as in a clevis; a journal exactly as
+//! long as its bore would put a kink in the contact energy at zero axial offset), thrust collars
+//! of the journal radius, the radial normal law (the flap's preset over L_c = 15 mm) also on the thrust
 //! faces, and the flap's Ambrósio friction.
 
 use std::f64::consts::FRAC_PI_2;
@@ -449,7 +451,8 @@ fn journal_joint(
         bearing_radius: p.bearing_radius,
         bearing_length: p.axial_length,
         journal_radius: p.bearing_radius - clearance,
-        journal_length: p.axial_length,
+        // the pin spans its collars, which sit outside the bore with the end play
+        journal_length: p.axial_length + AXIAL_CLEARANCE,
         axial_clearance: Some(AXIAL_CLEARANCE),
         thrust_radius: None,
         quadrature_order: None,
@@ -791,6 +794,18 @@ fn thin(res: &Results, stride: usize) -> Results {
     }
 }
 
+/// Where case `c` is drawn on the figures of `study`: its own abscissa, and the size case of
+/// 0.1 mm also as joint 4 of the position figure (it is the position case J4).
+fn abscissa(c: &MisalignmentCase, study: &str) -> Option<f64> {
+    if c.study == study {
+        Some(c.x)
+    } else if study == "position" && c.study == "size" && c.label == "c0.1mm" {
+        Some(4.0)
+    } else {
+        None
+    }
+}
+
 fn figures(dir: &Path, cases: &[(MisalignmentCase, Vec<Metric>)]) -> Result<(), String> {
     use clr_plot::Figure;
     let value = |m: &[Metric], name: &str| crate::output::metric_value(m, name);
@@ -807,8 +822,10 @@ fn figures(dir: &Path, cases: &[(MisalignmentCase, Vec<Metric>)]) -> Result<(), 
             for (l, mis) in labels {
                 let pts: Vec<(f64, f64)> = cases
                     .iter()
-                    .filter(|(c, _)| c.study == study && c.misalignment == mis)
-                    .map(|(c, m)| (c.x, metric(c, m)))
+                    .filter_map(|(c, m)| {
+                        let x = abscissa(c, study)?;
+                        (c.misalignment == mis).then(|| (x, metric(c, m)))
+                    })
                     .collect();
                 let name = if l == "0" {
                     "aligned".to_string()

@@ -152,6 +152,7 @@ impl SpatialModel {
                     ),
                 ));
             }
+            out.extend(equal_lengths(name, lb, s.joint.journal_length()));
             out.extend(friction(name, s.friction.map_or(0.0, |f| f.mu_max())));
             out.extend(restitution(name, &s.radial));
             if s.thrust != s.radial {
@@ -274,4 +275,25 @@ impl SpatialModel {
             }
         }
     }
+}
+
+/// A journal as long as its bore: the overlap then shortens whichever way the journal slides,
+/// so the stored contact energy W = ∫Φ(δ) dz / L_c has a kink at zero axial offset, and the
+/// journal-end term pushes a centred journal axially with about Φ(δ)/L_c (measured on the
+/// frictionless example: 0.015 N under a 400 N impact, tilt grown from rounding to 1e-3 rad
+/// within 40 ms; with a longer journal the motion stays planar to the bit). Real pins are
+/// longer than their bores.
+fn equal_lengths(name: &str, bearing: f64, journal: f64) -> Option<Warning> {
+    ((journal - bearing).abs() <= 1e-9 * bearing).then(|| {
+        warn(
+            format!("{name}.journal_length"),
+            format!(
+                "the journal is as long as its bore ({journal:.3e} m): the contact energy then \
+                 has a kink at zero axial offset, which pushes a centred journal axially (about \
+                 Φ(δ)/L_c) and, without friction, lets rounding grow into tilt; a pin is longer \
+                 than its bore (with thrust collars at least bearing_length + axial_clearance): \
+                 make journal_length longer"
+            ),
+        )
+    })
 }
