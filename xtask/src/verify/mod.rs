@@ -17,7 +17,7 @@ mod models_flap_map;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
-mod spatial;
+pub(crate) mod spatial;
 mod spatial_jacobian;
 mod spatial_journal;
 mod spatial_ref;

@@ -9,7 +9,9 @@
 //!
 //! Every element (the gyroscopic moment −ω × Jω, the spring–dampers, actuators, rotational
 //! springs, bushings, applied forces and torques, the spherical clearance contact with
-//! stateless friction, and the constraint primitives' Φ_t, G·u and γ) is re-evaluated in
+//! stateless friction, the spatial revolute/cylindrical clearance joint (clr-contact's
+//! `journal` geometry and forces, generic over `journal::Real`, which the dual numbers
+//! implement), and the constraint primitives' Φ_t, G·u and γ) is re-evaluated in
 //! first-order dual numbers over the 24 directions (x_i, x_j, v_i, v_j) of its two bodies
 //! ([`crate::jacobian::dual`]): the gradients are the exact partial derivatives of the same
 //! formulas the right-hand side applies, the contact laws entering through clr-contact's
