@@ -8,6 +8,7 @@ mod peers;
 mod row;
 mod shapes;
 mod spatial;
+mod spatial_crank;
 
 use std::process::ExitCode;
 use std::str::FromStr;
@@ -48,8 +49,9 @@ const USAGE: &str =
        cargo xtask bench spatial [--min-time SECONDS] [--exudyn-h H1,H2,...] [--no-exudyn]
   spatial  pendulum in a spherical clearance joint over 0.1 s: clr spatial NDF (rtol 1e-5 ...
         1e-10) vs Exudyn's hollow-sphere contact (generalized-α, h 1e-4 ... 1e-6), centre-of-mass
-        error against clr DOPRI5 at rtol 1e-12, equal-error time ratios; writes
-        target/bench/spatial.{json,md}";
+        error against clr DOPRI5 at rtol 1e-12, equal-error time ratios; and the clearance
+        slider-crank with a spatial revolute clearance joint against the planar engine (per-step
+        and per-RHS cost, ratio spatial/planar); writes target/bench/spatial.{json,md}";
 
 pub fn run(args: &[String]) -> ExitCode {
     match args.first().map(String::as_str) {

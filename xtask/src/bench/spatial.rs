@@ -1,7 +1,9 @@
 //! `cargo xtask bench spatial`: a pendulum hanging in a spherical clearance joint (issue 31),
 //! clr's spatial engine against Exudyn's hollow-sphere contact (`ObjectContactSphereSphere`
 //! with `isHollowSphere1`, the pip package, `bench/exudyn_sphere_pendulum.py`) with the same
-//! law and parameters, in one run.
+//! law and parameters, in one run; and the clearance slider–crank with a spatial revolute
+//! clearance joint against the planar engine on the same mechanism (issue 32,
+//! [`super::spatial_crank`]).
 //!
 //! Model (every number in the peer script's docstring): socket of radius 10 mm on the ground,
 //! ball of 9.5 mm at the pendulum's reference point B; pendulum 1 kg, centre of mass 0.2 m from
@@ -231,9 +233,17 @@ pub fn run(args: &[String]) -> ExitCode {
         }
     }
     let ratios = ratios(&rows);
+    let (crank, crank_notes) = super::spatial_crank::rows(min_time);
+    notes.extend(crank_notes);
     let out = root.join("target").join("bench");
-    let md = markdown(&machine(), &rows, &ratios, &notes);
-    let json = serde_json::json!({ "rows": rows, "ratios": ratios, "notes": notes });
+    let mut md = markdown(&machine(), &rows, &ratios, &notes);
+    md.push_str(&super::spatial_crank::markdown(&crank));
+    let json = serde_json::json!({
+        "rows": rows,
+        "ratios": ratios,
+        "slider_crank": crank,
+        "notes": notes
+    });
     let written = std::fs::create_dir_all(&out)
         .and_then(|()| std::fs::write(out.join("spatial.md"), &md))
         .and_then(|()| std::fs::write(out.join("spatial.json"), json.to_string()));

@@ -18,7 +18,7 @@ pub mod models_flap_misalignment;
 mod models_guide_map;
 pub mod ode;
 mod shapes;
-mod spatial;
+pub(crate) mod spatial;
 mod spatial_jacobian;
 mod spatial_journal;
 mod spatial_ref;

@@ -1006,7 +1006,7 @@ fn sphere_planar_cases(out: &mut Vec<Case>) {
 /// verify/mbd.rs's clearance slider–crank (5000 rpm, LN c_e = 0.9, steel, no friction) as a
 /// spatial model: revolute joints about z, a prismatic joint along x for the slider, the
 /// clearance joint as a ball (rod end) in a socket (slider).
-fn slider_crank_text(omega: f64) -> String {
+pub(crate) fn slider_crank_text(omega: f64) -> String {
     use crate::minimal_slider_crank::{
         CRANK, I_CRANK, I_ROD, I_SLIDER, M_CRANK, M_ROD, M_SLIDER, ROD, R_BEARING, R_JOURNAL,
     };
@@ -1075,6 +1075,12 @@ normal = {law}
 /// steel LN c_e = 0.9 over a 10 mm bearing, no friction) at crank speed `omega` (rad/s), run with
 /// `opts`: the reference of the planar reductions.
 fn planar_slider_crank(omega: f64, opts: &SimOptions) -> Result<Results, String> {
+    let mut planar = planar_slider_crank_model(omega)?;
+    planar.simulate(opts).map_err(|e| e.to_string())
+}
+
+/// The model of [`planar_slider_crank`] (also `cargo xtask bench spatial`'s planar run).
+pub(crate) fn planar_slider_crank_model(omega: f64) -> Result<clr_mbd::Model, String> {
     use crate::minimal_slider_crank::{R_BEARING, R_JOURNAL};
     use clr_contact::{FrictionLaw, JournalBearing, Material, NormalLaw};
     let jb = JournalBearing {
@@ -1086,9 +1092,7 @@ fn planar_slider_crank(omega: f64, opts: &SimOptions) -> Result<Results, String>
     };
     let normal = NormalLaw::preset("LN", &jb, 0.9).map_err(|e| e.to_string())?;
     let friction = FrictionLaw::coulomb(0.0, 1.0).map_err(|e| e.to_string())?;
-    let mut planar =
-        super::mbd::clearance_slider_crank(omega, normal, friction, R_BEARING, R_JOURNAL)?;
-    planar.simulate(opts).map_err(|e| e.to_string())
+    super::mbd::clearance_slider_crank(omega, normal, friction, R_BEARING, R_JOURNAL)
 }
 
 fn planar_reduction_cases(out: &mut Vec<Case>) {
@@ -1136,7 +1140,7 @@ fn loose_note(r: Result<(Results, Results), String>) -> String {
 /// The clearance slider–crank of [`slider_crank_text`] with a spatial revolute clearance joint
 /// (bearing in the slider, journal on the rod, both axes along z, 10 mm long, axial end play
 /// 0.1 mm) instead of the ball in its socket: nothing excites tilt or axial motion.
-fn journal_slider_crank_text(omega: f64) -> String {
+pub(crate) fn journal_slider_crank_text(omega: f64) -> String {
     use crate::minimal_slider_crank::{ROD, R_BEARING, R_JOURNAL};
     let text = slider_crank_text(omega);
     let head = &text[..text.find("[[clearance]]").unwrap_or(text.len())];

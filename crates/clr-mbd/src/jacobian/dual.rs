@@ -116,6 +116,29 @@ impl<const N: usize> Div for D<N> {
     }
 }
 
+/// The dual numbers as the scalar of clr-contact's spatial journal geometry
+/// ([`clr_contact::journal::Real`]): the journal's deepest points, wetted regions, Gauss
+/// points and thrust rings evaluated in `D` give the exact partial derivatives of its forces
+/// and moments (the spatial Newton blocks, `spatial::jacobian`).
+impl<const N: usize> clr_contact::journal::Real for D<N> {
+    fn from_f64(v: f64) -> Self {
+        Self::cst(v)
+    }
+    fn value(&self) -> f64 {
+        self.v
+    }
+    fn chain(self, f: f64, df: f64) -> Self {
+        D::chain(self, f, df)
+    }
+    fn chain2(a: Self, b: Self, f: f64, dfa: f64, dfb: f64) -> Self {
+        let mut g = [0.0; N];
+        for ((r, x), y) in g.iter_mut().zip(a.g).zip(b.g) {
+            *r = dfa * x + dfb * y;
+        }
+        Self { v: f, g }
+    }
+}
+
 /// A planar vector of [`D`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct V<const N: usize> {
@@ -247,5 +270,20 @@ mod tests {
         let fy = x.sin() / r - x.sin() * y * y / r.powi(3);
         assert!((f.v - x.sin() * y / r).abs() < 1e-15);
         assert!((f.g[0] - fx).abs() < 1e-14 && (f.g[1] - fy).abs() < 1e-14);
+    }
+
+    /// The journal scalar's chain2 against the hand-derived gradient of
+    /// f(a, b) = a²·b at a = x·y, b = x + y (∂f/∂a = 2ab, ∂f/∂b = a²).
+    #[test]
+    fn chain2_is_the_two_argument_chain_rule() {
+        use clr_contact::journal::Real;
+        let (x, y) = (D::<2>::var(0.4, 0), D::<2>::var(-1.1, 1));
+        let (a, b) = (x * y, x + y);
+        let f = <D<2> as Real>::chain2(a, b, a.v * a.v * b.v, 2.0 * a.v * b.v, a.v * a.v);
+        // f = x²y²(x + y): ∂f/∂x = 2xy²(x + y) + x²y², ∂f/∂y = 2x²y(x + y) + x²y²
+        let (xv, yv) = (0.4, -1.1);
+        let fx = 2.0 * xv * yv * yv * (xv + yv) + xv * xv * yv * yv;
+        let fy = 2.0 * xv * xv * yv * (xv + yv) + xv * xv * yv * yv;
+        assert!((f.g[0] - fx).abs() < 1e-15 && (f.g[1] - fy).abs() < 1e-15);
     }
 }

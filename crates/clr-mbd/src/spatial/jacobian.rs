@@ -9,7 +9,9 @@
 //!
 //! Every element (the gyroscopic moment −ω × Jω, the spring–dampers, actuators, rotational
 //! springs, bushings, applied forces and torques, the spherical clearance contact with
-//! stateless friction, and the constraint primitives' Φ_t, G·u and γ) is re-evaluated in
+//! stateless friction, the spatial revolute/cylindrical clearance joint (clr-contact's
+//! `journal` geometry and forces, generic over `journal::Real`, which the dual numbers
+//! implement), and the constraint primitives' Φ_t, G·u and γ) is re-evaluated in
 //! first-order dual numbers over the 24 directions (x_i, x_j, v_i, v_j) of its two bodies
 //! ([`crate::jacobian::dual`]): the gradients are the exact partial derivatives of the same
 //! formulas the right-hand side applies, the contact laws entering through clr-contact's
@@ -31,11 +33,13 @@ use nalgebra::{Matrix3, Vector3};
 use super::constraint::{Prim, PrimKind};
 use super::force::{vec_of, wrap, Force3};
 use super::frame::log_map;
+use super::journal::Journal;
 use super::kin::{Kin, Kinematics, GROUND};
 use super::sphere::Sphere;
 use crate::desc::laws::ContactFriction;
 use crate::jacobian::dual::D;
 use crate::timefn::TimeFn;
+use clr_contact::journal::{JournalState, V3 as CV3};
 use clr_contact::ContactMemory;
 
 /// Directions of one element: x_i (0..6), x_j (6..12), v_i (12..18), v_j (18..24).
@@ -442,6 +446,40 @@ impl Sphere {
         let mid = (qi + qj) * 0.5;
         out.force(&p, 1, mid, f_ball);
         out.force(&p, 0, mid, -f_ball);
+    }
+}
+
+impl Journal {
+    /// Add ∂Q/∂x and ∂Q/∂v of the journal joint (the dual form of [`Journal::apply`]): the
+    /// joint's world state built from the seeded pair, clr-contact's geometry and forces run in
+    /// the dual numbers (its deepest points, wetted-region ends and journal ends follow the
+    /// implicit-function rule of their Newton and fixed-point solves, the laws enter through
+    /// their closed-form derivatives), the impact velocities δ̇⁻ held fixed. A state out of the
+    /// joint's range adds nothing (the right-hand side is NaN there and the step is rejected).
+    pub(crate) fn jacobian(&self, kin: &Kinematics, memory: &mut ContactMemory, out: &mut QBlocks) {
+        let p = Pair::new(kin, self.i, self.j, None);
+        let (ki, kj) = (&p.k[0], &p.k[1]);
+        let (ob, oj) = (ki.point(&self.si), kj.point(&self.sj));
+        let c = |v: V3| CV3(v.0);
+        let state = JournalState {
+            bearing_centre: c(ob),
+            bearing_axis: c(ki.vecc(&self.ui)),
+            bearing_velocity: c(ki.point_velocity(ob)),
+            bearing_angular_velocity: c(ki.w),
+            journal_centre: c(oj),
+            journal_axis: c(kj.vecc(&self.uj)),
+            journal_velocity: c(kj.point_velocity(oj)),
+            journal_angular_velocity: c(kj.w),
+        };
+        let Ok(geo) = self.joint.geometry(&state) else {
+            return;
+        };
+        let f = geo.forces_with_memory(&self.laws, memory, self.memory);
+        let force = V3(f.force.0);
+        out.force(&p, 1, oj, force);
+        out.torque(&p, 1, V3(f.journal_moment.0));
+        out.force(&p, 0, ob, -force);
+        out.torque(&p, 0, V3(f.bearing_moment.0));
     }
 }
 

@@ -175,6 +175,9 @@ impl SpatialModel {
         for s in &self.spheres {
             s.jacobian(kin, &mut self.memory, &mut q);
         }
+        for jn in &self.journals {
+            jn.jacobian(kin, &mut self.memory, &mut q);
+        }
         let mut rows = RowBlocks {
             gv_x: &mut nw.gv_x,
             ga_x: &mut nw.ga_x,

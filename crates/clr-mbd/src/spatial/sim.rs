@@ -88,17 +88,6 @@ impl SpatialModel {
                 self.n_bristle
             ));
         }
-        if opts.solver == crate::SolverKind::Ndf
-            && opts.jacobian == JacobianMode::Analytic
-            && !self.journals.is_empty()
-        {
-            notes.push(
-                "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
-                 \"finite_difference\"): the revolute/cylindrical clearance joints have no \
-                 analytic Jacobian blocks yet"
-                    .to_string(),
-            );
-        }
         if opts.linear_solver == crate::LinearSolver::Sparse {
             notes.push("spatial models: the augmented equations are solved dense".to_string());
         }
@@ -198,9 +187,7 @@ impl SpatialModel {
             )
         })?;
         self.events_on = opts.contact_events;
-        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic
-            && self.n_bristle == 0
-            && self.journals.is_empty();
+        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic && self.n_bristle == 0;
         let (nq, nv) = (self.n_q(), self.n_v());
         let mut solver = AnySolver::new(opts, |ode| {
             if opts.scale_velocity_error {
