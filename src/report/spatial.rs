@@ -543,8 +543,11 @@ impl SpatialScene {
                 _ => {}
             }
         }
+        for s in &d.shapes {
+            attach(&s.at);
+        }
         let mut sockets = Vec::new();
-        // journal joints are not drawn yet (only their anchors)
+        // journal joints and shapes are not drawn yet (only their anchors)
         for c in &d.clearances {
             let c = match c {
                 clr_mbd::spatial::SpatialClearance::Spherical(c) => c,
@@ -553,6 +556,7 @@ impl SpatialScene {
                     attach(&j.journal);
                     continue;
                 }
+                clr_mbd::spatial::SpatialClearance::Contact(_) => continue,
             };
             attach(&c.socket);
             attach(&c.ball);

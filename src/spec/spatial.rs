@@ -21,7 +21,7 @@ pub struct SpatialSpec {
     pub description: String,
     /// Integrator settings.
     pub options: SimOptions,
-    /// Each spherical clearance joint by name with its radial clearance R_s − R_b (m).
+    /// Each clearance joint by name with its radial clearance (m; `None` for a shape contact).
     pub clearances: Vec<(String, Option<f64>)>,
     /// The description as run (for `summary.json`).
     pub resolved: serde_json::Value,
@@ -74,7 +74,7 @@ impl SpatialSpec {
             clearances: desc
                 .clearances
                 .iter()
-                .map(|c| (c.name().to_string(), Some(c.radial_clearance())))
+                .map(|c| (c.name().to_string(), c.clearance()))
                 .collect(),
             resolved: serde_json::Value::Null,
             notes,

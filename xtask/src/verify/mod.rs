@@ -21,6 +21,7 @@ mod spatial;
 mod spatial_jacobian;
 mod spatial_journal;
 mod spatial_ref;
+mod spatial_shapes;
 mod spatial_slider_crank;
 mod wear;
 
@@ -112,6 +113,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "contact.spatial.revolute",
         run: spatial_journal::cases,
+    },
+    Group {
+        name: "contact.spatial.shapes",
+        run: spatial_shapes::cases,
     },
     Group {
         name: "models",
