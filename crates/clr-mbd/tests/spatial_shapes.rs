@@ -6,32 +6,20 @@
 use clr_mbd::spatial::SpatialDesc;
 use clr_mbd::{SimOptions, SolverKind};
 
-const BASE: &str = r#"
-[model]
-space = "spatial"
-gravity = [0.0, 0.0, -9.81]
-[[body]]
-name = "ball"
-mass = 0.0327
-principal_inertia = [1.308e-6, 1.308e-6, 1.308e-6]
-position = [0.0, 0.0, 0.03]
-velocity = [0.0, 0.0, 0.0]
-velocity_frame = "world"
-[[shape]]
-name = "floor"
-at = { body = "ground", at = [0.0, 0.0, -0.05] }
-geometry = { type = "cuboid", half_extents = [0.5, 0.5, 0.05] }
-[[shape]]
-name = "sphere"
-at = { body = "ball" }
-geometry = { type = "ball", radius = 0.01 }
-[[clearance]]
-name = "drop"
-type = "contact"
-shapes = ["floor", "sphere"]
-normal = { law = "hertz", stiffness = 1.5e10, damping = "flores", restitution = 0.8 }
-friction = { law = "coulomb", mu = 0.2, v_reg = 1e-4 }
-"#;
+/// The shipped example, dropped from 20 mm straight down.
+fn base() -> String {
+    include_str!("../../../models/examples/spatial_ball_on_box.toml")
+        .replacen(
+            "position = [0.0, 0.0, 0.11]",
+            "position = [0.0, 0.0, 0.03]",
+            1,
+        )
+        .replacen(
+            "velocity = [0.2, 0.0, 0.0]",
+            "velocity = [0.0, 0.0, 0.0]",
+            1,
+        )
+}
 
 /// The path and message of reading and compiling `text`.
 fn error(text: &str) -> (String, String) {
@@ -88,15 +76,16 @@ fn refusals_name_the_field() {
             "hertz, power or linear",
         ),
         (
-            r#"at = { body = "ball" }"#,
-            r#"at = { body = "ball", axis = [0.0, 0.0, 1.0] }"#,
+            r#"at = { body = "ball", at = [0.0, 0.0, 0.0] }"#,
+            r#"at = { body = "ball", at = [0.0, 0.0, 0.0], axis = [0.0, 0.0, 1.0] }"#,
             "sphere.at.axis",
             "orientation",
         ),
     ];
+    let base = base();
     for (from, to, path, words) in cases {
-        assert!(BASE.contains(from), "{from}");
-        let (p, m) = error(&BASE.replacen(from, to, 1));
+        assert!(base.contains(from), "{from}");
+        let (p, m) = error(&base.replacen(from, to, 1));
         assert_eq!(p, path, "{m}");
         assert!(m.contains(words), "{p}: {m}");
     }
@@ -108,7 +97,7 @@ fn refusals_name_the_field() {
 /// `spatial/shape_contact.rs`).
 #[test]
 fn ball_drop_impact_velocity_and_energy() {
-    let desc = SpatialDesc::from_toml_table(BASE.parse().expect("toml")).expect("desc");
+    let desc = SpatialDesc::from_toml_table(base().parse().expect("toml")).expect("desc");
     let mut m = desc.compile().expect("compile");
     let opts = SimOptions::span(0.0, 0.08, 40)
         .tolerances(1e-9, 1e-12)

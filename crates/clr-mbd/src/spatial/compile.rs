@@ -1238,21 +1238,11 @@ fn journal_laws(
             .map_err(|e| invalid(e.path, e.message))?,
         None => radial,
     };
-    let friction =
-        match &d.friction {
-            None => None,
-            Some(f) => match f
-                .build_contact(&format!("{name}.friction"))
-                .map_err(|e| invalid(e.path, e.message))?
-            {
-                ContactFriction::Static(l) if l.mu_max() == 0.0 => None,
-                ContactFriction::Static(l) => Some(l),
-                ContactFriction::LuGre(_) => return Err(invalid(
-                    format!("{name}.friction.law"),
-                    "LuGre friction is not available on a journal joint (its bristle state per \
-                     Gauss point is not carried): use coulomb, ambrosio, threlfall or stribeck",
-                )),
-            },
-        };
+    let friction = super::shape_compile::stateless_friction(
+        name,
+        d.friction.as_ref(),
+        "a journal joint",
+        "Gauss point",
+    )?;
     Ok((radial, thrust, friction))
 }

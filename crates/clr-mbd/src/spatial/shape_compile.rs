@@ -186,22 +186,12 @@ fn contact(
         ));
     }
     let law = normal_law(c)?;
-    let friction =
-        match &c.friction {
-            None => None,
-            Some(f) => match f
-                .build_contact(&format!("{name}.friction"))
-                .map_err(|e| invalid(e.path, e.message))?
-            {
-                ContactFriction::Static(l) if l.mu_max() == 0.0 => None,
-                ContactFriction::Static(l) => Some(l),
-                ContactFriction::LuGre(_) => return Err(invalid(
-                    format!("{name}.friction.law"),
-                    "LuGre friction is not available on a shape contact (its bristle state per \
-                     contact point is not carried): use coulomb, ambrosio, threlfall or stribeck",
-                )),
-            },
-        };
+    let friction = stateless_friction(
+        name,
+        c.friction.as_ref(),
+        "a shape contact",
+        "contact point",
+    )?;
     let size = a.shape.bounding_radius().min(b.shape.bounding_radius());
     let settings = settings(c, size)?;
     let contact = ShapeContact3::new(name.clone(), (a, b), (law, friction), settings, slot);
@@ -210,6 +200,31 @@ fn contact(
         source,
     })?;
     Ok(contact)
+}
+
+/// The friction law of element `name` without a bristle state (`None` for none or μ = 0):
+/// LuGre is refused, naming the element kind (`what`) and where the state would live (`per`).
+pub(crate) fn stateless_friction(
+    name: &str,
+    f: Option<&crate::desc::FrictionLawDesc>,
+    what: &str,
+    per: &str,
+) -> Result<Option<clr_contact::FrictionLaw>, MbdError> {
+    let Some(f) = f else { return Ok(None) };
+    match f
+        .build_contact(&format!("{name}.friction"))
+        .map_err(|e| invalid(e.path, e.message))?
+    {
+        ContactFriction::Static(l) if l.mu_max() == 0.0 => Ok(None),
+        ContactFriction::Static(l) => Ok(Some(l)),
+        ContactFriction::LuGre(_) => Err(invalid(
+            format!("{name}.friction.law"),
+            format!(
+                "LuGre friction is not available on {what} (its bristle state per {per} is not \
+                 carried): use coulomb, ambrosio, threlfall or stribeck"
+            ),
+        )),
+    }
 }
 
 /// The point law: `hertz`, `power` or `linear` with a stiffness (no radii to give).
