@@ -1028,6 +1028,27 @@ class SpatialModel(Model):
         (:func:`motion`; default 0) in ``frame`` (``"world"`` or ``"body"``)."""
         return self._add("force", "torque", name, body=body, frame=frame, mx=mx, my=my, mz=mz)
 
+    # ----- [[shape]] ---------------------------------------------------------------------
+
+    def shape(  # type: ignore[override]
+        self,
+        name: str,
+        *,
+        at: Anchor,
+        geometry: Table,
+        orientation: Optional[Table] = None,
+    ) -> "SpatialModel":
+        """``[[shape]]`` of a spatial model: a named contact shape whose frame sits at ``at``
+        (:func:`clr_sim.spatial.at` on a body or ``"ground"``, without ``axis``), turned by
+        ``orientation`` (:mod:`clr_sim.spatial` forms; default the body axes). ``geometry`` (m,
+        in the shape frame) is a table with ``type`` = ``ball`` (``radius``), ``capsule``,
+        ``cylinder``, ``cone`` (``half_length``, ``radius``, along the shape x axis), ``cuboid``
+        (``half_extents`` = [hx, hy, hz]), ``convex_polyhedron`` (``points``), ``trimesh``
+        (``vertices``, ``indices`` from 0) or ``compound`` (``parts`` = [{``at``,
+        ``orientation``, ``geometry``}, ...]). :meth:`contact` puts two shapes in contact
+        (docs/spatial.md "Shape contact")."""
+        return self._add("shape", None, name, at=at, orientation=orientation, geometry=geometry)
+
     # ----- [[clearance]] -----------------------------------------------------------------
 
     def spherical_clearance(
@@ -1147,10 +1168,6 @@ _PLANAR_ONLY = {
     "drive_displacement": "use drive_prismatic_displacement(joint=...) on a prismatic joint",
     "torque_between": "use torque() on each body, or rotational_spring_damper(joint=...)",
     "nodal_load": "spatial models have no flexible beams yet",
-    "shape": "spatial models have no contact shapes yet; a ball in a socket is "
-    "spherical_clearance()",
-    "contact": "spatial models have no shape contact yet; a ball in a socket is "
-    "spherical_clearance()",
     "translational_clearance": "spatial models have no translational clearance joint yet",
     "slider_on_beam": "spatial models have no flexible beams yet",
 }
@@ -1239,6 +1256,8 @@ SPATIAL_METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("clearance", "spherical"): "spherical_clearance",
     ("clearance", "revolute"): "revolute_clearance",
     ("clearance", "cylindrical"): "cylindrical_clearance",
+    ("shape", None): "shape",
+    ("clearance", "contact"): "contact",
 }
 
 #: The table of element methods of each kind of builder.

@@ -212,6 +212,15 @@ def every_kind() -> clr_sim.Model:
             journal=spatial.at(f"{kind}_pin", axis=z), bearing_radius=0.01,
             bearing_length=0.015, journal_radius=0.0099, journal_length=0.015,
             normal=journal_law, **({"axial_clearance": 1e-4} if kind == "revolute" else {}))
+    # a ball dropped onto a ground box (shape contact)
+    m.body("drop", mass=0.03, principal_inertia=(1e-6, 1e-6, 1e-6), position=(0.0, -8.0, 0.0105))
+    m.shape("floor", at=spatial.at("ground", 0.0, -8.0, -0.05),
+            geometry={"type": "cuboid", "half_extents": [0.1, 0.1, 0.05]})
+    m.shape("bead", at=spatial.at("drop"), orientation=spatial.axis_angle(z, 0.0),
+            geometry={"type": "ball", "radius": 0.01})
+    m.contact("drop_contact", shapes=["floor", "bead"],
+              normal=clr_sim.normal("hertz", 0.9, stiffness=1e10, damping="flores"),
+              friction=clr_sim.friction("coulomb", mu=0.1, v_reg=1e-4))
     m.solver(rtol=1e-6)
     m.output(t_end=0.01, intervals=10)
     return m
@@ -220,7 +229,7 @@ def every_kind() -> clr_sim.Model:
 def test_every_spatial_element_kind_is_reachable_and_runs():
     m = every_kind()
     doc = m.to_dict()
-    used = {(s, i.get("type")) for s in ("joint", "driver", "force", "clearance")
+    used = {(s, i.get("type")) for s in ("joint", "driver", "force", "clearance", "shape")
             for i in doc.get(s, [])}
     assert used | {("model", None), ("solver", None), ("output", None), ("body", None)} == \
         set(SPATIAL_METHODS)
@@ -243,6 +252,8 @@ def test_every_spatial_element_kind_is_reachable_and_runs():
             np.testing.assert_allclose(r[f"{body}.{c}"], v, rtol=0, atol=1e-6)
     # the ball falls into its socket: contact within the 0.01 s
     assert r["socket.penetration"].max() > 0
+    # the dropped ball (0.5 mm above the box) lands within the 0.01 s
+    assert r["drop_contact.normal_force"].max() > 0
 
 
 def _line_of(marker: str) -> str:

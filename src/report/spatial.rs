@@ -619,8 +619,12 @@ impl SpatialScene {
                 _ => {}
             }
         }
+        for s in &d.shapes {
+            attach(&s.at);
+        }
         let mut sockets = Vec::new();
         let mut journals = Vec::new();
+        // shape contacts are not drawn yet (only their anchors)
         for c in &d.clearances {
             let c = match c {
                 clr_mbd::spatial::SpatialClearance::Spherical(c) => c,
@@ -644,6 +648,7 @@ impl SpatialScene {
                     });
                     continue;
                 }
+                clr_mbd::spatial::SpatialClearance::Contact(_) => continue,
             };
             attach(&c.socket);
             attach(&c.ball);

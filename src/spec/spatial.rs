@@ -21,8 +21,9 @@ pub struct SpatialSpec {
     pub description: String,
     /// Integrator settings.
     pub options: SimOptions,
-    /// Each clearance joint by name with its radial clearance (m), and each contact group of a
-    /// journal joint (`J.radial_a`, …) with `None`: what the generic metrics cover.
+    /// Each clearance joint by name with its radial clearance (m; `None` for a shape contact),
+    /// and each contact group of a journal joint (`J.radial_a`, …) with `None`: what the generic
+    /// metrics cover.
     pub clearances: Vec<(String, Option<f64>)>,
     /// The description as run (for `summary.json`).
     pub resolved: serde_json::Value,
@@ -210,7 +211,7 @@ fn clearance_metrics_of(desc: &SpatialDesc) -> Vec<(String, Option<f64>)> {
     use clr_mbd::spatial::{ClearanceKind, SpatialClearance};
     let mut v = Vec::new();
     for c in &desc.clearances {
-        v.push((c.name().to_string(), Some(c.radial_clearance())));
+        v.push((c.name().to_string(), c.clearance()));
         if let SpatialClearance::Journal(j) = c {
             let groups: &[&str] = match j.kind {
                 ClearanceKind::Revolute => &["radial_a", "radial_b", "thrust_minus", "thrust_plus"],

@@ -103,11 +103,67 @@ pub(crate) struct PairSettings {
     pub(crate) max_points: usize,
 }
 
-/// A kept contact point and its memory slot.
+/// A kept contact point and its memory slot (planar by default; the spatial shape contact keeps
+/// clr-contact's `ShapeContactPoint3`).
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Kept {
-    pub(crate) point: ShapeContactPoint,
+pub(crate) struct Kept<P = ShapeContactPoint> {
+    pub(crate) point: P,
     pub(crate) slot: usize,
+}
+
+/// What the reduction and the slot assignment read of a contact point, in the plane or in space
+/// (the rules are the same: [`reduce`], [`assign_slots`]).
+pub(crate) trait PatchPoint: Copy {
+    /// Penetration δ, m.
+    fn depth(&self) -> f64;
+    /// Distance between the two points on A (m) and the cosine between their normals.
+    fn nearness(&self, other: &Self) -> (f64, f64);
+}
+
+impl PatchPoint for ShapeContactPoint {
+    fn depth(&self) -> f64 {
+        self.depth
+    }
+    fn nearness(&self, other: &Self) -> (f64, f64) {
+        (
+            (self.point_a - other.point_a).norm(),
+            self.normal.dot(&other.normal),
+        )
+    }
+}
+
+impl PatchPoint for clr_contact::ShapeContactPoint3 {
+    fn depth(&self) -> f64 {
+        self.depth
+    }
+    fn nearness(&self, other: &Self) -> (f64, f64) {
+        (
+            (self.point_a - other.point_a).norm(),
+            self.normal.dot(&other.normal),
+        )
+    }
+}
+
+/// A slot key, in the plane ([`SlotKey`]) or in space: where the slot's point was on A and on
+/// B and its normal in A's frame.
+pub(crate) trait Key: Copy {
+    /// The smaller of the distances between the points on A and on B (m), and the cosine
+    /// between the normals.
+    fn nearness(&self, other: &Self) -> (f64, f64);
+}
+
+impl Key for SlotKey {
+    fn nearness(&self, other: &Self) -> (f64, f64) {
+        let ([la, lb, n], [ka, kb, kn]) = (self, other);
+        ((la - ka).norm().min((lb - kb).norm()), n.dot(kn))
+    }
+}
+
+impl Key for [nalgebra::Vector3<f64>; 3] {
+    fn nearness(&self, other: &Self) -> (f64, f64) {
+        let ([la, lb, n], [ka, kb, kn]) = (self, other);
+        ((la - ka).norm().min((lb - kb).norm()), n.dot(kn))
+    }
 }
 
 /// Reusable buffers of one detection (interior mutability: detection runs where the model is
@@ -343,24 +399,23 @@ pub(crate) type SlotKey = [Vector2<f64>; 3];
 /// (in A's frame) turned by less than 37° (cos > 0.8, as in [`reduce`]). The normal tells apart
 /// two contacts that share a point, e.g. a block's corner on a floor and on a wall: without it
 /// both would be at distance 0 of both slots and rounding would pick. Then free slots, then any.
-pub(crate) fn assign_slots(
-    keys: &[Option<SlotKey>],
+pub(crate) fn assign_slots<P: Copy, K: Key>(
+    keys: &[Option<K>],
     reach: f64,
-    kept: &mut [Kept],
+    kept: &mut [Kept<P>],
     taken: &mut [bool],
-    local: impl Fn(&ShapeContactPoint) -> SlotKey,
+    local: impl Fn(&P) -> K,
 ) {
     taken.fill(false);
     for k in kept.iter_mut() {
-        let [la, lb, n] = local(&k.point);
+        let here = local(&k.point);
         let near = keys
             .iter()
             .enumerate()
             .filter(|(s, _)| !taken[*s])
             .filter_map(|(s, key)| {
-                let [ka, kb, kn] = (*key)?;
-                let d = (la - ka).norm().min((lb - kb).norm());
-                (d <= reach && n.dot(&kn) > 0.8).then_some((s, d))
+                let (d, cos) = here.nearness(&(*key)?);
+                (d <= reach && cos > 0.8).then_some((s, d))
             });
         let best = near.min_by(|x, y| x.1.total_cmp(&y.1)).map(|(s, _)| s);
         let free = || (0..taken.len()).find(|&s| !taken[s] && keys[s].is_none());
@@ -414,20 +469,21 @@ fn rates(p: &ShapeContactPoint, bi: &BodyState, bj: &BodyState) -> (f64, f64) {
 
 /// Deepest first; drop a point near a deeper kept one with a similar normal; at most
 /// `max_points` (module docs).
-pub(crate) fn reduce(points: &[ShapeContactPoint], s: &PairSettings, kept: &mut Vec<Kept>) {
-    let near = |a: &ShapeContactPoint, b: &ShapeContactPoint| {
-        (a.point_a - b.point_a).norm() <= s.merge && a.normal.dot(&b.normal) > 0.8
+pub(crate) fn reduce<P: PatchPoint>(points: &[P], s: &PairSettings, kept: &mut Vec<Kept<P>>) {
+    let near = |a: &P, b: &P| {
+        let (d, cos) = a.nearness(b);
+        d <= s.merge && cos > 0.8
     };
     for p in points {
         if kept
             .iter()
-            .any(|k| near(&k.point, p) && k.point.depth >= p.depth)
+            .any(|k| near(&k.point, p) && k.point.depth() >= p.depth())
         {
             continue;
         }
         // the near kept points are all shallower than p: p replaces them
         kept.retain(|k| !near(&k.point, p));
-        let at = kept.partition_point(|k| k.point.depth >= p.depth);
+        let at = kept.partition_point(|k| k.point.depth() >= p.depth());
         kept.insert(at, Kept { point: *p, slot: 0 });
     }
     kept.truncate(s.max_points);

@@ -22,6 +22,7 @@ pub(crate) mod spatial;
 mod spatial_jacobian;
 mod spatial_journal;
 mod spatial_ref;
+mod spatial_shapes;
 mod spatial_slider_crank;
 mod wear;
 
@@ -113,6 +114,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "contact.spatial.revolute",
         run: spatial_journal::cases,
+    },
+    Group {
+        name: "contact.spatial.shapes",
+        run: spatial_shapes::cases,
     },
     Group {
         name: "models",

@@ -416,8 +416,17 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
                 let slot = n_spheres + clr_contact::journal::GROUPS * journals.len();
                 journals.push(journal(&cx, j, slot)?);
             }
+            SpatialClearance::Contact(_) => {}
         }
     }
+    // shape contacts: their slots after the joints'
+    let first_slot = spheres.len() + clr_contact::journal::GROUPS * journals.len();
+    let shape_contacts = super::shape_compile::contacts(
+        &|path: &str, e: &End| cx.end(path, e).map(|r| (r.k, r.s, r.axis.is_some())),
+        &|path: &str, o: &Orientation| orientation(path, o),
+        d,
+        first_slot,
+    )?;
     let min_v = spheres
         .iter()
         .map(|s: &Sphere| s.law.min_impact_velocity())
@@ -427,8 +436,13 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
                 j.thrust.min_impact_velocity(),
             ]
         }))
+        .chain(shape_contacts.iter().map(|c| c.law.min_impact_velocity()))
         .fold(f64::INFINITY, f64::min);
-    let n_slots = spheres.len() + clr_contact::journal::GROUPS * journals.len();
+    let n_slots = first_slot
+        + shape_contacts
+            .iter()
+            .map(|c| c.settings.max_points)
+            .sum::<usize>();
     let memory = ContactMemory::new(n_slots, if min_v.is_finite() { min_v } else { 1e-4 })
         .map_err(|e| invalid("clearance", e.to_string()))?;
     let journal_points = journals
@@ -449,6 +463,7 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         lambda: vec![0.0; m],
         reports: vec![Default::default(); spheres.len()],
         journal_reports: vec![Default::default(); journals.len()],
+        shape_reports: vec![Default::default(); shape_contacts.len()],
         zdot: vec![0.0; n_bristle],
         ..Default::default()
     };
@@ -469,6 +484,7 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         spheres,
         journals,
         journal_points,
+        shape_contacts,
         memory,
         gravity,
         alpha: d.solver.baumgarte_alpha,
@@ -494,6 +510,7 @@ fn input_warnings(d: &SpatialDesc) -> Vec<crate::initial_data::Warning> {
             SpatialClearance::Journal(j) => {
                 crate::desc::checks::moduli_warnings(&j.name, j, &mut out);
             }
+            SpatialClearance::Contact(_) => {}
         }
     }
     out
@@ -1221,21 +1238,11 @@ fn journal_laws(
             .map_err(|e| invalid(e.path, e.message))?,
         None => radial,
     };
-    let friction =
-        match &d.friction {
-            None => None,
-            Some(f) => match f
-                .build_contact(&format!("{name}.friction"))
-                .map_err(|e| invalid(e.path, e.message))?
-            {
-                ContactFriction::Static(l) if l.mu_max() == 0.0 => None,
-                ContactFriction::Static(l) => Some(l),
-                ContactFriction::LuGre(_) => return Err(invalid(
-                    format!("{name}.friction.law"),
-                    "LuGre friction is not available on a journal joint (its bristle state per \
-                     Gauss point is not carried): use coulomb, ambrosio, threlfall or stribeck",
-                )),
-            },
-        };
+    let friction = super::shape_compile::stateless_friction(
+        name,
+        d.friction.as_ref(),
+        "a journal joint",
+        "Gauss point",
+    )?;
     Ok((radial, thrust, friction))
 }

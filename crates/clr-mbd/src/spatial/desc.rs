@@ -365,6 +365,8 @@ pub enum ClearanceKind {
     Revolute,
     /// Journal in bearing without thrust faces ([`JournalClearanceDesc`]).
     Cylindrical,
+    /// Two `[[shape]]`s in contact ([`ShapeContactDesc3`]).
+    Contact,
 }
 
 /// A spatial revolute or cylindrical clearance joint (`type = "revolute"` or `"cylindrical"` in
@@ -425,6 +427,8 @@ pub enum SpatialClearance {
     Spherical(SphericalClearance),
     /// `type = "revolute"` or `"cylindrical"`.
     Journal(JournalClearanceDesc),
+    /// `type = "contact"`: two shapes.
+    Contact(ShapeContactDesc3),
 }
 
 impl SpatialClearance {
@@ -433,14 +437,27 @@ impl SpatialClearance {
         match self {
             Self::Spherical(s) => &s.name,
             Self::Journal(j) => &j.name,
+            Self::Contact(c) => &c.name,
         }
     }
-    /// Radial clearance, m (socket − ball radius, or bore − journal radius).
+    /// Radial clearance, m (socket − ball radius, or bore − journal radius; NaN for a shape
+    /// contact, which has none: see [`SpatialClearance::clearance`]).
     pub fn radial_clearance(&self) -> f64 {
+        self.clearance().unwrap_or(f64::NAN)
+    }
+    /// Radial clearance of a joint, m; `None` for a shape contact.
+    pub fn clearance(&self) -> Option<f64> {
         match self {
-            Self::Spherical(s) => s.socket_radius - s.ball_radius,
-            Self::Journal(j) => j.bearing_radius - j.journal_radius,
+            Self::Spherical(s) => Some(s.socket_radius - s.ball_radius),
+            Self::Journal(j) => Some(j.bearing_radius - j.journal_radius),
+            Self::Contact(_) => None,
         }
+    }
+}
+
+impl From<ShapeContactDesc3> for SpatialClearance {
+    fn from(c: ShapeContactDesc3) -> Self {
+        Self::Contact(c)
     }
 }
 
@@ -461,8 +478,130 @@ impl Serialize for SpatialClearance {
         match self {
             Self::Spherical(c) => c.serialize(s),
             Self::Journal(c) => c.serialize(s),
+            Self::Contact(c) => c.serialize(s),
         }
     }
+}
+
+/// `[[shape]]` of a spatial model: a contact shape on a body or the ground. Its frame sits at
+/// `at` (a point in the body frame) turned by `orientation` from the body axes; the geometry is
+/// written in that frame (m). Shapes do nothing on their own; a `[[clearance]]` of
+/// `type = "contact"` ([`ShapeContactDesc3`]) puts two of them in contact.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SpatialShape {
+    /// Unique name (contact elements refer to it).
+    pub name: String,
+    /// Origin of the shape frame: `{ body, at = [x, y, z] }` (the ground is `"ground"`); no
+    /// `axis`.
+    pub at: End,
+    /// Orientation of the shape frame relative to the body frame (default: the body axes), in
+    /// any form of [`Orientation`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<Orientation>,
+    /// The geometry in the shape frame.
+    pub geometry: Geometry3,
+}
+
+/// The geometry of a spatial shape, tagged by `type` (m; clr-contact [`clr_contact::Shape3`]).
+/// Axially symmetric shapes (capsule, cylinder, cone) have their axis along the shape x axis.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum Geometry3 {
+    /// A sphere centred on the shape origin.
+    Ball {
+        /// Radius, m.
+        radius: f64,
+    },
+    /// A segment along x from −`half_length` to `half_length`, dilated by `radius`.
+    Capsule {
+        /// Half length of the core segment, m.
+        half_length: f64,
+        /// Radius, m.
+        radius: f64,
+    },
+    /// A box centred on the shape origin.
+    Cuboid {
+        /// Half widths along x, y, z, m.
+        half_extents: [f64; 3],
+    },
+    /// A solid cylinder centred on the origin, axis along x, flat ends at x = ±`half_length`.
+    Cylinder {
+        /// Half length, m.
+        half_length: f64,
+        /// Radius, m.
+        radius: f64,
+    },
+    /// A solid cone along x: base of `radius` at x = −`half_length`, apex at +`half_length`.
+    Cone {
+        /// Half the height, m.
+        half_length: f64,
+        /// Base radius, m.
+        radius: f64,
+    },
+    /// The convex hull of its vertices (every point must be a vertex or on the boundary), m.
+    ConvexPolyhedron {
+        /// At least 4 points, not in one plane.
+        points: Vec<[f64; 3]>,
+    },
+    /// A triangle mesh (contact with the triangles from either side), m.
+    Trimesh {
+        /// Vertices, m.
+        vertices: Vec<[f64; 3]>,
+        /// Triangles as three vertex indices counted from 0.
+        indices: Vec<[u32; 3]>,
+    },
+    /// Convex parts (ball, capsule, cuboid, cylinder, cone, convex polyhedron) at poses in the
+    /// shape frame.
+    Compound {
+        /// The parts.
+        parts: Vec<Part3>,
+    },
+}
+
+/// One convex part of a compound spatial shape.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Part3 {
+    /// Origin of the part in the shape frame, m.
+    #[serde(default)]
+    pub at: [f64; 3],
+    /// Orientation of the part in the shape frame (default the shape axes; at most one turn).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub orientation: Option<Orientation>,
+    /// The part's geometry (convex).
+    pub geometry: Geometry3,
+}
+
+/// `[[clearance]] type = "contact"` of a spatial model: two `[[shape]]`s in contact, the normal
+/// pointing from `shapes[0]` (A) to `shapes[1]` (B). The fields are those of the planar shape
+/// contact (docs/model-file.md "Shapes and shape contact").
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ShapeContactDesc3 {
+    /// Unique name.
+    pub name: String,
+    /// `"contact"`.
+    #[serde(rename = "type")]
+    pub kind: ClearanceKind,
+    /// The two shapes (names of `[[shape]]` items) on different bodies.
+    pub shapes: [String; 2],
+    /// Normal-force law of each contact point (`hertz`, `power` or `linear` with `stiffness`).
+    pub normal: NormalLawDesc,
+    /// Friction law of each contact point in its tangent plane (default none; stateless laws,
+    /// LuGre refused).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub friction: Option<FrictionLawDesc>,
+    /// Gap within which points are tracked before they touch, m (default a tenth of the smaller
+    /// shape's bounding radius).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub prediction: Option<f64>,
+    /// Points of one contact patch closer than this merge into the deepest, m (default 0).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub merge_distance: Option<f64>,
+    /// Most contact points at once (default 4, 1–64; each has its own impact memory).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_points: Option<usize>,
 }
 
 /// Marks an error message of a `[[clearance]]` table whose path continues inside the table
@@ -498,12 +637,16 @@ impl<'de> Deserialize<'de> for SpatialClearance {
             ClearanceKind::Spherical => serde_path_to_error::deserialize(v)
                 .map(Self::Spherical)
                 .map_err(inner),
+            ClearanceKind::Contact => serde_path_to_error::deserialize(v)
+                .map(Self::Contact)
+                .map_err(inner),
         }
     }
 }
 
 /// A whole spatial model as data (`[model] space = "spatial"`). Sections: `[model]`,
-/// `[[body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[clearance]]`, `[solver]`, `[output]`.
+/// `[[body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[shape]]`, `[[clearance]]`, `[solver]`,
+/// `[output]`.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SpatialDesc {
@@ -521,7 +664,10 @@ pub struct SpatialDesc {
     /// Force elements.
     #[serde(default, rename = "force", skip_serializing_if = "Vec::is_empty")]
     pub forces: Vec<SpatialForce>,
-    /// Clearance joints.
+    /// Contact shapes on bodies or the ground (used by `type = "contact"` clearances).
+    #[serde(default, rename = "shape", skip_serializing_if = "Vec::is_empty")]
+    pub shapes: Vec<SpatialShape>,
+    /// Clearance joints and shape contacts.
     #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
     pub clearances: Vec<SpatialClearance>,
     /// Integrator settings (as planar models).

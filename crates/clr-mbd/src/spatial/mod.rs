@@ -36,18 +36,21 @@ mod newton;
 mod newton_ws;
 mod output;
 mod plausible;
+mod shape_compile;
+mod shape_contact;
 mod sim;
 mod sphere;
 mod system;
 
 pub use desc::{
-    ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, Space,
-    SpatialBody, SpatialClearance, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo,
-    SpatialJoint, SphericalClearance, VectorFrame,
+    ClearanceKind, DriverKind, End, Geometry3, JointKind, JournalClearanceDesc, Orientation, Part3,
+    ShapeContactDesc3, Space, SpatialBody, SpatialClearance, SpatialDesc, SpatialDriver,
+    SpatialForce, SpatialInfo, SpatialJoint, SpatialShape, SphericalClearance, VectorFrame,
 };
 pub use journal::JournalReport;
 pub use model::SpatialModel;
 pub use newton::SpatialLinearization;
+pub use shape_contact::ShapeReport3;
 pub use sphere::SphereReport;
 
 impl SpatialDesc {

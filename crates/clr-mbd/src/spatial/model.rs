@@ -26,6 +26,7 @@ use super::constraint::{Prim, Rows};
 use super::force::Force3;
 use super::journal::{Journal, JournalReport};
 use super::kin::Kinematics;
+use super::shape_contact::{ShapeContact3, ShapeReport3};
 use super::sphere::{Sphere, SphereReport};
 use crate::timefn::TimeFn;
 
@@ -80,6 +81,8 @@ pub struct SpatialModel {
     /// The journals' tracked contact groups (journal, group), after the balls in the contact
     /// probes and events.
     pub(crate) journal_points: Vec<(usize, usize)>,
+    /// Shape contacts (`[[clearance]] type = "contact"`), tracked after the journals' groups.
+    pub(crate) shape_contacts: Vec<ShapeContact3>,
     pub(crate) memory: ContactMemory,
     pub(crate) gravity: Vector3<f64>,
     pub(crate) alpha: f64,
@@ -114,6 +117,7 @@ pub(crate) struct Workspace {
     pub(crate) lambda: Vec<f64>,
     pub(crate) reports: Vec<SphereReport>,
     pub(crate) journal_reports: Vec<JournalReport>,
+    pub(crate) shape_reports: Vec<ShapeReport3>,
     pub(crate) zdot: Vec<f64>,
     pub(crate) p_diss: f64,
     pub(crate) p_in: f64,
@@ -208,6 +212,10 @@ impl SpatialModel {
         for (k, jn) in self.journals.iter().enumerate() {
             ws.journal_reports[k] = jn.apply(&ws.kin, &mut self.memory, Some(&mut ws.qf));
             ws.p_diss += ws.journal_reports[k].dissipated;
+        }
+        for (k, c) in self.shape_contacts.iter().enumerate() {
+            ws.shape_reports[k] = c.apply(&ws.kin, &mut self.memory, Some(&mut ws.qf));
+            ws.p_diss += ws.shape_reports[k].dissipated;
         }
         ws.g.fill(0.0);
         let mut rows = Rows {

@@ -13,7 +13,10 @@
 //! `J.G.penetration J.G.normal_force` (m, N), then `J.Fx J.Fy J.Fz J.Mx J.My J.Mz` (resultant
 //! contact force on the journal, N, and its moment about the journal centre, N·m, world),
 //! `J.tilt` (rad) and `J.axial_offset` (m, journal centre along the bore axis from the bore
-//! centre); `energy.kinetic energy.potential energy.elastic energy.total
+//! centre); per shape contact `C.penetration C.rate C.normal_force C.friction_force C.contact
+//! C.ex C.ey C.ez` (deepest tracked point's δ in m, −prediction when none is within it, and δ̇
+//! in m/s; normal and friction forces summed over the active points, N; the number of active
+//! points; the deepest point on shape A, world, m); `energy.kinetic energy.potential energy.elastic energy.total
 //! energy.dissipated energy.work_in energy.balance` (J, as planar runs); `violation.position
 //! violation.velocity violation.quaternion` (‖Φ‖∞, ‖Φ̇‖∞ and max |‖p‖ − 1|).
 
@@ -62,6 +65,14 @@ impl SpatialModel {
                 c.push(format!("{}.{s}", jn.name));
             }
         }
+        for sc in &self.shape_contacts {
+            for s in crate::results::CONTACT_COLUMNS
+                .iter()
+                .chain(&["ex", "ey", "ez"])
+            {
+                c.push(format!("{}.{s}", sc.name));
+            }
+        }
         c.extend(crate::results::ENERGY_COLUMNS.map(String::from));
         for s in ["position", "velocity", "quaternion"] {
             c.push(format!("violation.{s}"));
@@ -100,6 +111,12 @@ impl SpatialModel {
             + self
                 .ws
                 .journal_reports
+                .iter()
+                .map(|r| r.elastic_energy)
+                .sum::<f64>()
+            + self
+                .ws
+                .shape_reports
                 .iter()
                 .map(|r| r.elastic_energy)
                 .sum::<f64>();
@@ -191,6 +208,16 @@ impl SpatialModel {
             data.extend(r.force.iter().chain(r.moment.iter()));
             data.extend([r.tilt, r.axial_offset]);
         }
+        for r in &self.ws.shape_reports {
+            data.extend([
+                r.penetration,
+                r.rate,
+                r.normal_force,
+                r.friction_force,
+                r.active_points as f64,
+            ]);
+            data.extend(r.deepest.iter());
+        }
         let e = self.energies_evaluated(y);
         let (ed, win) = (y[nq + nv], y[nq + nv + 1]);
         data.extend([
@@ -215,6 +242,9 @@ impl SpatialModel {
         }
         for jn in &self.journals {
             jn.commit(&self.ws.kin, &mut self.memory);
+        }
+        for c in &mut self.shape_contacts {
+            c.commit(&self.ws.kin, &mut self.memory);
         }
     }
 }

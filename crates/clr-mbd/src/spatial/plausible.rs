@@ -3,8 +3,9 @@
 //! assembled initial state (a speed in rpm, a mass or inertia in the wrong unit, a socket
 //! radius in millimetres, a clearance of a quarter of the radius, μ > 1, a damping law that
 //! misses its restitution, a ball started outside its socket by more than the clearance, which
-//! is refused); after, the results (the energy balance, penetrations beyond half the clearance,
-//! peak contact forces far above the weight and inertia loads).
+//! is refused, shapes started inside each other, which is warned); after, the results (the
+//! energy balance, penetrations beyond half the clearance or a tenth of a shape's size, peak
+//! contact forces far above the weight and inertia loads).
 
 use nalgebra::Vector3;
 
@@ -16,6 +17,7 @@ use crate::error::MbdError;
 use crate::plausible::{
     check_energy, deep, friction, gyration_radius, joint_radii, peak_force, restitution, tip_speed,
     warn, Warning, CLEARANCE_FRACTION, PENETRATION_FRACTION, REFUSE_PENETRATION,
+    SHAPE_PENETRATION_FRACTION, SHAPE_START_FRACTION,
 };
 use crate::results::Results;
 
@@ -90,7 +92,27 @@ impl SpatialModel {
         self.check_bodies(y0, &sc, &mut out);
         self.check_sockets(&sc, &mut out);
         self.check_initial_depths(t0, y0)?;
+        self.check_shape_starts(&mut out);
         Ok(out)
+    }
+
+    /// Shapes started inside each other by more than [`SHAPE_START_FRACTION`] of the smaller
+    /// shape's size (at the kinematics of `check_initial_depths`): warned, as planar shapes.
+    fn check_shape_starts(&self, out: &mut Vec<Warning>) {
+        for c in &self.shape_contacts {
+            let (depth, r) = (c.gap(&self.ws.kin), c.size());
+            if depth > SHAPE_START_FRACTION * r {
+                out.push(warn(
+                    c.name.clone(),
+                    format!(
+                        "the shapes start {depth:.3e} m inside each other ({:.1} % of the smaller \
+                         shape's size {r:.3e} m): the first step pushes them apart; check the \
+                         initial positions",
+                        100.0 * depth / r
+                    ),
+                ));
+            }
+        }
     }
 
     fn check_bodies(&self, y0: &[f64], sc: &Scales3, out: &mut Vec<Warning>) {
@@ -158,6 +180,10 @@ impl SpatialModel {
             if s.thrust != s.radial {
                 out.extend(restitution(&format!("{name}.thrust_normal"), &s.thrust));
             }
+        }
+        for c in &self.shape_contacts {
+            out.extend(friction(&c.name, c.friction.map_or(0.0, |f| f.mu_max())));
+            out.extend(restitution(&c.name, &c.law));
         }
     }
 
@@ -230,6 +256,16 @@ impl SpatialModel {
                 }
             }
         }
+        for c in &self.shape_contacts {
+            if let Some(depth) = r.column(&format!("{}.penetration", c.name)) {
+                let scale = (
+                    SHAPE_PENETRATION_FRACTION,
+                    c.size(),
+                    "the smaller shape's size",
+                );
+                out.extend(deep(&c.name, &depth, scale));
+            }
+        }
         self.check_peak_forces(r, sc, &mut out);
         out
     }
@@ -272,6 +308,11 @@ impl SpatialModel {
                 if let Some(f) = r.column(&format!("{}.{g}.normal_force", s.name)) {
                     out.extend(peak_force(&format!("{}.{g}", s.name), &f, load));
                 }
+            }
+        }
+        for c in &self.shape_contacts {
+            if let Some(f) = r.column(&format!("{}.normal_force", c.name)) {
+                out.extend(peak_force(&c.name, &f, load));
             }
         }
     }

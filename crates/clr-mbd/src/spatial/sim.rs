@@ -22,7 +22,8 @@ impl ContactProbe for SpatialModel {
                 super::journal::GROUP_NAMES[g]
             )
         });
-        balls.chain(groups).enumerate().collect()
+        let pairs = self.shape_contacts.iter().map(|c| c.name.clone());
+        balls.chain(groups).chain(pairs).enumerate().collect()
     }
     fn joint_gap(&mut self, k: usize, y: &[f64]) -> f64 {
         self.ws.kin.update(self.bodies.len(), y);
@@ -31,6 +32,13 @@ impl ContactProbe for SpatialModel {
     fn joint_probe(&mut self, k: usize, y: &[f64]) -> Probe {
         self.ws.kin.update(self.bodies.len(), y);
         let ns = self.spheres.len();
+        if let Some(c) = k
+            .checked_sub(ns + self.journal_points.len())
+            .map(|c| &self.shape_contacts[c])
+        {
+            let r = c.apply(&self.ws.kin, &mut self.memory, None);
+            return Probe::new(r.penetration, r.rate, r.normal_force);
+        }
         if k >= ns {
             let (j, g) = self.journal_points[k - ns];
             let r = self.journals[j].apply(&self.ws.kin, &mut self.memory, None);
@@ -45,16 +53,20 @@ impl ContactProbe for SpatialModel {
 }
 
 impl SpatialModel {
-    /// Number of tracked contacts: one per ball, one per journal contact group.
+    /// Number of tracked contacts: one per ball, one per journal contact group, one per shape
+    /// contact (its deepest point).
     pub(crate) fn n_contacts(&self) -> usize {
-        self.spheres.len() + self.journal_points.len()
+        self.spheres.len() + self.journal_points.len() + self.shape_contacts.len()
     }
 
     /// Penetration (m) of tracked contact `k` at the kinematics in the workspace: the event
     /// function of its onsets.
     pub(crate) fn contact_gap(&self, k: usize) -> f64 {
         let ns = self.spheres.len();
-        if k < ns {
+        let nj = ns + self.journal_points.len();
+        if k >= nj {
+            self.shape_contacts[k - nj].gap(&self.ws.kin)
+        } else if k < ns {
             self.spheres[k].gap(&self.ws.kin)
         } else {
             let (j, g) = self.journal_points[k - ns];
@@ -87,6 +99,16 @@ impl SpatialModel {
                  rows yet",
                 self.n_bristle
             ));
+        }
+        if opts.solver == crate::SolverKind::Ndf
+            && opts.jacobian == JacobianMode::Analytic
+            && !self.shape_contacts.is_empty()
+        {
+            notes.push(
+                "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
+                 \"finite_difference\"): the shape contacts have no analytic Jacobian blocks"
+                    .to_string(),
+            );
         }
         if opts.linear_solver == crate::LinearSolver::Sparse {
             notes.push("spatial models: the augmented equations are solved dense".to_string());
@@ -187,7 +209,9 @@ impl SpatialModel {
             )
         })?;
         self.events_on = opts.contact_events;
-        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic && self.n_bristle == 0;
+        self.ws.newton.on = opts.jacobian == JacobianMode::Analytic
+            && self.n_bristle == 0
+            && self.shape_contacts.is_empty();
         let (nq, nv) = (self.n_q(), self.n_v());
         let mut solver = AnySolver::new(opts, |ode| {
             if opts.scale_velocity_error {
@@ -294,6 +318,20 @@ impl SpatialModel {
                      stiffness",
                     s.name,
                     100.0 * DEPTH_LIMIT
+                )));
+            }
+        }
+        for c in &self.shape_contacts {
+            let d = c.gap(&self.ws.kin);
+            if d > DEPTH_LIMIT * c.size() {
+                return Err(Stop::Unphysical(format!(
+                    "contact `{}` at t = {t:.6} s: the shapes are {d:.3e} m deep in each other, \
+                     more than {:.0} % of the smaller shape's bounding radius {:.3e} m: the \
+                     normal law is far too soft for the load, or a step carried one shape \
+                     through the other; check the stiffness and the prediction distance",
+                    c.name,
+                    100.0 * DEPTH_LIMIT,
+                    c.size()
                 )));
             }
         }
