@@ -458,8 +458,9 @@ fn names_an_undefined_item(root: toml::Table, message: &str) -> bool {
     }
 }
 
-/// [`names_an_undefined_item`] of a spatial model: a body, or a joint that a driver or a
-/// rotational spring–damper names (`clr_mbd::spatial` compile, `unknown joint`).
+/// [`names_an_undefined_item`] of a spatial model: a body, a joint that a driver or a
+/// rotational spring–damper names (`clr_mbd::spatial` compile, `unknown joint`), or a shape that
+/// a contact names.
 fn spatial_names_an_undefined_item(root: toml::Table, message: &str) -> bool {
     use clr_sim::mbd::MbdError as E;
     let Ok(desc) = clr_sim::mbd::spatial::SpatialDesc::from_toml_table(root) else {
@@ -469,7 +470,8 @@ fn spatial_names_an_undefined_item(root: toml::Table, message: &str) -> bool {
         Err(e) if e.to_string().ends_with(message) => match e {
             E::UnknownBody { .. } => true,
             E::Invalid { path, message } => {
-                path.ends_with(".joint") && message.starts_with("unknown joint")
+                (path.ends_with(".joint") && message.starts_with("unknown joint"))
+                    || (path.contains(".shapes[") && message.starts_with("no [[shape]] named"))
             }
             _ => false,
         },

@@ -213,7 +213,7 @@ def every_kind() -> clr_sim.Model:
             bearing_length=0.015, journal_radius=0.0099, journal_length=0.015,
             normal=journal_law, **({"axial_clearance": 1e-4} if kind == "revolute" else {}))
     # a ball dropped onto a ground box (shape contact)
-    m.body("drop", mass=0.03, principal_inertia=(1e-6, 1e-6, 1e-6), position=(0.0, -8.0, 0.0105))
+    m.body("drop", mass=0.03, principal_inertia=(1e-6, 1e-6, 1e-6), position=(0.0, -8.0, 0.0102))
     m.shape("floor", at=spatial.at("ground", 0.0, -8.0, -0.05),
             geometry={"type": "cuboid", "half_extents": [0.1, 0.1, 0.05]})
     m.shape("bead", at=spatial.at("drop"), orientation=spatial.axis_angle(z, 0.0),
@@ -252,8 +252,10 @@ def test_every_spatial_element_kind_is_reachable_and_runs():
             np.testing.assert_allclose(r[f"{body}.{c}"], v, rtol=0, atol=1e-6)
     # the ball falls into its socket: contact within the 0.01 s
     assert r["socket.penetration"].max() > 0
-    # the dropped ball (0.5 mm above the box) lands within the 0.01 s
-    assert r["drop_contact.normal_force"].max() > 0
+    # the dropped ball (0.2 mm above the box) lands after √(2h/g) = 6.4 ms, within the 0.01 s
+    # (the contact lasts less than an output interval: its rebound shows in the velocity, up
+    # at 0.01 s where a free fall would be at −g·0.01 s)
+    assert r["drop.vz"][-1] > 0
 
 
 def _line_of(marker: str) -> str:
