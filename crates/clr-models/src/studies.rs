@@ -7,7 +7,7 @@ use std::path::Path;
 use crate::flap::{self, FlapParams};
 use crate::map_study::MapDef;
 use crate::{
-    dual_guide, dual_guide_map, flap_flex, flap_map, guide, guide_map, lubrication_wear,
+    dual_guide, dual_guide_map, flap_flex_study, flap_map, guide, guide_map, lubrication_wear,
     manipulator,
 };
 
@@ -49,7 +49,7 @@ fn flap_flexible(dir: &Path) -> Result<usize, String> {
         duration: FLAP_FLEX_STUDY_DURATION,
         ..Default::default()
     };
-    flap_flex::study(dir, &base).map(|c| c.len())
+    flap_flex_study::study(dir, &base).map(|c| c.len())
 }
 
 /// Every built-in study.

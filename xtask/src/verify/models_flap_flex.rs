@@ -4,7 +4,8 @@
 use std::path::Path;
 
 use clr_models::flap::{self, FlapParams};
-use clr_models::flap_flex::{self, FlexStudyCase};
+use clr_models::flap_flex;
+use clr_models::flap_flex_study::{self, FlexStudyCase};
 use clr_models::RunSettings;
 
 use super::Filter;
@@ -155,8 +156,8 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
     // All cases, the bodies study's f2 and f3 included: with NDF's analytic Newton matrix
     // they take about 5e4 steps (5–7 s); with the finite-difference Jacobian they took 5.4e5 /
     // 4.2e5 steps (321 s / 571 s: the step collapsed in persistent J4 contact, docs/models/flap.md).
-    let configs = flap_flex::configurations();
-    let cases = match flap_flex::study_of(&flex_verify_dir(), &study_base(), configs) {
+    let configs = flap_flex_study::configurations();
+    let cases = match flap_flex_study::study_of(&flex_verify_dir(), &study_base(), configs) {
         Ok(c) => c,
         Err(e) => {
             out.push(Case::new("models.flap.flex.study", "studies", "-", RECON).failed(0.0, e));
@@ -165,7 +166,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
     };
     let wall = start.elapsed().as_secs_f64();
     let rms = |s: &str, x: f64| {
-        flap_flex::find(&cases, s, x).map_or(f64::NAN, |c| {
+        flap_flex_study::find(&cases, s, x).map_or(f64::NAN, |c| {
             c.case.metric("flap_acceleration_oscillation_rms")
         })
     };
@@ -208,8 +209,8 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
         ),
     ] {
         let (d1, d4) = (
-            flap_flex::reduction(&cases, series, 1),
-            flap_flex::reduction(&cases, series, 4),
+            flap_flex_study::reduction(&cases, series, 1),
+            flap_flex_study::reduction(&cases, series, 4),
         );
         let c = Case::new(
             id,
@@ -223,7 +224,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
         .note(format!(
             "reductions n = 1..4: {}; {}",
             (1..=4)
-                .map(|n| format!("{:.4}", flap_flex::reduction(&cases, series, n)))
+                .map(|n| format!("{:.4}", flap_flex_study::reduction(&cases, series, n)))
                 .collect::<Vec<_>>()
                 .join(", "),
             summary(&cases, |st| st == series || st == format!("{series}_rigid"))
@@ -232,7 +233,7 @@ fn study_cases(filter: &Filter, out: &mut Vec<Case>) {
     }
     // finding 3: four clearance joints with three flexible bodies are the most irregular
     let spread = |s: &str, x: f64| {
-        flap_flex::find(&cases, s, x).map_or(f64::NAN, |c| c.case.metric("poincare_spread"))
+        flap_flex_study::find(&cases, s, x).map_or(f64::NAN, |c| c.case.metric("poincare_spread"))
     };
     let spread_all = spread("all", 4.0);
     let (other, label) = cases
@@ -304,7 +305,7 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
 pub fn figures(dir: &Path) -> Result<(), String> {
     let fdir = flex_dir();
     if !fdir.join("summary.csv").exists() {
-        flap_flex::study(&fdir, &study_base())?;
+        flap_flex_study::study(&fdir, &study_base())?;
     }
     crate::study_figures::copy_study_figures(
         &fdir,
