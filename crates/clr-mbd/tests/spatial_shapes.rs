@@ -113,3 +113,39 @@ fn ball_drop_impact_velocity_and_energy() {
     assert!(drift < 1e-6 * bal[0], "energy drift {drift} J");
     assert!(r.columns.iter().any(|c| c == "drop.ez"));
 }
+
+/// A ball radius written in millimetres (10 for 10 mm) on the example's 32.7 g ball is flagged at
+/// the shape's geometry: 10 m is 1.2e3 times the ball's radius of gyration √(2/5)·0.01 m
+/// (threshold `MAX_SHAPE_TO_GYRATION` = 30); the metre value is not.
+#[test]
+fn a_shape_size_in_millimetres_is_flagged() {
+    let mm = base()
+        .replacen("radius = 0.01 }", "radius = 10.0 }", 1)
+        .replacen(
+            "position = [0.0, 0.0, 0.03]",
+            "position = [0.0, 0.0, 10.03]",
+            1,
+        );
+    let opts = SimOptions::span(0.0, 1e-3, 2);
+    let warnings = |text: &str| {
+        let desc = SpatialDesc::from_toml_table(text.parse().expect("toml")).expect("desc");
+        let r = desc
+            .compile()
+            .expect("compile")
+            .simulate(&opts)
+            .expect("run");
+        r.warnings
+    };
+    let w = warnings(&mm);
+    let found = w
+        .iter()
+        .find(|w| w.field == "sphere.geometry")
+        .unwrap_or_else(|| panic!("no size finding in {w:?}"));
+    assert!(
+        found.message.contains("(10 mm is 0.01)"),
+        "{}",
+        found.message
+    );
+    let si = warnings(&base());
+    assert!(!si.iter().any(|w| w.field == "sphere.geometry"), "{si:?}");
+}

@@ -16,8 +16,8 @@ use crate::desc::laws::ContactFriction;
 use crate::error::MbdError;
 use crate::plausible::{
     check_energy, deep, friction, gyration_radius, joint_radii, peak_force, restitution, tip_speed,
-    warn, Warning, CLEARANCE_FRACTION, PENETRATION_FRACTION, REFUSE_PENETRATION,
-    SHAPE_PENETRATION_FRACTION, SHAPE_START_FRACTION,
+    warn, Warning, CLEARANCE_FRACTION, MAX_SHAPE_TO_GYRATION, PENETRATION_FRACTION,
+    REFUSE_PENETRATION, SHAPE_PENETRATION_FRACTION, SHAPE_START_FRACTION,
 };
 use crate::results::Results;
 
@@ -73,6 +73,15 @@ impl SpatialModel {
         for k in 0..self.bodies.len() {
             add(self.ws.kin.get(k).r);
         }
+        // A contact shape reaches beyond its anchor (as in the planar scales): a wheel's
+        // extent is its rim.
+        for c in &self.shape_contacts {
+            for side in [&c.a, &c.b] {
+                if let Some(e) = extent.get_mut(side.body) {
+                    *e = e.max(side.s.norm() + side.radius());
+                }
+            }
+        }
         let size = if lo.x.is_finite() {
             (hi - lo).norm()
         } else {
@@ -93,7 +102,34 @@ impl SpatialModel {
         self.check_sockets(&sc, &mut out);
         self.check_initial_depths(t0, y0)?;
         self.check_shape_starts(&mut out);
+        self.check_shape_sizes(&mut out);
         Ok(out)
+    }
+
+    /// A contact shape far larger than the body that carries it ([`MAX_SHAPE_TO_GYRATION`]): a
+    /// size in millimetres on a body whose mass and inertia are in SI units.
+    fn check_shape_sizes(&self, out: &mut Vec<Warning>) {
+        for c in &self.shape_contacts {
+            for side in [&c.a, &c.b] {
+                let Some(b) = self.bodies.get(side.body) else {
+                    continue; // the ground has no size to compare with
+                };
+                let gyration = (b.j.symmetric_eigenvalues().max() / b.mass).sqrt();
+                let r = side.radius();
+                if r > MAX_SHAPE_TO_GYRATION * gyration {
+                    out.push(warn(
+                        format!("{}.geometry", side.name),
+                        format!(
+                            "the shape reaches {r:.3e} m from its origin, {:.0} times the \
+                             largest radius of gyration {gyration:.3e} m of body `{}` that \
+                             carries it: sizes are in metres (10 mm is 0.01)",
+                            r / gyration,
+                            self.names[side.body]
+                        ),
+                    ));
+                }
+            }
+        }
     }
 
     /// Shapes started inside each other by more than [`SHAPE_START_FRACTION`] of the smaller

@@ -87,6 +87,7 @@ fn shape(
         source,
     })?;
     Ok(Side3 {
+        name: name.clone(),
         body,
         s: arm,
         rot,

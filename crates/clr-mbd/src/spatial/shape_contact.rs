@@ -34,6 +34,8 @@ use crate::shape_pair::{assign_slots, reduce, Kept, PairSettings};
 /// A compiled `[[shape]]`: its body, where its frame sits and how it is turned there.
 #[derive(Debug, Clone)]
 pub(crate) struct Side3 {
+    /// The `[[shape]]`'s name (warnings name its fields).
+    pub(crate) name: String,
     /// Body index (or the ground).
     pub(crate) body: usize,
     /// Origin of the shape frame from the centre of mass, body frame, m.
@@ -52,7 +54,7 @@ impl Side3 {
     }
 
     /// Radius of a sphere about the shape origin holding the shape, m.
-    fn radius(&self) -> f64 {
+    pub(crate) fn radius(&self) -> f64 {
         self.shape.bounding_radius()
     }
 }
