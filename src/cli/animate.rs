@@ -28,7 +28,7 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform,
 };
 
-use clr_sim::report::spatial::{Pose, SocketDraw, SpatialScene, SpatialView};
+use clr_sim::report::spatial::{JournalDraw, Pose, SocketDraw, SpatialScene, SpatialView};
 
 use super::CliError;
 
@@ -1998,8 +1998,9 @@ impl Mp4Sink {
 // ---------------------------------------------------------------------------------------------
 // Spatial scenes (`--view`): an orthographic projection drawn with the 2-D primitives above.
 // A hand projection (no 3-D library): bodies as thick lines through their attachment points,
-// joints as dots with their axes, sockets as circles with the ball offset magnified, contact
-// force arrows, the traced point's path; everything sorted far to near (painter's order).
+// joints as dots with their axes, sockets as circles with the ball offset magnified, journals
+// as their bore (a band with round ends) and the journal with its radial offset and tilt
+// magnified, contact force arrows, the traced point's path; everything sorted far to near (painter's order).
 
 /// A named view of a spatial scene (world y up, as on the 3-D page).
 #[derive(clap::ValueEnum, Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -2095,10 +2096,13 @@ impl SpatialAnimation {
         if picks.is_empty() {
             return Err("no frame of the spatial run inside --start … --end".into());
         }
-        // as on the page: the clearance drawn as 8 % of the socket radius, at least 1
-        let auto = (view.scene.sockets.iter())
-            .filter(|k| k.socket_radius > k.ball_radius)
-            .map(|k| 0.08 * k.socket_radius / (k.socket_radius - k.ball_radius))
+        // as on the page: the clearance drawn as 8 % of the socket (bore) radius, at least 1
+        let sockets = (view.scene.sockets.iter()).map(|k| (k.socket_radius, k.ball_radius));
+        let bores = (view.scene.journals.iter()).map(|j| (j.bearing_radius, j.journal_radius));
+        let auto = sockets
+            .chain(bores)
+            .filter(|(r, ri)| r > ri)
+            .map(|(r, ri)| 0.08 * r / (r - ri))
             .fold(f64::INFINITY, f64::min);
         let mag =
             s.clearance_magnification
@@ -2118,6 +2122,10 @@ impl SpatialAnimation {
             for s in 0..a.view.scene.sockets.len() {
                 let v = a.view.frames.socket(s, f);
                 a.fmax = a.fmax.max(v[3].abs()).max(norm3([v[4], v[5], v[6]]));
+            }
+            for j in 0..a.view.scene.journals.len() {
+                let v = a.view.frames.journal(j, f);
+                a.fmax = v.iter().fold(a.fmax, |m, x| m.max(x.abs()));
             }
             pts.extend(a.world_points(f).into_iter().map(|p| a.project(p)));
         }
@@ -2156,6 +2164,13 @@ impl SpatialAnimation {
         for k in &sc.sockets {
             let c = self.pose(k.socket_body.as_deref(), f).point(k.socket_at);
             out.extend([-1.0, 1.0].map(|s| c.map(|v| v + s * k.socket_radius)));
+        }
+        for j in &sc.journals {
+            let (c, u) = self.bore(j, f);
+            for s in [-1.0, 1.0] {
+                let end = axpy(c, 0.5 * s * j.bearing_length, u);
+                out.extend([-1.0, 1.0].map(|s| end.map(|v| v + s * j.bearing_radius)));
+            }
         }
         out.extend(
             self.view
@@ -2234,6 +2249,85 @@ impl SpatialAnimation {
         }
         for (i, k) in sc.sockets.iter().enumerate() {
             out.extend(self.socket_marks(i, k, f));
+        }
+        for (i, j) in sc.journals.iter().enumerate() {
+            out.extend(self.journal_marks(i, j, f));
+        }
+        out
+    }
+
+    /// The bore centre and unit axis of journal `j` in frame `f` (world).
+    fn bore(&self, j: &JournalDraw, f: usize) -> ([f64; 3], [f64; 3]) {
+        let pose = self.pose(j.bearing_body.as_deref(), f);
+        (
+            pose.point(j.bearing_at),
+            unit3(pose.direction(j.bearing_axis)),
+        )
+    }
+
+    /// The journal's end centres in frame `f` (low, high along the bore axis), each with its
+    /// radial offset from the bore axis magnified by `m` (world).
+    fn journal_ends(&self, j: &JournalDraw, f: usize, m: f64) -> [[f64; 3]; 2] {
+        let (c, u) = self.bore(j, f);
+        let pose = self.pose(j.journal_body.as_deref(), f);
+        let o = pose.point(j.journal_at);
+        let mut a = unit3(pose.direction(j.journal_axis));
+        if dot3(a, u) < 0.0 {
+            a = a.map(|x| -x);
+        }
+        [-0.5, 0.5].map(|s| {
+            let d = sub3(axpy(o, s * j.journal_length, a), c);
+            let z = dot3(d, u);
+            let radial = sub3(d, u.map(|x| x * z));
+            axpy(axpy(c, z, u), m, radial)
+        })
+    }
+
+    /// A journal joint: the bore as a band with round ends, the journal inside it with its radial
+    /// offset and tilt magnified, and the group forces as arrows at the journal's ends (radial A
+    /// and thrust − at the low end, radial B and thrust + at the high end).
+    fn journal_marks(&self, i: usize, j: &JournalDraw, f: usize) -> Vec<(f64, Mark)> {
+        let v = self.view.frames.journal(i, f);
+        let (c, u) = self.bore(j, f);
+        let cl = (j.bearing_radius - j.journal_radius).max(0.0);
+        let m = if cl > 0.0 { self.mag } else { 1.0 };
+        let grow = (8.0 / (j.bearing_radius * self.px.scale)).max(1.0);
+        let rs = j.bearing_radius * self.px.scale * grow;
+        let rj = ((j.bearing_radius - m * cl) * self.px.scale * grow).max(0.15 * rs);
+        let d = self.depth(c);
+        let rims = [-0.5, 0.5].map(|s| axpy(c, s * j.bearing_length, u));
+        let rims_px = rims.map(|p| self.to_px(p));
+        let mut out = vec![
+            (d - 2e-9, band(rims_px, GREY, 2.0 * rs + 3.0)),
+            (d - 1.5e-9, band(rims_px, LIGHT, 2.0 * rs)),
+        ];
+        let ends = self.journal_ends(j, f, m);
+        let ends_px = ends.map(|p| self.to_px(p));
+        let on = v.iter().any(|&x| x > 0.0);
+        let edge = if on { ARROW } else { JOURNAL_EDGE };
+        out.push((d - 1e-9, band(ends_px, edge, 2.0 * rj + 2.0)));
+        out.push((d, band(ends_px, JOURNAL_FILL, 2.0 * rj)));
+        if !(on && self.fmax > 0.0) {
+            return out;
+        }
+        let per_n = 0.15 * self.px.width.min(self.px.height) as f64 / self.fmax;
+        let axial = self.dir_px(u);
+        for (k, end) in ends.iter().enumerate() {
+            // radial: towards the bore axis (the force on the journal), from the journal's rim
+            let z = dot3(sub3(*end, c), u);
+            let out_dir = self.dir_px(sub3(*end, axpy(c, z, u)));
+            if v[k] > 0.0 && norm(out_dir) > 0.0 {
+                let tail = add(ends_px[k], mul(out_dir, rj));
+                let arrow = Mark::Arrow(tail, mul(out_dir, -1.0), v[k] * per_n, ARROW);
+                out.push((d + 1e-9, arrow));
+            }
+            // thrust − pushes the journal along +u at its low end, thrust + along −u at its high
+            let sign = if k == 0 { 1.0 } else { -1.0 };
+            if v[2 + k] > 0.0 && norm(axial) > 0.0 {
+                let dir = mul(axial, sign);
+                let arrow = Mark::Arrow(ends_px[k], dir, v[2 + k] * per_n, ARROW);
+                out.push((d + 1e-9, arrow));
+            }
         }
         out
     }
@@ -2331,7 +2425,8 @@ impl Movie for SpatialAnimation {
         );
         text(&mut pm, &self.model, v.width as i64 - pad, pad, scale, true);
         let mut legend = vec![format!("{} view", self.name.label())];
-        if self.mag > 1.0 && !self.view.scene.sockets.is_empty() {
+        let joints = self.view.scene.sockets.len() + self.view.scene.journals.len();
+        if self.mag > 1.0 && joints > 0 {
             legend.push(format!("clearance x{}", short(self.mag)));
         }
         if self.fmax > 0.0 {
@@ -2349,6 +2444,35 @@ fn dot3(a: [f64; 3], b: [f64; 3]) -> f64 {
 
 fn norm3(a: [f64; 3]) -> f64 {
     dot3(a, a).sqrt()
+}
+
+/// A cylinder seen from the side: a round-ended band of `width` px between its end centres; a
+/// disc when it is seen along its axis (a zero-length stroke draws nothing).
+fn band(ends: [P; 2], c: Rgb, width: f64) -> Mark {
+    if norm(sub(ends[1], ends[0])) < 0.5 {
+        Mark::Dot(ends[0], 0.5 * width, c, c)
+    } else {
+        Mark::Line(ends.to_vec(), c, width)
+    }
+}
+
+fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// a + k·b.
+fn axpy(a: [f64; 3], k: f64, b: [f64; 3]) -> [f64; 3] {
+    [a[0] + k * b[0], a[1] + k * b[1], a[2] + k * b[2]]
+}
+
+/// a / |a| (a itself when zero).
+fn unit3(a: [f64; 3]) -> [f64; 3] {
+    let n = norm3(a);
+    if n > 0.0 {
+        a.map(|x| x / n)
+    } else {
+        a
+    }
 }
 
 fn size_text(bytes: u64) -> String {
@@ -2825,6 +2949,48 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The example's journal joint drawn from the side (y right, z up): the journal sits against
+    /// the bore at −y, so with the automatic magnification m = 0.08·R/c = 8 the drawn gap of
+    /// 2·m·c lies at +y. The pixel at y = R − m·c (mid-gap) shows the bore's inside, its mirror
+    /// at y = −(R − m·c) the journal; the radial contact force is drawn in the force colour.
+    #[test]
+    fn a_journal_is_drawn_with_its_offset_magnified() {
+        let text = include_str!("../../models/examples/spatial_revolute_clearance.toml");
+        let d = clr_mbd::spatial::SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap();
+        let scene = SpatialScene::from_desc(&d);
+        let (r, c) = (0.010, 1e-4);
+        let mut columns: Vec<String> = ["t", "pendulum.x", "pendulum.y", "pendulum.z"]
+            .map(String::from)
+            .to_vec();
+        columns.extend(["qw", "qx", "qy", "qz"].map(|q| format!("pendulum.{q}")));
+        columns.extend(clr_sim::report::spatial::JOURNAL_VALUES.map(|v| format!("pin.{v}")));
+        // the centre of mass 0.1 m along x from the pin, the pin at y = −c (on the bore)
+        let row = [0.0, 0.1, -c, 0.0, 1.0, 0.0, 0.0, 0.0, 5.0, 5.0, 0.0, 0.0];
+        let results = clr_mbd::Results {
+            columns,
+            data: row.to_vec(),
+            ..clr_mbd::Results::default()
+        };
+        let anim =
+            animate_spatial(scene, &results, ViewName::Side, &settings(320, 1), "pin").unwrap();
+        assert!((anim.mag - 8.0).abs() < 1e-9, "{}", anim.mag);
+        let pm = anim.render(0);
+        let colour = |y: f64| {
+            let p = anim.px.px([y, 0.0]);
+            let px = pm.pixel(p[0].round() as u32, p[1].round() as u32).unwrap();
+            [px.red(), px.green(), px.blue()]
+        };
+        let m = anim.mag;
+        assert_eq!(colour(r - m * c), LIGHT, "the gap at +y");
+        assert_eq!(colour(-(r - m * c)), JOURNAL_FILL, "the journal at −y");
+        let red = pm
+            .pixels()
+            .iter()
+            .filter(|p| [p.red(), p.green(), p.blue()] == ARROW)
+            .count();
+        assert!(red > 50, "{red} pixels in the force colour");
     }
 
     #[test]

@@ -344,6 +344,12 @@ impl SpatialFrames {
         }
     }
 
+    /// The four [`JOURNAL_VALUES`] of journal `j` in frame `f`, N (zeros when absent).
+    pub fn journal(&self, j: usize, f: usize) -> [f64; 4] {
+        let v = self.journals.get(j).and_then(|a| a.get(4 * f..4 * f + 4));
+        std::array::from_fn(|i| v.map_or(0.0, |v| f64::from(v[i])))
+    }
+
     /// The eight [`SOCKET_VALUES`] of socket `s` in frame `f` (zeros when absent).
     pub fn socket(&self, s: usize, f: usize) -> [f64; 8] {
         let v = self.sockets.get(s).and_then(|a| a.get(8 * f..8 * f + 8));
