@@ -20,6 +20,13 @@
 //!   1.5× the closed-form stopping time. Tolerance 1e-3 relative: the regularized Coulomb law
 //!   (v_reg = 1e-5 m/s) creeps at v_reg tan θ/μ after the stop (1e-6 m over the remaining time)
 //!   and the corners' normal forces settle from the static penetration within milliseconds.
+//! * `.guide_stop`: a steel block (0.1256 kg) launched at v₀ = 0.5 m/s along a rectangular guide
+//!   with 0.5 mm clearance on every side (models/examples/spatial_slider_in_guide.toml: the guide
+//!   a compound of four cuboid plates, the block a cuboid: the spatial translational clearance
+//!   joint built from shape contact), resting on the bottom plate, Coulomb μ = 0.3, stops after
+//!   d = v₀²/(2μg) (the incline's closed form at θ = 0). Measured: block.x at the end of the run
+//!   (0.3 s, 1.8× the stopping time). Tolerance 1e-3 relative, for the incline's reasons; the
+//!   block rests on its four bottom corners (`.guide_stop.corners`), the other plates untouched.
 //! * `.gear_ratio`: a friction-wheel pair (two parry capsules with parallel axes, r₁ = 50 mm
 //!   driven to 10 rad/s by a revolute-angle driver, r₂ = 100 mm free on its revolute joint, axes
 //!   0.15 m − δ₀ apart: the interference δ₀ = 20 µm preloads the contact; parry gives one point
@@ -46,6 +53,7 @@ const FAMILIES: &[Family] = &[
     ("ball_cuboid_rebound", rebound_cases),
     ("incline_stop", incline_case),
     ("gear_ratio", gear_case),
+    ("guide_stop", guide_case),
 ];
 
 /// The `contact.spatial.shapes.*` cases.
@@ -233,6 +241,41 @@ fn incline_case(out: &mut Vec<Case>) {
             "contact points while sliding",
             "-",
             "a box flat on a plane rests on its four bottom corners",
+        )
+        .absolute(points, 4.0, 0.0),
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+
+/// The shipped slider-in-guide example as it is.
+const GUIDE_FILE: &str = include_str!("../../../models/examples/spatial_slider_in_guide.toml");
+
+fn guide_case(out: &mut Vec<Case>) {
+    let id = format!("{PREFIX}.guide_stop");
+    let src = "d = v0²/(2μg) (constant deceleration); 1e-3 relative (module docs)";
+    let (mu, v0) = (0.3, 0.5);
+    let d = v0 * v0 / (2.0 * mu * G);
+    let res = match run(GUIDE_FILE, 0.3, 300, 1e-8) {
+        Ok(r) => r,
+        Err(e) => {
+            out.push(Case::new(&id, "stopping distance", "m", src).failed(d, e));
+            return;
+        }
+    };
+    let dist = at(&res, "block.x", 0.3) - at(&res, "block.x", 0.0);
+    let points = at(&res, "guide_contact.contact", 0.5 * v0 / (mu * G));
+    out.push(
+        Case::new(&id, "stopping distance in the guide", "m", src)
+            .relative(dist, d, 1e-3)
+            .note(format!("active corner points while sliding: {points}")),
+    );
+    out.push(
+        Case::new(
+            format!("{id}.corners"),
+            "contact points while sliding",
+            "-",
+            "a block flat on the guide's bottom plate rests on its four bottom corners",
         )
         .absolute(points, 4.0, 0.0),
     );
