@@ -28,7 +28,9 @@ use tiny_skia::{
     Color, FillRule, LineCap, LineJoin, Paint, PathBuilder, Pixmap, Stroke, StrokeDash, Transform,
 };
 
-use clr_sim::report::spatial::{JournalDraw, Pose, SocketDraw, SpatialScene, SpatialView};
+use clr_sim::report::spatial::{
+    JournalDraw, Pose, ShapeDraw, SocketDraw, SpatialScene, SpatialView,
+};
 
 use super::CliError;
 
@@ -2051,6 +2053,7 @@ const BODY_COLOURS: [Rgb; 4] = [PART_EDGE, BEARING, BEAM_EDGE, JOURNAL_EDGE];
 /// One thing drawn in a spatial frame (pixels), at its depth towards the viewer (m).
 enum Mark {
     Line(Vec<P>, Rgb, f64),
+    Fill(Vec<P>, Rgb),
     Dot(P, f64, Rgb, Rgb),
     Arrow(P, P, f64, Rgb),
 }
@@ -2067,6 +2070,68 @@ pub(crate) struct SpatialAnimation {
     fmax: f64,
     px: View,
     decimals: usize,
+    /// The contact shapes, with their edges found once.
+    shapes: Vec<ShapeMesh>,
+}
+
+/// A contact shape's surface for drawing: the triangles in its body's frame, their normals, and
+/// the edges with the triangles beside them (the silhouette and the creases are drawn).
+struct ShapeMesh {
+    body: Option<String>,
+    /// Vertices in the body's centre-of-mass frame, m.
+    vertices: Vec<[f64; 3]>,
+    triangles: Vec<[usize; 3]>,
+    /// Unit outward normals of the triangles, body frame.
+    normals: Vec<[f64; 3]>,
+    /// (vertex a, vertex b, triangle on one side, triangle on the other side if any, a crease:
+    /// the normals differ by more than 20°).
+    edges: Vec<(usize, usize, usize, Option<usize>, bool)>,
+}
+
+impl ShapeMesh {
+    fn new(s: &ShapeDraw) -> Self {
+        let place = Pose {
+            x: s.at,
+            q: s.rotation,
+        };
+        let vertices: Vec<[f64; 3]> = (s.vertices.chunks_exact(3))
+            .map(|v| place.point([0, 1, 2].map(|k| f64::from(v[k]))))
+            .collect();
+        let n = vertices.len();
+        let triangles: Vec<[usize; 3]> = (s.triangles.chunks_exact(3))
+            .map(|t| [0, 1, 2].map(|k| t[k] as usize))
+            .filter(|t| t.iter().all(|&k| k < n))
+            .collect();
+        let normals = (triangles.iter())
+            .map(|t| {
+                let [a, b, c] = t.map(|k| vertices[k]);
+                unit3(cross3(sub3(b, a), sub3(c, a)))
+            })
+            .collect::<Vec<_>>();
+        let mut sides: std::collections::BTreeMap<(usize, usize), Vec<usize>> =
+            std::collections::BTreeMap::new();
+        for (i, t) in triangles.iter().enumerate() {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                sides.entry((a.min(b), a.max(b))).or_default().push(i);
+            }
+        }
+        let crease = 20f64.to_radians().cos();
+        let edges = (sides.into_iter())
+            .map(|((a, b), ts)| {
+                let other = ts.get(1).copied();
+                let sharp = other.is_some_and(|o| dot3(normals[ts[0]], normals[o]) < crease);
+                (a, b, ts[0], other, sharp)
+            })
+            .collect();
+        ShapeMesh {
+            body: s.body.clone(),
+            vertices,
+            triangles,
+            normals,
+            edges,
+        }
+    }
 }
 
 /// The animation of `scene` over `results` seen from `view` (what `clr animate --view` draws
@@ -2107,6 +2172,7 @@ impl SpatialAnimation {
         let mag =
             s.clearance_magnification
                 .unwrap_or(if auto.is_finite() { auto.max(1.0) } else { 1.0 });
+        let shapes = view.scene.shapes.iter().map(ShapeMesh::new).collect();
         let mut a = SpatialAnimation {
             view,
             model: model.to_string(),
@@ -2116,6 +2182,7 @@ impl SpatialAnimation {
             fmax: 0.0,
             px: View::fit([0.0, 0.0], [1.0, 1.0], s.width),
             decimals: 3,
+            shapes,
         };
         let mut pts = Vec::new();
         for &f in &a.picks {
@@ -2164,6 +2231,10 @@ impl SpatialAnimation {
         for k in &sc.sockets {
             let c = self.pose(k.socket_body.as_deref(), f).point(k.socket_at);
             out.extend([-1.0, 1.0].map(|s| c.map(|v| v + s * k.socket_radius)));
+        }
+        for m in &self.shapes {
+            let pose = self.pose(m.body.as_deref(), f);
+            out.extend(m.vertices.iter().map(|&v| pose.point(v)));
         }
         for j in &sc.journals {
             let (c, u) = self.bore(j, f);
@@ -2252,6 +2323,55 @@ impl SpatialAnimation {
         }
         for (i, j) in sc.journals.iter().enumerate() {
             out.extend(self.journal_marks(i, j, f));
+        }
+        for m in &self.shapes {
+            out.extend(self.shape_marks(m, f));
+        }
+        out
+    }
+
+    /// A contact shape: its triangles filled, its silhouette and creases drawn. A shape on the
+    /// ground (a floor, a guide) is scenery, drawn behind everything (depth −∞): one of its large
+    /// triangles would otherwise sort in front of what stands on it.
+    fn shape_marks(&self, m: &ShapeMesh, f: usize) -> Vec<(f64, Mark)> {
+        let pose = self.pose(m.body.as_deref(), f);
+        let world: Vec<[f64; 3]> = m.vertices.iter().map(|&v| pose.point(v)).collect();
+        let towards = self.name.axes()[2];
+        let facing: Vec<bool> = (m.normals.iter())
+            .map(|&n| dot3(pose.direction(n), towards) >= 0.0)
+            .collect();
+        let ground = m.body.is_none();
+        let (fill, edge) = if ground {
+            (GROUND_FILL, GREY)
+        } else {
+            (SHAPE_FILL, PART_EDGE)
+        };
+        let depth = |p: [f64; 3]| {
+            if ground {
+                f64::NEG_INFINITY
+            } else {
+                self.depth(p)
+            }
+        };
+        let mut out = Vec::new();
+        for (i, t) in m.triangles.iter().enumerate() {
+            if !facing[i] {
+                continue;
+            }
+            let c = t.map(|k| world[k]);
+            let centre = [0, 1, 2].map(|k| (c[0][k] + c[1][k] + c[2][k]) / 3.0);
+            let pts = c.iter().map(|&p| self.to_px(p)).collect();
+            out.push((depth(centre), Mark::Fill(pts, fill)));
+        }
+        for &(a, b, t, other, crease) in &m.edges {
+            let silhouette = other.is_none_or(|o| facing[o] != facing[t]);
+            let seen = facing[t] || other.is_some_and(|o| facing[o]);
+            if silhouette || (crease && seen) {
+                let mid = [0, 1, 2].map(|k| 0.5 * (world[a][k] + world[b][k]));
+                let line = vec![self.to_px(world[a]), self.to_px(world[b])];
+                // just in front of the triangles beside it
+                out.push((depth(mid) + 1e-9, Mark::Line(line, edge, 1.5)));
+            }
         }
         out
     }
@@ -2378,6 +2498,8 @@ impl SpatialAnimation {
     fn draw_mark(pm: &mut Pixmap, m: &Mark) {
         match m {
             Mark::Line(pts, c, w) => polyline(pm, pts, *c, *w),
+            // the fill's own colour as a thin edge closes the cracks between triangles
+            Mark::Fill(pts, c) => polygon(pm, pts, *c, *c, 0.75),
             Mark::Dot(p, r, fill, edge) => circle(pm, *p, *r, Some(*fill), Some((*edge, 1.5))),
             Mark::Arrow(tail, dir, len, c) => arrow_in(pm, *tail, *dir, *len, *c),
         }
@@ -2454,6 +2576,14 @@ fn band(ends: [P; 2], c: Rgb, width: f64) -> Mark {
     } else {
         Mark::Line(ends.to_vec(), c, width)
     }
+}
+
+fn cross3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
 }
 
 fn sub3(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
@@ -2951,6 +3081,22 @@ mod tests {
         }
     }
 
+    /// `t` and the pose columns of `body`.
+    fn pose_columns(body: &str) -> Vec<String> {
+        let mut columns = vec!["t".to_string()];
+        columns.extend(["x", "y", "z", "qw", "qx", "qy", "qz"].map(|c| format!("{body}.{c}")));
+        columns
+    }
+
+    /// Results of one row.
+    fn one_row(columns: Vec<String>, row: &[f64]) -> clr_mbd::Results {
+        clr_mbd::Results {
+            columns,
+            data: row.to_vec(),
+            ..clr_mbd::Results::default()
+        }
+    }
+
     /// The example's journal joint drawn from the side (y right, z up): the journal sits against
     /// the bore at −y, so with the automatic magnification m = 0.08·R/c = 8 the drawn gap of
     /// 2·m·c lies at +y. The pixel at y = R − m·c (mid-gap) shows the bore's inside, its mirror
@@ -2961,18 +3107,11 @@ mod tests {
         let d = clr_mbd::spatial::SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap();
         let scene = SpatialScene::from_desc(&d);
         let (r, c) = (0.010, 1e-4);
-        let mut columns: Vec<String> = ["t", "pendulum.x", "pendulum.y", "pendulum.z"]
-            .map(String::from)
-            .to_vec();
-        columns.extend(["qw", "qx", "qy", "qz"].map(|q| format!("pendulum.{q}")));
+        let mut columns = pose_columns("pendulum");
         columns.extend(clr_sim::report::spatial::JOURNAL_VALUES.map(|v| format!("pin.{v}")));
         // the centre of mass 0.1 m along x from the pin, the pin at y = −c (on the bore)
         let row = [0.0, 0.1, -c, 0.0, 1.0, 0.0, 0.0, 0.0, 5.0, 5.0, 0.0, 0.0];
-        let results = clr_mbd::Results {
-            columns,
-            data: row.to_vec(),
-            ..clr_mbd::Results::default()
-        };
+        let results = one_row(columns, &row);
         let anim =
             animate_spatial(scene, &results, ViewName::Side, &settings(320, 1), "pin").unwrap();
         assert!((anim.mag - 8.0).abs() < 1e-9, "{}", anim.mag);
@@ -2991,6 +3130,38 @@ mod tests {
             .filter(|p| [p.red(), p.green(), p.blue()] == ARROW)
             .count();
         assert!(red > 50, "{red} pixels in the force colour");
+    }
+
+    /// The ball-on-box example's shapes drawn from the top (x right, y up): the ball's disc
+    /// (radius 10 mm, seen at 0.6 R beside its centre, clear of the centre-of-mass dot) in the
+    /// shape fill, the floor's top face around it in the ground fill, the floor's outline (its
+    /// silhouette: the box's top rim at x = ±0.5 m) in grey.
+    #[test]
+    fn contact_shapes_are_drawn_as_their_surfaces() {
+        let text = include_str!("../../models/examples/spatial_ball_on_box.toml");
+        let d = clr_mbd::spatial::SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap();
+        let scene = SpatialScene::from_desc(&d);
+        assert_eq!(scene.shapes.len(), 2);
+        let row = [0.0, 0.2, 0.1, 0.05, 1.0, 0.0, 0.0, 0.0];
+        let results = one_row(pose_columns("ball"), &row);
+        let anim =
+            animate_spatial(scene, &results, ViewName::Top, &settings(400, 1), "ball").unwrap();
+        let pm = anim.render(0);
+        let colour = |x: f64, y: f64| {
+            let p = anim.px.px([x, y]);
+            let px = pm.pixel(p[0].round() as u32, p[1].round() as u32).unwrap();
+            [px.red(), px.green(), px.blue()]
+        };
+        // within 4 levels: the anti-aliased seams between a shape's triangles
+        let near = |x: f64, y: f64, want: Rgb, what: &str| {
+            let got = colour(x, y);
+            let off = (0..3).map(|k| got[k].abs_diff(want[k])).max().unwrap_or(0);
+            assert!(off <= 4, "{what}: {got:?} instead of {want:?}");
+        };
+        near(0.2 + 0.006, 0.1, SHAPE_FILL, "the ball");
+        near(0.2 + 0.03, 0.1, GROUND_FILL, "the floor beside it");
+        near(-0.3, -0.2, GROUND_FILL, "the floor");
+        near(0.5, -0.2, GREY, "the floor's rim");
     }
 
     #[test]

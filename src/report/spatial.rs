@@ -31,6 +31,9 @@ pub struct SpatialScene {
     /// Journal-in-bearing (spatial revolute and cylindrical) clearance joints.
     #[serde(default)]
     pub journals: Vec<JournalDraw>,
+    /// Contact shapes (`[[shape]]`), drawn as their triangulated surfaces on their bodies.
+    #[serde(default)]
+    pub shapes: Vec<ShapeDraw>,
     /// A point whose trajectory is drawn.
     pub trace: Option<TracePoint>,
 }
@@ -59,6 +62,27 @@ pub struct JointDraw {
     /// Its axis (unit vector, that body's frame); for a planar joint the plane's normal.
     pub axis: Option<[f64; 3]>,
 }
+
+/// A contact shape: its surface as triangles, carried by its body (translucent on the ground).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ShapeDraw {
+    /// Name (the `[[shape]]`'s).
+    pub name: String,
+    /// The body it is on (`None`: the ground).
+    pub body: Option<String>,
+    /// Origin of the shape frame in that body's centre-of-mass frame, m.
+    pub at: [f64; 3],
+    /// Rotation shape frame → body frame, `[w, x, y, z]`.
+    pub rotation: [f64; 4],
+    /// Vertices in the shape frame, `[x, y, z]` flattened, m.
+    pub vertices: Vec<f32>,
+    /// Triangles, three vertex indices each, flattened (counter-clockwise seen from outside).
+    pub triangles: Vec<u32>,
+}
+
+/// Segments around the curved shapes' axes in [`ShapeDraw`] (24: a ball of 10 mm is drawn
+/// within 0.09 mm of its surface).
+pub const SHAPE_SEGMENTS: u32 = 24;
 
 /// A ball-and-socket clearance joint: the socket sphere on one body, the ball on the other.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -534,6 +558,7 @@ pub fn spinning_top(rows: usize) -> (SpatialScene, Results) {
             axis: None,
         }],
         journals: Vec::new(),
+        shapes: Vec::new(),
         sockets: vec![SocketDraw {
             name: "cup".into(),
             socket_body: None,
@@ -625,12 +650,29 @@ impl SpatialScene {
                 _ => {}
             }
         }
+        let mut shapes = Vec::new();
         for s in &d.shapes {
             attach(&s.at);
+            // an invalid shape is refused by the run at its field; the drawing leaves it out
+            if let Ok(surface) = s.surface(SHAPE_SEGMENTS) {
+                let (body, at) = local(&s.at);
+                shapes.push(ShapeDraw {
+                    name: s.name.clone(),
+                    body,
+                    at,
+                    rotation: surface.rotation,
+                    vertices: surface
+                        .vertices
+                        .iter()
+                        .flatten()
+                        .map(|&x| x as f32)
+                        .collect(),
+                    triangles: surface.triangles.into_iter().flatten().collect(),
+                });
+            }
         }
         let mut sockets = Vec::new();
         let mut journals = Vec::new();
-        // shape contacts are not drawn yet (only their anchors)
         for c in &d.clearances {
             let c = match c {
                 clr_mbd::spatial::SpatialClearance::Spherical(c) => c,
@@ -699,6 +741,7 @@ impl SpatialScene {
             joints,
             sockets,
             journals,
+            shapes,
             trace,
         }
     }
@@ -877,6 +920,38 @@ mod tests {
             .map(|l| l.label.clone())
             .collect();
         assert_eq!(titles, ["pin.radial_a", "pin.radial_b", "pin.thrust_plus"]);
+    }
+
+    /// The slider-in-guide example's shapes: the guide on the ground as its four plates (8
+    /// corners and 12 triangles each), the slider on its block, both at their places.
+    #[test]
+    fn contact_shapes_are_in_the_scene_with_their_surfaces() {
+        let text = include_str!("../../models/examples/spatial_slider_in_guide.toml");
+        let d = clr_mbd::spatial::SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap();
+        let scene = SpatialScene::from_desc(&d);
+        let [guide, slider] = scene.shapes.as_slice() else {
+            panic!("{:?}", scene.shapes.len())
+        };
+        assert_eq!(
+            (guide.name.as_str(), guide.body.as_deref()),
+            ("guide", None)
+        );
+        assert_eq!(
+            (guide.vertices.len(), guide.triangles.len()),
+            (4 * 8 * 3, 4 * 12 * 3)
+        );
+        assert_eq!(slider.body.as_deref(), Some("block"));
+        assert_eq!(
+            (slider.vertices.len(), slider.triangles.len()),
+            (8 * 3, 12 * 3)
+        );
+        assert_eq!(slider.rotation, [1.0, 0.0, 0.0, 0.0]);
+        let top = guide
+            .vertices
+            .chunks_exact(3)
+            .map(|v| v[2])
+            .fold(f32::MIN, f32::max);
+        assert!((top - 0.0155).abs() < 1e-7, "{top}");
     }
 
     #[test]

@@ -653,12 +653,69 @@ impl ContactShape3 {
         self.bounding_radius
     }
 
+    /// A triangulation of the shape's surface in the body frame, for drawing (report pages,
+    /// animations): vertices (m) and triangles (indices into the vertices, counter-clockwise
+    /// seen from outside for the solid kinds). Balls, capsules, cylinders and cones are
+    /// tessellated with `segments` (at least 3) around their axis; cuboids and convex polyhedra
+    /// are exact, triangle meshes are returned as given, compounds part by part.
+    pub fn surface(&self, segments: u32) -> (Vec<[f64; 3]>, Vec<[u32; 3]>) {
+        let (mut vertices, mut triangles) = (Vec::new(), Vec::new());
+        append_surface(
+            &*self.parry,
+            &self.frame,
+            segments.max(3),
+            &mut vertices,
+            &mut triangles,
+        );
+        (vertices, triangles)
+    }
+
     fn posed(&self, pose: &BodyState3) -> Result<Posed<'_>, ContactError> {
         Ok(Posed {
             shape: self,
             pose: pose.pose()? * self.frame,
         })
     }
+}
+
+/// Append the surface of a parry shape placed at `frame` ([`ContactShape3::surface`]).
+fn append_surface(
+    shape: &dyn parry3d_f64::shape::Shape,
+    frame: &Pose,
+    n: u32,
+    vertices: &mut Vec<[f64; 3]>,
+    triangles: &mut Vec<[u32; 3]>,
+) {
+    if let Some(c) = shape.as_compound() {
+        for (pose, part) in c.shapes() {
+            append_surface(&**part, &(*frame * *pose), n, vertices, triangles);
+        }
+        return;
+    }
+    let (points, idx) = if let Some(b) = shape.as_ball() {
+        b.to_trimesh(n, n.div_ceil(2).max(2))
+    } else if let Some(b) = shape.as_cuboid() {
+        b.to_trimesh()
+    } else if let Some(c) = shape.as_capsule() {
+        c.to_trimesh(n, n.div_ceil(2).max(2))
+    } else if let Some(c) = shape.as_cylinder() {
+        c.to_trimesh(n)
+    } else if let Some(c) = shape.as_cone() {
+        c.to_trimesh(n)
+    } else if let Some(c) = shape.as_convex_polyhedron() {
+        c.to_trimesh()
+    } else if let Some(m) = shape.as_trimesh() {
+        (m.vertices().to_vec(), m.indices().to_vec())
+    } else {
+        return; // every kind `to_parry` builds is handled above
+    };
+    let base = vertices.len() as u32;
+    vertices.extend(
+        points
+            .into_iter()
+            .map(|p| -> [f64; 3] { nv(*frame * p).into() }),
+    );
+    triangles.extend(idx.into_iter().map(|t| t.map(|k| base + k)));
 }
 
 /// Distance between two boxes `[x_min, y_min, z_min, x_max, y_max, z_max]`, m (0 when they

@@ -1042,3 +1042,86 @@ fn composite_pairs_find_points() {
         assert_vec(p.point_b, o + c);
     }
 }
+
+/// Volume enclosed by a triangulated surface, Σ v₀·(v₁ × v₂)/6 (divergence theorem): positive
+/// when the triangles turn counter-clockwise seen from outside.
+fn enclosed_volume(v: &[[f64; 3]], t: &[[u32; 3]]) -> f64 {
+    let p = |k: u32| Vector3::from(v[k as usize]);
+    t.iter()
+        .map(|&[a, b, c]| p(a).dot(&p(b).cross(&p(c))) / 6.0)
+        .sum()
+}
+
+/// The drawing surfaces against closed forms: a cuboid's eight corners and volume 8·hx·hy·hz
+/// exactly (to rounding), a cylinder along x as an n-gon prism (volume (n/2) r² sin(2π/n)·2h,
+/// every vertex within |x| ≤ h and at radius r from the x axis), a ball inscribed (every vertex at
+/// r, volume below 4πr³/3 and within 2 % at 32 segments), a compound as its parts' sum with the
+/// parts' poses applied.
+#[test]
+fn drawing_surfaces_enclose_the_closed_form_volumes() {
+    let b = shape(Shape3::cuboid(0.1, 0.2, 0.3));
+    let (v, t) = b.surface(16);
+    assert_eq!((v.len(), t.len()), (8, 12));
+    assert!(v
+        .iter()
+        .all(|p| (p[0].abs() - 0.1).abs() < 1e-15 && (p[2].abs() - 0.3).abs() < 1e-15));
+    let exact = 8.0 * 0.1 * 0.2 * 0.3;
+    assert!(
+        (enclosed_volume(&v, &t) - exact).abs() < 1e-15,
+        "{}",
+        enclosed_volume(&v, &t)
+    );
+
+    let (h, r, n) = (0.05, 0.02, 24u32);
+    let c = shape(Shape3::cylinder(h, r));
+    let (v, t) = c.surface(n);
+    let prism = 0.5 * n as f64 * r * r * (2.0 * PI / n as f64).sin() * 2.0 * h;
+    assert!(
+        (enclosed_volume(&v, &t) - prism).abs() < 1e-12 * prism,
+        "cylinder volume"
+    );
+    for p in &v {
+        assert!(p[0].abs() <= h * (1.0 + 1e-12), "{p:?} beyond the ends");
+        let rho = p[1].hypot(p[2]);
+        assert!(
+            rho < 1e-15 || (rho - r).abs() < 1e-12 * r,
+            "{p:?} off the radius"
+        );
+    }
+
+    let ball = shape(Shape3::ball(0.01));
+    let (v, t) = ball.surface(32);
+    assert!(v
+        .iter()
+        .all(|p| (Vector3::from(*p).norm() - 0.01).abs() < 1e-15));
+    let sphere = 4.0 / 3.0 * PI * 1e-6;
+    let vol = enclosed_volume(&v, &t);
+    assert!(vol < sphere && vol > 0.98 * sphere, "{vol} vs {sphere}");
+
+    let parts = vec![
+        (
+            PartPose3::new([0.0, 0.0, -0.013], [0.0, 0.0, 0.0]),
+            Shape3::Cuboid {
+                half_extents: [0.2, 0.0155, 0.0025],
+            },
+        ),
+        (
+            PartPose3::new([0.0, 0.013, 0.0], [0.0, 0.0, 0.0]),
+            Shape3::Cuboid {
+                half_extents: [0.2, 0.0025, 0.0105],
+            },
+        ),
+    ];
+    let g = shape(Shape3::compound(parts));
+    let (v, t) = g.surface(8);
+    assert_eq!((v.len(), t.len()), (16, 24));
+    let exact = 8.0 * (0.2 * 0.0155 * 0.0025 + 0.2 * 0.0025 * 0.0105);
+    assert!(
+        (enclosed_volume(&v, &t) - exact).abs() < 1e-15,
+        "compound volume"
+    );
+    assert!(v[..8].iter().all(|p| (p[2] + 0.013).abs() - 0.0025 < 1e-15));
+    assert!(v[8..]
+        .iter()
+        .all(|p| ((p[1] - 0.013).abs() - 0.0025).abs() < 1e-15));
+}

@@ -104,11 +104,19 @@
       for (const j of sc.joints) add(j.body, j.at, i, 0);
       for (const s of sc.sockets) add(s.socket_body, s.socket_at, i, s.socket_radius);
       for (const j of sc.journals || []) add(j.bearing_body, j.bearing_at, i, j.bearing_radius + 0.5 * j.bearing_length);
+      for (const s of sc.shapes || []) add(s.body, s.at, i, shapeRadius(s));
       const tr = motion.trace(i, 0);
       if (tr) box.expandByPoint(tr);
     }
     box.expandByPoint(new THREE.Vector3(0, 0, 0));
     return box;
+  }
+
+  /** The largest distance of a shape's vertices from its origin, m. */
+  function shapeRadius(s) {
+    let r = 0;
+    for (let k = 0; k + 2 < s.vertices.length; k += 3) r = Math.max(r, Math.hypot(s.vertices[k], s.vertices[k + 1], s.vertices[k + 2]));
+    return r;
   }
 
   function material(colour, opts) {
@@ -131,13 +139,14 @@
   }
 
   /** A body: tubes through its points (a closed loop for three or more), a sphere at its centre
-   * of mass; one point: a box there. */
-  function bodyGroup(b, colour, size) {
+   * of mass; one point: a box there. A body that carries a contact shape gets only the tubes:
+   * its shape shows the body, and a marker of 1–3 % of the scene would hide a small one. */
+  function bodyGroup(b, colour, size, shaped) {
     const g = new THREE.Group();
     const mat = material(colour);
     const pts = b.points.map((p) => new THREE.Vector3(...p));
     const r = 0.012 * size;
-    if (pts.length === 1) {
+    if (pts.length === 1 && !shaped) {
       const m = new THREE.Mesh(new THREE.BoxGeometry(6 * r, 6 * r, 6 * r), mat);
       m.position.copy(pts[0]);
       g.add(m);
@@ -147,6 +156,7 @@
       const m = tube(loop[j], loop[j + 1], r, mat);
       if (m) g.add(m);
     }
+    if (shaped) return g;
     for (const p of pts) {
       const m = ball(1.3 * r, mat);
       m.position.copy(p);
@@ -250,7 +260,8 @@
     world.add(camera);
     world.add(new THREE.AxesHelper(0.15 * size));
     const bodies = scene3.bodies.map((b, k) => {
-      const g = bodyGroup(b, COLOURS[k % COLOURS.length], size);
+      const shaped = (scene3.shapes || []).some((s) => s.body === b.name);
+      const g = bodyGroup(b, COLOURS[k % COLOURS.length], size, shaped);
       world.add(g);
       return g;
     });
@@ -259,7 +270,28 @@
     for (const j of scene3.joints) parentOf(j.body).add(jointGroup(j, size));
     const sockets = scene3.sockets.map((s, k) => makeSocket(s, k));
     const journals = journals3.map((j, k) => makeJournal(j, k));
+    for (const s of scene3.shapes || []) parentOf(s.body).add(makeShape(s));
     const trace = makeTrace();
+
+    /** A contact shape: its triangulated surface in its body's colour (translucent grey on the
+     * ground, so that a floor or a guide hides nothing), at its place and rotation. */
+    function makeShape(s) {
+      // setFromPoints and setIndex build the attributes (the bundle exports no BufferAttribute)
+      const pts = [];
+      for (let k = 0; k + 2 < s.vertices.length; k += 3) pts.push(new THREE.Vector3(s.vertices[k], s.vertices[k + 1], s.vertices[k + 2]));
+      const geo = new THREE.BufferGeometry().setFromPoints(pts);
+      geo.setIndex(s.triangles);
+      geo.computeVertexNormals();
+      const k = bodyIndex(s.body);
+      const mat = k >= 0
+        ? material(COLOURS[k % COLOURS.length], { flatShading: true })
+        : material(0x868e96, { transparent: true, opacity: 0.35, depthWrite: false, side: 2 });
+      const m = new THREE.Mesh(geo, mat);
+      m.position.set(...s.at);
+      const [w, x, y, z] = s.rotation;
+      m.quaternion.set(x, y, z, w);
+      return m;
+    }
 
     function makeSocket(s, k) {
       const shell = ball(s.socket_radius, material(0x868e96, { transparent: true, opacity: 0.25, depthWrite: false }));

@@ -5,12 +5,12 @@
 use std::collections::HashMap;
 
 use clr_contact::{ContactMemory, NormalLaw};
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Rotation3, UnitQuaternion, Vector3};
 
 use super::constraint::{Prim, PrimKind};
 use super::desc::{
     ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, SpatialBody,
-    SpatialClearance, SpatialDesc, SpatialForce, SphericalClearance, VectorFrame,
+    SpatialClearance, SpatialDesc, SpatialForce, SpatialShape, SphericalClearance, VectorFrame,
 };
 use super::force::Force3;
 use super::frame::{exp_map, perpendicular, quaternion_of, rotation};
@@ -1245,4 +1245,44 @@ fn journal_laws(
         "Gauss point",
     )?;
     Ok((radial, thrust, friction))
+}
+
+/// The drawn surface of a `[[shape]]` ([`SpatialShape::surface`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeSurface {
+    /// Rotation shape frame → body frame, `[w, x, y, z]` (unit quaternion).
+    pub rotation: [f64; 4],
+    /// Vertices in the shape frame, m.
+    pub vertices: Vec<[f64; 3]>,
+    /// Triangles as indices into `vertices` (counter-clockwise seen from outside).
+    pub triangles: Vec<[u32; 3]>,
+}
+
+impl SpatialShape {
+    /// The shape's surface as triangles, for drawing (report pages and animations): its
+    /// orientation resolved and its geometry tessellated by clr-contact
+    /// ([`clr_contact::shapes3d::ContactShape3::surface`], `segments` around curved kinds).
+    ///
+    /// # Errors
+    /// The orientation or the geometry is invalid (the error a run would give, at its field).
+    pub fn surface(&self, segments: u32) -> Result<ShapeSurface, MbdError> {
+        let name = &self.name;
+        let rotation = match &self.orientation {
+            Some(o) => UnitQuaternion::from_rotation_matrix(&Rotation3::from_matrix_unchecked(
+                orientation(&format!("{name}.orientation"), o)?,
+            )),
+            None => UnitQuaternion::identity(),
+        };
+        let path = format!("{name}.geometry");
+        let desc = super::shape_compile::to_shape3(&orientation, &path, &self.geometry)?;
+        let shape = clr_contact::shapes3d::ContactShape3::new(desc)
+            .map_err(|source| MbdError::Contact { item: path, source })?;
+        let (vertices, triangles) = shape.surface(segments);
+        let q = rotation.quaternion();
+        Ok(ShapeSurface {
+            rotation: [q.w, q.i, q.j, q.k],
+            vertices,
+            triangles,
+        })
+    }
 }

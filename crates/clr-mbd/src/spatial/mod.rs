@@ -42,6 +42,7 @@ mod sim;
 mod sphere;
 mod system;
 
+pub use compile::ShapeSurface;
 pub use desc::{
     ClearanceKind, DriverKind, End, Geometry3, JointKind, JournalClearanceDesc, Orientation, Part3,
     ShapeContactDesc3, Space, SpatialBody, SpatialClearance, SpatialDesc, SpatialDriver,

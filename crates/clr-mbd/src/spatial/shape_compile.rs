@@ -100,7 +100,7 @@ fn quaternion(a: &Matrix3<f64>) -> UnitQuaternion<f64> {
 }
 
 /// The clr-contact description of a geometry (compound parts' orientations resolved).
-fn to_shape3(
+pub(crate) fn to_shape3(
     orientation: ResolveOrientation<'_>,
     path: &str,
     g: &Geometry3,
