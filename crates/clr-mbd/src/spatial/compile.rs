@@ -463,6 +463,8 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         lambda: vec![0.0; m],
         reports: vec![Default::default(); spheres.len()],
         journal_reports: vec![Default::default(); journals.len()],
+        gap_state: Vec::new(),
+        gap_cache: vec![None; journals.len()],
         shape_reports: vec![Default::default(); shape_contacts.len()],
         zdot: vec![0.0; n_bristle],
         ..Default::default()

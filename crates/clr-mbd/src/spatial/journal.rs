@@ -52,6 +52,9 @@ pub struct JournalReport {
     /// Per group ([`GROUP_NAMES`]): penetration, m (the gap when negative; −∞ for a thrust
     /// face of the cylindrical kind).
     pub penetration: [f64; GROUPS],
+    /// Per group: the penetration rate δ̇ of its deepest point, m/s (0 for a group the joint
+    /// does not have).
+    pub rate: [f64; GROUPS],
     /// Per group: integrated normal force, N.
     pub normal_force: [f64; GROUPS],
     /// Resultant contact force on the journal, world, N.
@@ -72,6 +75,7 @@ impl Default for JournalReport {
     fn default() -> Self {
         Self {
             penetration: [f64::NEG_INFINITY; GROUPS],
+            rate: [0.0; GROUPS],
             normal_force: [0.0; GROUPS],
             force: Vector3::zeros(),
             moment: Vector3::zeros(),
@@ -114,14 +118,16 @@ impl Journal {
     /// negative number when the geometry is out of the joint's range (a tilt beyond 60°), which
     /// the depth check stops.
     pub(crate) fn gap(&self, kin: &Kinematics, g: usize) -> f64 {
-        self.gap_rate(kin, g).0
+        self.gaps(kin)[g].0
     }
 
-    /// Penetration and its rate (m, m/s) of group `g`.
-    pub(crate) fn gap_rate(&self, kin: &Kinematics, g: usize) -> (f64, f64) {
+    /// Penetration and its rate (m, m/s) of every group from one evaluation of the geometry
+    /// (the events and the impact tracker ask for all groups at one state, and the geometry
+    /// costs about what the forces do).
+    pub(crate) fn gaps(&self, kin: &Kinematics) -> [(f64, f64); GROUPS] {
         match self.joint.geometry(&self.state(kin)) {
-            Ok(geo) => finite_gap(geo.gap(g)),
-            Err(_) => (-self.joint.bearing_radius(), 0.0),
+            Ok(geo) => std::array::from_fn(|g| finite_gap(geo.gap(g))),
+            Err(_) => [(-self.joint.bearing_radius(), 0.0); GROUPS],
         }
     }
 
@@ -193,7 +199,9 @@ impl Journal {
             ..Default::default()
         };
         for (g, gf) in f.groups.iter().enumerate().take(self.n_groups()) {
-            rep.penetration[g] = geo.gap(g).0;
+            let gap = geo.gap(g);
+            rep.penetration[g] = gap.0;
+            rep.rate[g] = finite_gap(gap).1;
             rep.normal_force[g] = gf.normal_force;
         }
         rep

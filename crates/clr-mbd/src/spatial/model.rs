@@ -117,6 +117,10 @@ pub(crate) struct Workspace {
     pub(crate) lambda: Vec<f64>,
     pub(crate) reports: Vec<SphereReport>,
     pub(crate) journal_reports: Vec<JournalReport>,
+    /// The state the impact tracker last asked gaps at ([`crate::impacts::ContactProbe`]), and
+    /// each journal's group gaps there (`None`: not evaluated yet).
+    pub(crate) gap_state: Vec<f64>,
+    pub(crate) gap_cache: Vec<Option<[(f64, f64); clr_contact::journal::GROUPS]>>,
     pub(crate) shape_reports: Vec<ShapeReport3>,
     pub(crate) zdot: Vec<f64>,
     pub(crate) p_diss: f64,

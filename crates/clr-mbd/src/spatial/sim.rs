@@ -26,8 +26,23 @@ impl ContactProbe for SpatialModel {
         balls.chain(groups).chain(pairs).enumerate().collect()
     }
     fn joint_gap(&mut self, k: usize, y: &[f64]) -> f64 {
+        // the tracker asks for every tracked contact at one state in turn: each journal's gaps
+        // (all groups from one geometry) are kept until the state changes
         self.ws.kin.update(self.bodies.len(), y);
-        self.contact_gap(k)
+        if self.ws.gap_state.as_slice() != y {
+            self.ws.gap_state.clear();
+            self.ws.gap_state.extend_from_slice(y);
+            self.ws.gap_cache.fill(None);
+        }
+        let ns = self.spheres.len();
+        match k.checked_sub(ns).and_then(|p| self.journal_points.get(p)) {
+            Some(&(j, g)) => {
+                let journal = &self.journals[j];
+                let kin = &self.ws.kin;
+                self.ws.gap_cache[j].get_or_insert_with(|| journal.gaps(kin))[g].0
+            }
+            None => self.contact_gap(k),
+        }
     }
     fn joint_probe(&mut self, k: usize, y: &[f64]) -> Probe {
         self.ws.kin.update(self.bodies.len(), y);
@@ -42,8 +57,7 @@ impl ContactProbe for SpatialModel {
         if k >= ns {
             let (j, g) = self.journal_points[k - ns];
             let r = self.journals[j].apply(&self.ws.kin, &mut self.memory, None);
-            let (_, rate) = self.journals[j].gap_rate(&self.ws.kin, g);
-            return Probe::new(r.penetration[g], rate, r.normal_force[g]);
+            return Probe::new(r.penetration[g], r.rate[g], r.normal_force[g]);
         }
         let mut zd = nalgebra::Vector3::zeros();
         let z = self.bristle(k, y);

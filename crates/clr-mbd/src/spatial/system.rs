@@ -64,8 +64,18 @@ impl OdeSystem for SpatialModel {
     /// onset.
     fn events(&mut self, _t: f64, y: &[f64], g: &mut [f64]) {
         self.ws.kin.update(self.bodies.len(), y);
+        let ns = self.spheres.len();
+        let mut gaps = None; // (journal, its groups' gaps): one geometry per journal
         for (k, gk) in g.iter_mut().enumerate().take(self.n_contacts()) {
-            *gk = self.contact_gap(k);
+            *gk = match k.checked_sub(ns).and_then(|p| self.journal_points.get(p)) {
+                Some(&(j, group)) => {
+                    if gaps.is_none_or(|(at, _)| at != j) {
+                        gaps = Some((j, self.journals[j].gaps(&self.ws.kin)));
+                    }
+                    gaps.map_or(0.0, |(_, d)| d[group].0)
+                }
+                None => self.contact_gap(k),
+            };
         }
     }
 
