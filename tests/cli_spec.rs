@@ -446,3 +446,27 @@ fn spatial_typos_get_a_suggestion() {
         assert!(e.line.is_some(), "{e}");
     }
 }
+
+/// A shape clr-contact refuses (here a compound nested in a compound) is placed at its
+/// `[[shape]]`'s line, with clr-contact's reason and without the item name repeated.
+#[test]
+fn a_refused_spatial_shape_is_placed_at_its_line() {
+    let text = include_str!("../models/examples/spatial_ball_on_box.toml").replacen(
+        "geometry = { type = \"cuboid\", half_extents = [0.5, 0.5, 0.05] }",
+        "geometry = { type = \"compound\", parts = [{ at = [0.0, 0.0, 0.0], geometry = { type = \
+         \"compound\", parts = [] } }] }",
+        1,
+    );
+    // refused when read (the reader compiles) or when built
+    let e = match load_str("ball.toml", &text, &[]) {
+        Err(e) => e,
+        Ok(Loaded::Spatial(spec)) => match spec.build() {
+            Err(e) => e,
+            Ok(_) => panic!("a nested compound was accepted"),
+        },
+        Ok(_) => panic!("not read as a spatial model"),
+    };
+    assert_eq!(e.line, Some(21), "{e}");
+    assert!(e.message.contains("compound parts must be"), "{e}");
+    assert!(!e.message.starts_with("floor.geometry"), "{e}");
+}

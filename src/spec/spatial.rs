@@ -112,7 +112,9 @@ impl SpatialSpec {
             E::UnknownBody { item, .. } => item.clone(),
             E::Invalid { path, .. } => path.clone(),
             E::InvalidInertia { body, .. } => format!("{body}.mass"),
-            E::SameBody { item, .. } | E::InvalidParameter { item, .. } => item.clone(),
+            E::SameBody { item, .. }
+            | E::InvalidParameter { item, .. }
+            | E::Contact { item, .. } => item.clone(),
             E::DuplicateName { name, .. } => name.clone(),
             E::RedundantConstraints { involved: l, .. } | E::Assembly { worst: l, .. } => {
                 l.split(" (").next().unwrap_or("").trim().to_string()
@@ -121,6 +123,12 @@ impl SpatialSpec {
         };
         let message = match e {
             E::Invalid { message, .. } => message.clone(),
+            // the place is in the error's field already: drop clr-mbd's `item: ` prefix
+            E::Contact { item, .. } | E::UnknownBody { item, .. } => {
+                let text = e.to_string();
+                text.strip_prefix(&format!("{item}: "))
+                    .map_or(text.clone(), str::to_string)
+            }
             other => other.to_string(),
         };
         SpecError::at(&self.file, &self.src, &item_path(&self.src, &path), message)

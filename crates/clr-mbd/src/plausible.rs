@@ -37,10 +37,11 @@ pub const MAX_TIP_SPEED: f64 = 150.0;
 /// Radius of gyration √(I/m) above this multiple of the body's extent (its farthest anchor
 /// from the centre of mass); a uniform rod has 0.58, a disc pinned at its rim 0.71.
 pub const MAX_GYRATION: f64 = 3.0;
-/// A contact shape on a body whose bounding radius (about the shape's origin) exceeds this
-/// multiple of the body's largest radius of gyration √(I_max/m): a uniform solid's bounding
-/// radius is at most about 1.7 times it (a ball 1.58, a rod 1.73, a disc 1.41), and a contact
-/// shape that is a part of a larger body gives less; a radius in millimetres gives ~1000.
+/// A contact shape on a body whose bounding radius (the farthest corner of its bounding box
+/// from the shape's origin) exceeds this multiple of the body's largest radius of gyration
+/// √(I_max/m): for a uniform solid it is a few times that at most (a ball √3 r against
+/// √(2/5) r: 2.7; a cube 2.1; a slender rod 1.7), and a contact shape that is a part of a larger
+/// body gives less; a radius in millimetres gives ~1000, a mass in grams ~30.
 pub const MAX_SHAPE_TO_GYRATION: f64 = 30.0;
 /// Viscosities outside [min, max] Pa·s (air 1.8e-5; heavy gear oils ~1 Pa·s at 40 °C; a
 /// value in cP or mPa·s is 1000 times too large).

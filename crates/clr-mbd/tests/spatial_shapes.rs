@@ -115,8 +115,9 @@ fn ball_drop_impact_velocity_and_energy() {
 }
 
 /// A ball radius written in millimetres (10 for 10 mm) on the example's 32.7 g ball is flagged at
-/// the shape's geometry: 10 m is 1.2e3 times the ball's radius of gyration √(2/5)·0.01 m
-/// (threshold `MAX_SHAPE_TO_GYRATION` = 30); the metre value is not.
+/// the shape's geometry: its bounding radius √3·10 m is 2.7e3 times the ball's radius of gyration
+/// √(2/5)·0.01 m
+/// (threshold `MAX_SHAPE_TO_GYRATION` = 30); the metre value (2.7) is not.
 #[test]
 fn a_shape_size_in_millimetres_is_flagged() {
     let mm = base()

@@ -120,9 +120,10 @@ impl SpatialModel {
                     out.push(warn(
                         format!("{}.geometry", side.name),
                         format!(
-                            "the shape reaches {r:.3e} m from its origin, {:.0} times the \
-                             largest radius of gyration {gyration:.3e} m of body `{}` that \
-                             carries it: sizes are in metres (10 mm is 0.01)",
+                            "the shape's bounding box reaches {r:.3e} m from its origin, {:.0} \
+                             times the largest radius of gyration {gyration:.3e} m of body `{}` \
+                             that carries it: sizes are in metres (10 mm is 0.01), masses in kg \
+                             and inertias in kg·m² (a mass in grams makes the body look small)",
                             r / gyration,
                             self.names[side.body]
                         ),
