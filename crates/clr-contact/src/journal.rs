@@ -315,7 +315,39 @@ impl<S: Real> JournalState<S> {
                 .journal_angular_velocity
                 .cross(&(*x - self.journal_centre))
     }
-    fn all_finite(&self) -> Result<(), JournalError> {
+    /// The unit axes u_b and u_j (u_j flipped so that cos γ = u_b·u_j > 0), cos γ,
+    /// w = u_j − cos γ u_b and the tilt γ (rad).
+    ///
+    /// # Errors
+    /// [`JournalError::Tilt`] for a tilt over [`MAX_TILT`].
+    pub(crate) fn axes(&self) -> Result<Axes<S>, JournalError> {
+        let ub = self
+            .bearing_axis
+            .scale(S::from_f64(1.0) / self.bearing_axis.norm());
+        let mut uj = self
+            .journal_axis
+            .scale(S::from_f64(1.0) / self.journal_axis.norm());
+        if ub.dot(&uj).value() < 0.0 {
+            uj = -uj;
+        }
+        let cg = ub.dot(&uj);
+        let w = uj - ub.scale(cg);
+        let tilt = w.value().norm().atan2(cg.value());
+        if tilt.is_nan() || tilt > MAX_TILT {
+            return Err(JournalError::Tilt {
+                tilt_deg: tilt.to_degrees(),
+            });
+        }
+        Ok(Axes {
+            ub,
+            uj,
+            cg,
+            w,
+            tilt,
+        })
+    }
+
+    pub(crate) fn all_finite(&self) -> Result<(), JournalError> {
         let check = |v: &V3<S>, what| {
             if v.value().iter().all(|c| c.is_finite()) {
                 Ok(())
@@ -332,6 +364,16 @@ impl<S: Real> JournalState<S> {
         check(&self.journal_velocity, "journal velocity")?;
         check(&self.journal_angular_velocity, "journal angular velocity")
     }
+}
+
+/// The axes of a state ([`JournalState::axes`]).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Axes<S> {
+    pub ub: V3<S>,
+    pub uj: V3<S>,
+    pub cg: S,
+    pub w: V3<S>,
+    pub tilt: f64,
 }
 
 /// Thrust faces of the revolute kind.
@@ -403,7 +445,7 @@ impl JournalLaws {
 
 /// Gauss–Legendre nodes and weights of order n on [0, 1] (Newton on P_n from the Chebyshev
 /// guesses; Press et al., *Numerical Recipes*, 3rd ed., §4.6, `gauleg`).
-fn gauss_legendre(n: usize) -> ([f64; MAX_ORDER], [f64; MAX_ORDER]) {
+pub(crate) fn gauss_legendre(n: usize) -> ([f64; MAX_ORDER], [f64; MAX_ORDER]) {
     let (mut x, mut w) = ([0.0; MAX_ORDER], [0.0; MAX_ORDER]);
     let m = n.div_ceil(2);
     for i in 0..m {
@@ -753,26 +795,16 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
     /// The frame quantities only (no overlap, regions or thrust points yet).
     fn bare(joint: &'a JournalClearance, state: &JournalState<S>) -> Result<Self, JournalError> {
         let mut state = *state;
-        let ub = state
-            .bearing_axis
-            .scale(S::from_f64(1.0) / state.bearing_axis.norm());
-        let mut uj = state
-            .journal_axis
-            .scale(S::from_f64(1.0) / state.journal_axis.norm());
-        if ub.dot(&uj).value() < 0.0 {
-            uj = -uj;
-        }
+        let Axes {
+            ub,
+            uj,
+            cg,
+            w,
+            tilt,
+        } = state.axes()?;
         state.bearing_axis = ub;
         state.journal_axis = uj;
         let (ob, oj) = (state.bearing_centre, state.journal_centre);
-        let cg = ub.dot(&uj);
-        let w = uj - ub.scale(cg);
-        let tilt = w.value().norm().atan2(cg.value());
-        if tilt.is_nan() || tilt > MAX_TILT {
-            return Err(JournalError::Tilt {
-                tilt_deg: tilt.to_degrees(),
-            });
-        }
         let d = oj - ob;
         let a = d.dot(&ub);
         let frame = Frame {

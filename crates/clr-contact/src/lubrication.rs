@@ -636,6 +636,24 @@ impl HydrodynamicBearing {
         }
     }
 
+    /// Closed-form film force (F_r, F_t) (N) at (ε, ε̇ in 1/s, εΩ in 1/s) in any
+    /// [`Real`](crate::journal::Real) scalar (f64 or dual numbers), π-film as
+    /// [`pi_film`](Self::pi_film) says; `omega` (Ω, rad/s) only decides the film side when
+    /// ε̇ = εΩ = 0. The same expressions as [`force_wedge`](Self::force_wedge): the slices of the
+    /// spatial long-bearing film ([`crate::journal_film`]).
+    pub(crate) fn force_real<S: crate::journal::Real>(
+        &self,
+        eps: S,
+        rate: S,
+        term: S,
+        omega: f64,
+    ) -> (S, S) {
+        let (e, v, t) = (RealScalar(eps), RealScalar(rate), RealScalar(term));
+        let a = self.film_start(v, t, omega);
+        let (fr, ft) = film_force(self.model, self.coefficient(), e, v, t, a);
+        (fr.0, ft.0)
+    }
+
     /// (min(ε, ε_t), εΩ at that ε with Ω kept).
     fn clamped(&self, kin: &FilmKinematics, transition: &Transition) -> (f64, f64) {
         let eps_t = transition.eccentricity_threshold(self.clearance());
@@ -912,6 +930,76 @@ impl Scalar for f64 {
     }
     fn atan2(self, x: Self) -> Self {
         f64::atan2(self, x)
+    }
+}
+
+/// A [`Real`](crate::journal::Real) scalar seen as a [`Scalar`], so that the closed forms run in
+/// the spatial journal's scalar types (f64 and the multibody dual numbers).
+#[derive(Debug, Clone, Copy)]
+struct RealScalar<S>(S);
+
+impl<S: crate::journal::Real> Add for RealScalar<S> {
+    type Output = Self;
+    fn add(self, o: Self) -> Self {
+        Self(self.0 + o.0)
+    }
+}
+
+impl<S: crate::journal::Real> Sub for RealScalar<S> {
+    type Output = Self;
+    fn sub(self, o: Self) -> Self {
+        Self(self.0 - o.0)
+    }
+}
+
+impl<S: crate::journal::Real> Mul for RealScalar<S> {
+    type Output = Self;
+    fn mul(self, o: Self) -> Self {
+        Self(self.0 * o.0)
+    }
+}
+
+impl<S: crate::journal::Real> Div for RealScalar<S> {
+    type Output = Self;
+    fn div(self, o: Self) -> Self {
+        Self(self.0 / o.0)
+    }
+}
+
+impl<S: crate::journal::Real> Neg for RealScalar<S> {
+    type Output = Self;
+    fn neg(self) -> Self {
+        Self(-self.0)
+    }
+}
+
+impl<S: crate::journal::Real> Mul<f64> for RealScalar<S> {
+    type Output = Self;
+    fn mul(self, k: f64) -> Self {
+        Self(self.0 * S::from_f64(k))
+    }
+}
+
+impl<S: crate::journal::Real> Scalar for RealScalar<S> {
+    fn cst(x: f64) -> Self {
+        Self(S::from_f64(x))
+    }
+    fn value(self) -> f64 {
+        self.0.value()
+    }
+    fn sin(self) -> Self {
+        Self(self.0.sin())
+    }
+    fn cos(self) -> Self {
+        Self(self.0.cos())
+    }
+    fn sqrt(self) -> Self {
+        Self(self.0.sqrt())
+    }
+    fn atan2(self, x: Self) -> Self {
+        let (y, xv) = (self.0.value(), x.0.value());
+        let r2 = y * y + xv * xv;
+        Self(S::chain2(self.0, x.0, y.atan2(xv), xv / r2, -y / r2))
     }
 }
 

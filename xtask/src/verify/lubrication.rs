@@ -28,10 +28,10 @@ use clr_plot::{Figure, Style};
 use super::Filter;
 use crate::report::Case;
 
-const R_BEARING: f64 = 10e-3;
-const R_JOURNAL: f64 = 9.95e-3;
-const LENGTH: f64 = 10e-3;
-const MU: f64 = 0.04;
+pub(super) const R_BEARING: f64 = 10e-3;
+pub(super) const R_JOURNAL: f64 = 9.95e-3;
+pub(super) const LENGTH: f64 = 10e-3;
+pub(super) const MU: f64 = 0.04;
 /// Journal speed of the steady cases, rad/s (bearing fixed, line of centres at rest).
 const OMEGA: f64 = 300.0;
 /// Eccentricity ratio of the finite-length comparisons.
@@ -136,7 +136,7 @@ fn short_numeric(eps: f64, rate: f64, omega: f64, (lo, hi): (f64, f64), clip: bo
 }
 
 /// Thomas algorithm: sub[i] x[i−1] + diag[i] x[i] + sup[i] x[i+1] = rhs[i].
-fn tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec<f64> {
+pub(super) fn tridiagonal(sub: &[f64], diag: &[f64], sup: &[f64], rhs: &[f64]) -> Vec<f64> {
     let n = diag.len();
     let mut c = vec![0.0; n];
     let mut x = vec![0.0; n];
@@ -209,7 +209,12 @@ fn long_fd(eps: f64, rate: f64, omega: f64, film: Option<f64>, n: usize) -> (f64
 }
 
 /// [`long_fd`] on n and 2n intervals, Richardson-extrapolated (second order → fourth).
-fn long_fd_extrapolated(eps: f64, rate: f64, omega: f64, film: Option<f64>) -> (f64, f64) {
+pub(super) fn long_fd_extrapolated(
+    eps: f64,
+    rate: f64,
+    omega: f64,
+    film: Option<f64>,
+) -> (f64, f64) {
     let (a, b) = (
         long_fd(eps, rate, omega, film, 2000),
         long_fd(eps, rate, omega, film, 4000),
@@ -219,7 +224,7 @@ fn long_fd_extrapolated(eps: f64, rate: f64, omega: f64, film: Option<f64>) -> (
 
 /// Start of the π-film placed by the effective squeeze velocity V = c(ε̇, −εΩ/2) (Booker 1965):
 /// the film is the half circle where V·(cos ψ, sin ψ) > 0, ψ_V ± π/2.
-fn moving_film_start(eps: f64, rate: f64, omega: f64) -> f64 {
+pub(super) fn moving_film_start(eps: f64, rate: f64, omega: f64) -> f64 {
     (-eps * omega).atan2(2.0 * rate) - 0.5 * PI
 }
 
@@ -424,16 +429,24 @@ fn closed_dimensionless(model: BearingModel, eps: f64, lambda: f64) -> FdForce {
 // ---------------------------------------------------------------------------------------------
 // Cases.
 
+/// Run the case set `f` under `id` when the filter wants it; a set-up error becomes a failed case.
+pub(super) fn run_cases(
+    filter: &Filter,
+    out: &mut Vec<Case>,
+    id: &str,
+    f: fn() -> Result<Vec<Case>, String>,
+) {
+    if filter.wants(id) {
+        match f() {
+            Ok(c) => out.extend(c),
+            Err(e) => out.push(Case::new(id, "case set-up", "-", "-").failed(f64::NAN, e)),
+        }
+    }
+}
+
 pub fn cases(filter: &Filter) -> Vec<Case> {
     let mut out = Vec::new();
-    let run = |out: &mut Vec<Case>, id: &str, f: fn() -> Result<Vec<Case>, String>| {
-        if filter.wants(id) {
-            match f() {
-                Ok(c) => out.extend(c),
-                Err(e) => out.push(Case::new(id, "case set-up", "-", "-").failed(f64::NAN, e)),
-            }
-        }
-    };
+    let run = |out: &mut Vec<Case>, id: &str, f| run_cases(filter, out, id, f);
     run(&mut out, "lubrication.short.steady", short_steady);
     run(&mut out, "lubrication.long.steady", long_steady);
     run(&mut out, "lubrication.squeeze", squeeze);

@@ -5,6 +5,7 @@ pub mod contact;
 mod contact_geometry;
 pub mod lubrication;
 mod lubrication_mbd;
+mod lubrication_spatial;
 mod maps;
 mod mbd;
 mod mbd_jacobian;
@@ -78,6 +79,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "lubrication",
         run: lubrication_mbd::cases,
+    },
+    Group {
+        name: "lubrication.spatial",
+        run: lubrication_spatial::cases,
     },
     Group {
         name: "beam",
