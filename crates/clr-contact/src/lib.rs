@@ -26,6 +26,7 @@ pub mod restitution;
 pub mod body;
 pub mod gears;
 pub mod journal;
+pub mod journal_wear;
 pub mod memory;
 pub mod multipoint;
 pub mod revolute;
