@@ -1379,9 +1379,7 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
             span.outer - span.inner
         };
         for q in 0..nodes {
-            let u = j.nodes[q];
-            let z = span.inner + (span.outer - span.inner) * S::from_f64(u * u);
-            let wq = len * S::from_f64(2.0 * u * j.weights[q]);
+            let (z, wq) = self.radial_node(&span, len, q);
             let sec = self.section(z);
             if sec.penetration.value() <= 0.0 {
                 continue;
@@ -1461,6 +1459,15 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         out.dissipated = -power - w_rate;
         out.elastic_energy = energy;
         out
+    }
+
+    /// Gauss node `q` of a wetted radial region of length `len` (m): its bore-axial coordinate z
+    /// (m) and weight (m), after the substitution z = z_in + (z_out − z_in)u² (module docs).
+    fn radial_node(&self, span: &Region<S>, len: S, q: usize) -> (S, S) {
+        let j = self.joint;
+        let u = j.nodes[q];
+        let z = span.inner + (span.outer - span.inner) * S::from_f64(u * u);
+        (z, len * S::from_f64(2.0 * u * j.weights[q]))
     }
 
     /// Half the wetted arc φ_e of a thrust ring (rad): δ(φ) = δ₀ + A cos φ > 0 for |φ| < φ_e,
@@ -1553,6 +1560,94 @@ impl<'a, S: Real> JournalGeometry<'a, S> {
         out.dissipated = dissipated;
         out.elastic_energy = energy;
         out
+    }
+}
+
+/// One Gauss node of a wetted radial region, as the force evaluation sees it
+/// ([`JournalGeometry::visit_radial_nodes`]): the data a distributed law along the contact
+/// (wear, heat) needs. World frame, SI units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RadialNode {
+    /// Radial group ([`RADIAL_A`] or [`RADIAL_B`]).
+    pub group: usize,
+    /// Bore-axial coordinate z of the node (from O_b along u_b), m.
+    pub z: f64,
+    /// Quadrature weight, m: Σ weight · line_load is the group's normal force.
+    pub weight: f64,
+    /// The node's share [z_from, z_to] of the wetted region (m, z_from < z_to): consecutive
+    /// nodes' shares tile the region, each share of length `weight` (the partial sums of the
+    /// Gauss weights, which interlace the nodes: Szegő, *Orthogonal Polynomials*, Thm. 3.41.1,
+    /// the Chebyshev–Markov–Stieltjes separation theorem, carried through the substitution).
+    pub share: (f64, f64),
+    /// Penetration δ(z), m (> 0).
+    pub penetration: f64,
+    /// Normal line load p(z) = F_N(δ, δ̇, δ̇⁻)/L_c, N/m (the same value the force uses; may be
+    /// negative for a damping law that pulls at separation).
+    pub line_load: f64,
+    /// Bore normal n at the deepest point (⟂ u_b, outwards).
+    pub normal: Vector3<f64>,
+    /// Midpoint of the contact pair, where the force acts, m.
+    pub point: Vector3<f64>,
+    /// Slip velocity (journal − bearing deepest points) in the tangent plane, m/s.
+    pub slip: Vector3<f64>,
+}
+
+impl JournalGeometry<'_, f64> {
+    /// Call `visit` once per Gauss node of each wetted radial region (in order of increasing
+    /// u, region A then B) with the node's data as [`forces`](Self::forces) computes them for the
+    /// impact velocities δ̇⁻ (m/s) of the four groups: the same nodes, sections and line loads
+    /// (dry nodes, δ ≤ 0, are skipped as there). Allocates nothing; does not change what
+    /// `forces` returns.
+    pub fn visit_radial_nodes(
+        &self,
+        laws: &JournalLaws,
+        impact_velocities: &[f64; GROUPS],
+        mut visit: impl FnMut(&RadialNode),
+    ) {
+        let lc = self.joint.contact_length();
+        for (k, region) in self.regions.iter().enumerate() {
+            let Some(span) = region else {
+                continue;
+            };
+            let len = if k == 0 {
+                span.inner - span.outer
+            } else {
+                span.outer - span.inner
+            };
+            // the shares run from the inner end outwards, in the signed direction of the region
+            let dir = (span.outer - span.inner).signum();
+            let mut from = span.inner;
+            for q in 0..self.joint.order {
+                let (z, wq) = self.radial_node(span, len, q);
+                let to = from + dir * wq;
+                let share = (from.min(to), from.max(to));
+                from = to;
+                let sec = self.section(z);
+                if sec.penetration <= 0.0 {
+                    continue;
+                }
+                let v = self.relative_velocity(&sec.journal_point, &sec.bearing_point);
+                let (_, p, _) = Self::pair_force(
+                    &laws.radial,
+                    None,
+                    1.0 / lc,
+                    (sec.penetration, &sec.normal, &v),
+                    impact_velocities[k],
+                );
+                let (n, v) = (sec.normal.value(), v.value());
+                visit(&RadialNode {
+                    group: k,
+                    z,
+                    weight: wq,
+                    share,
+                    penetration: sec.penetration,
+                    line_load: p,
+                    normal: n,
+                    point: sec.midpoint().value(),
+                    slip: v - n * v.dot(&n),
+                });
+            }
+        }
     }
 }
 

@@ -27,6 +27,7 @@ pub mod body;
 pub mod gears;
 pub mod journal;
 pub mod journal_film;
+pub mod journal_wear;
 pub mod memory;
 pub mod multipoint;
 pub mod revolute;

@@ -819,7 +819,7 @@ impl ArchardWear {
         Ok(volume)
     }
 
-    fn check_arc(&self, normal_force: f64) -> Result<(), ContactError> {
+    pub(crate) fn check_arc(&self, normal_force: f64) -> Result<(), ContactError> {
         let a = self.contact.half_width(normal_force);
         let half_angle = a / self.contact.bearing_radius;
         if half_angle > 0.5 * PI {
@@ -836,7 +836,13 @@ impl ArchardWear {
     }
 
     /// Spread V = K F ds / H over the bins of the arc (checked inputs).
-    fn deposit(&self, profile: &mut BearingProfile, angle: f64, force: f64, ds: f64) -> f64 {
+    pub(crate) fn deposit(
+        &self,
+        profile: &mut BearingProfile,
+        angle: f64,
+        force: f64,
+        ds: f64,
+    ) -> f64 {
         if force == 0.0 || ds == 0.0 {
             return 0.0;
         }
