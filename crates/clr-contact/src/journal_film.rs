@@ -89,14 +89,12 @@ pub const CIRCUMFERENTIAL_ORDER: usize = 32;
 /// The hydrodynamic film of a spatial journal-in-bearing joint (module docs), validated.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JournalFilm {
-    bearing_radius: f64,
     bearing_length: f64,
-    journal_radius: f64,
     journal_length: f64,
-    viscosity: f64,
     model: BearingModel,
     transition: Transition,
-    /// The planar bearing of unit length (force per unit length of the long-bearing slices).
+    /// The planar bearing of unit length (force per unit length of the long-bearing slices); it
+    /// holds the radii and the viscosity.
     slice: HydrodynamicBearing,
     z_rule: ([f64; MAX_ORDER], [f64; MAX_ORDER]),
     psi_rule: ([f64; MAX_ORDER], [f64; MAX_ORDER]),
@@ -187,11 +185,8 @@ impl JournalFilm {
             BearingModel::LongBearing,
         )?;
         Ok(Self {
-            bearing_radius: joint.bearing_radius(),
             bearing_length: joint.bearing_length(),
-            journal_radius: joint.journal_radius(),
             journal_length: joint.journal_length(),
-            viscosity,
             model,
             transition,
             slice,
@@ -202,12 +197,12 @@ impl JournalFilm {
 
     /// Radial clearance c, m.
     pub fn clearance(&self) -> f64 {
-        self.bearing_radius - self.journal_radius
+        self.slice.clearance()
     }
 
     /// Dynamic viscosity μ, Pa·s.
     pub fn viscosity(&self) -> f64 {
-        self.viscosity
+        self.slice.viscosity()
     }
 
     /// The closed-form model.
@@ -399,8 +394,8 @@ impl JournalFilm {
 
     /// Couette torque per unit length on the journal, −2πμr³ω_r/(c√(1 − ε²)), N.
     fn couette<S: Real>(&self, eps: S, omega_rel: S) -> S {
-        let r = self.journal_radius;
-        let k = -2.0 * PI * self.viscosity * r * r * r / self.clearance();
+        let r = self.slice.journal_radius();
+        let k = -2.0 * PI * self.slice.viscosity() * r * r * r / self.clearance();
         S::from_f64(k) * omega_rel / (S::from_f64(1.0) - eps * eps).sqrt()
     }
 
@@ -408,14 +403,14 @@ impl JournalFilm {
     fn short_bearing<S: Real>(&self, film: &Film<S>) -> (V3<S>, V3<S>, S) {
         let c = self.clearance();
         let film = self.frozen(film);
-        let mu6 = S::from_f64(6.0 * self.viscosity);
+        let mu6 = S::from_f64(6.0 * self.slice.viscosity());
         let two = S::from_f64(2.0);
         // mid-plane right-hand side A(ψ) = α cos ψ + β sin ψ: split the circle at its zeros
         let (ec, vc) = (film.ec, film.vc);
         let alpha = -(mu6 * (film.omega_sum * ec.dot(&film.b2) + two * vc.dot(&film.b1)));
         let beta = -(mu6 * (two * vc.dot(&film.b2) - film.omega_sum * ec.dot(&film.b1)));
         let phi = beta.value().atan2(alpha.value());
-        let r = S::from_f64(self.journal_radius);
+        let r = S::from_f64(self.slice.journal_radius());
         let (mut force, mut arm) = (V3::zero(), V3::zero());
         let (x, w) = &self.psi_rule;
         for start in [phi + 0.5 * PI, phi - 0.5 * PI] {
@@ -471,7 +466,7 @@ impl JournalFilm {
     /// One line ψ of the short bearing: (∫p⁺ dζ, ∫p⁺ζ dζ) with Gümbel's condition pointwise.
     fn line<S: Real>(&self, film: &Film<S>, n: &V3<S>, np: &V3<S>) -> Line<S> {
         let c = S::from_f64(self.clearance());
-        let mu6 = S::from_f64(6.0 * self.viscosity);
+        let mu6 = S::from_f64(6.0 * self.slice.viscosity());
         let two = S::from_f64(2.0);
         let zero = S::from_f64(0.0);
         let h0 = c - film.ec.dot(n);

@@ -1055,7 +1055,9 @@ fn enclosed_volume(v: &[[f64; 3]], t: &[[u32; 3]]) -> f64 {
 /// The drawing surfaces against closed forms: a cuboid's eight corners and volume 8·hx·hy·hz
 /// exactly (to rounding), a cylinder along x as an n-gon prism (volume (n/2) r² sin(2π/n)·2h,
 /// every vertex within |x| ≤ h and at radius r from the x axis), a ball inscribed (every vertex at
-/// r, volume below 4πr³/3 and within 2 % at 32 segments), a compound as its parts' sum with the
+/// r, volume below 4πr³/3 and within 2 % at 32 segments: the inscribed UV polyhedron of 32
+/// meridians and 16 latitude steps encloses 98.40 % of the sphere, summed independently over its
+/// triangles), a compound as its parts' sum with the
 /// parts' poses applied.
 #[test]
 fn drawing_surfaces_enclose_the_closed_form_volumes() {

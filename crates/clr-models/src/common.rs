@@ -599,6 +599,16 @@ pub fn write_results_csv(results: &Results, dir: &Path, name: &str) -> Result<()
         .map_err(|e| e.to_string())
 }
 
+/// Save figure `f` as `dir/name` (the figure writes its .svg and .png), with the error as text.
+///
+/// # Errors
+/// The figure could not be written.
+pub fn save_figure(f: clr_plot::Figure, dir: &Path, name: &str) -> Result<(), String> {
+    f.save(dir.join(name))
+        .map(|_| ())
+        .map_err(|e| e.to_string())
+}
+
 /// Write a tidy table (header + rows) as CSV.
 ///
 /// # Errors

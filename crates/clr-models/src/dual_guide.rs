@@ -849,7 +849,7 @@ fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), Str
         fa = fa.line(r.name.clone(), common::thin(&t, &col(res, "act1.Fx"), MAX));
     }
     for (f, name) in [(fy, "lateral"), (fa, "actuator")] {
-        f.save(dir.join(name)).map_err(|e| e.to_string())?;
+        common::save_figure(f, dir, name)?;
     }
     Ok(())
 }

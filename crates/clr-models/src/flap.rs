@@ -982,11 +982,7 @@ fn study_figures(
     results: &[Results],
 ) -> Result<(), String> {
     use clr_plot::Figure;
-    let save = |f: Figure, name: &str| {
-        f.save(dir.join(name))
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-    };
+    let save = |f: Figure, name: &str| common::save_figure(f, dir, name);
     const MAX: usize = 3000;
     let series = |study: &str, metric: &str| -> Vec<(f64, f64)> {
         cases

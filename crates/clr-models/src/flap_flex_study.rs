@@ -201,11 +201,7 @@ fn figures(
     results: &[Results],
 ) -> Result<(), String> {
     use clr_plot::Figure;
-    let save = |f: Figure, name: &str| {
-        f.save(dir.join(name))
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-    };
+    let save = |f: Figure, name: &str| common::save_figure(f, dir, name);
     let series = |study: &str, metric: &str| -> Vec<(f64, f64)> {
         cases
             .iter()

@@ -847,11 +847,7 @@ fn figures(dir: &Path, cases: &[(MisalignmentCase, Vec<Metric>)]) -> Result<(), 
     let joint_of =
         |c: &MisalignmentCase| JOINTS[c.clearances.iter().position(|&x| x > 0.0).unwrap_or(3)];
     let osc = |_: &MisalignmentCase, m: &[Metric]| value(m, "flap_acceleration_oscillation_rms");
-    let save = |f: Figure, name: &str| {
-        f.save(dir.join(name))
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-    };
+    let save = |f: Figure, name: &str| common::save_figure(f, dir, name);
     save(
         lines(
             Figure::new(

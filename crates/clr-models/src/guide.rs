@@ -742,7 +742,7 @@ fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), Str
         );
     }
     for (f, name) in [(fy, "lateral"), (ftip, "tip"), (ff, "contact_force")] {
-        f.save(dir.join(name)).map_err(|e| e.to_string())?;
+        common::save_figure(f, dir, name)?;
     }
     Ok(())
 }

@@ -289,12 +289,6 @@ fn write_flap_summary(dir: &Path, cases: &[FlapLubCase]) -> Result<(), String> {
     common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
 }
 
-fn save(f: clr_plot::Figure, dir: &Path, name: &str) -> Result<(), String> {
-    f.save(dir.join(name))
-        .map(|_| ())
-        .map_err(|e| e.to_string())
-}
-
 fn flap_figures(dir: &Path, cases: &[FlapLubCase], results: &[Results]) -> Result<(), String> {
     use clr_plot::Figure;
     const MAX: usize = 3000;
@@ -319,7 +313,7 @@ fn flap_figures(dir: &Path, cases: &[FlapLubCase], results: &[Results]) -> Resul
             forces = forces.points(format!("{}: film force", c.name), pts("peak_film_force"));
         }
     }
-    save(forces, dir, "peak_forces")?;
+    common::save_figure(forces, dir, "peak_forces")?;
     let xs: Vec<f64> = (0..cases.len()).map(|k| k as f64).collect();
     let osc = Figure::new(
         "Flap angular-acceleration oscillation (0 dry, 1 lubricated, 2 reversing dry, \
@@ -341,7 +335,7 @@ fn flap_figures(dir: &Path, cases: &[FlapLubCase], results: &[Results]) -> Resul
             .map(|(&x, c)| (x, c.metric("flap_acceleration_oscillation_rms")))
             .collect(),
     );
-    save(osc, dir, "oscillation")?;
+    common::save_figure(osc, dir, "oscillation")?;
     let mut aerr = Figure::new("Flap angular acceleration − ideal")
         .x_label("time (s)")
         .y_label("α − α_ideal (rad/s²)");
@@ -364,8 +358,8 @@ fn flap_figures(dir: &Path, cases: &[FlapLubCase], results: &[Results]) -> Resul
             }
         }
     }
-    save(aerr, dir, "alpha_error")?;
-    save(film, dir, "film_thickness")
+    common::save_figure(aerr, dir, "alpha_error")?;
+    common::save_figure(film, dir, "film_thickness")
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -626,7 +620,7 @@ fn write_wear_outputs(
             .collect();
         prof = prof.line(format!("{c:.0} cycles"), pts);
     }
-    save(prof, dir, "profiles")?;
+    common::save_figure(prof, dir, "profiles")?;
     let growth: Vec<(f64, f64)> = updates
         .iter()
         .map(|u| (u.cycles, u.clearance_growth * 1e6))
@@ -635,7 +629,7 @@ fn write_wear_outputs(
         .iter()
         .map(|u| (u.cycles, u.max_depth * 1e6))
         .collect();
-    save(
+    common::save_figure(
         Figure::new("Wear of the Wan slider-crank joint (K = 1e-5, H = 2 GPa)")
             .x_label("crank cycles")
             .y_label("µm")
@@ -647,7 +641,7 @@ fn write_wear_outputs(
         "clearance_growth",
     )?;
     let pf: Vec<(f64, f64)> = updates.iter().map(|u| (u.cycles, u.peak_force)).collect();
-    save(
+    common::save_figure(
         Figure::new("Peak contact force of the steady-state cycle vs wear")
             .x_label("crank cycles")
             .y_label("peak contact force (N)")

@@ -689,11 +689,7 @@ fn write_summary(dir: &Path, cases: &[CaseResult]) -> Result<(), String> {
 
 fn figures(dir: &Path, cases: &[CaseResult], results: &[Results]) -> Result<(), String> {
     use clr_plot::Figure;
-    let save = |f: Figure, name: &str| {
-        f.save(dir.join(name))
-            .map(|_| ())
-            .map_err(|e| e.to_string())
-    };
+    let save = |f: Figure, name: &str| common::save_figure(f, dir, name);
     const MAX: usize = 3000;
     let mut paths = Figure::new("End-effector paths (manipulator 1 right, 2 left)")
         .x_label("x (m)")

@@ -96,6 +96,7 @@
       box.expandByPoint(v.clone().addScalar(r));
       box.expandByPoint(v.addScalar(-r));
     };
+    const shapes = (sc.shapes || []).map((s) => [s, shapeRadius(s)]); // once, not per frame
     for (let i = 0; i < motion.n; i++) {
       for (const b of sc.bodies) {
         add(b.name, [0, 0, 0], i, 0);
@@ -104,7 +105,7 @@
       for (const j of sc.joints) add(j.body, j.at, i, 0);
       for (const s of sc.sockets) add(s.socket_body, s.socket_at, i, s.socket_radius);
       for (const j of sc.journals || []) add(j.bearing_body, j.bearing_at, i, j.bearing_radius + 0.5 * j.bearing_length);
-      for (const s of sc.shapes || []) add(s.body, s.at, i, shapeRadius(s));
+      shapes.forEach(([s, r]) => add(s.body, s.at, i, r));
       const tr = motion.trace(i, 0);
       if (tr) box.expandByPoint(tr);
     }

@@ -29,6 +29,13 @@ pub(crate) struct Scales3 {
     extent: Vec<f64>,
 }
 
+impl super::model::Inertia3 {
+    /// The largest radius of gyration √(I_max/m), m.
+    fn gyration_radius(&self) -> f64 {
+        (self.j.symmetric_eigenvalues().max() / self.mass).sqrt()
+    }
+}
+
 impl SpatialModel {
     /// Anchors (body, point in the centre-of-mass frame) of the joints and clearance joints.
     fn anchors(&self) -> Vec<(usize, Vector3<f64>)> {
@@ -114,7 +121,7 @@ impl SpatialModel {
                 let Some(b) = self.bodies.get(side.body) else {
                     continue; // the ground has no size to compare with
                 };
-                let gyration = (b.j.symmetric_eigenvalues().max() / b.mass).sqrt();
+                let gyration = b.gyration_radius();
                 let r = side.radius();
                 if r > MAX_SHAPE_TO_GYRATION * gyration {
                     out.push(warn(
@@ -159,7 +166,7 @@ impl SpatialModel {
             let ext = sc.extent[k];
             let w = Vector3::from_column_slice(&y0[nq + 6 * k + 3..nq + 6 * k + 6]).norm();
             out.extend(tip_speed(format!("{name}.angular_velocity"), "|ω|", w, ext));
-            let gyration = (b.j.symmetric_eigenvalues().max() / b.mass).sqrt();
+            let gyration = b.gyration_radius();
             let what = "the largest radius of gyration √(I/m)";
             out.extend(gyration_radius(name, what, gyration, ext));
         }
