@@ -48,6 +48,7 @@ Table = Mapping[str, Any]
 # The sections of a model file, in the order `clr export` writes them.
 _LISTS = (
     "body", "point", "beam", "flexible_body", "joint", "driver", "force", "shape", "clearance",
+    "measure",
 )
 _TABLES = ("model", "solver", "output")
 
@@ -811,6 +812,81 @@ class Model:
             area_normal=area_normal, friction=friction,
         )
 
+    # ----- [[measure]]: named outputs (docs/model-file.md "Measures") --------------------
+
+    def measure_position(self, name: str, *, at: Anchor, frame: Optional[str] = None) -> "Model":
+        """Columns ``<name>.x``, ``<name>.y`` (m): the point ``at`` in the world, or its
+        coordinates in the frame of body ``frame``."""
+        return self._add("measure", "position", name, at=at, frame=frame)
+
+    def measure_velocity(self, name: str, *, at: Anchor, frame: Optional[str] = None) -> "Model":
+        """Columns ``<name>.vx``, ``<name>.vy`` (m/s): the velocity of the point ``at``, or the
+        rate of its coordinates in the frame of body ``frame``."""
+        return self._add("measure", "velocity", name, at=at, frame=frame)
+
+    def measure_acceleration(
+        self, name: str, *, at: Anchor, frame: Optional[str] = None
+    ) -> "Model":
+        """Columns ``<name>.ax``, ``<name>.ay`` (m/s²): as :meth:`measure_velocity`, once more
+        differentiated."""
+        return self._add("measure", "acceleration", name, at=at, frame=frame)
+
+    def measure_angle(
+        self,
+        name: str,
+        *,
+        body: str,
+        relative_to: Optional[str] = None,
+        offset: Optional[float] = None,
+    ) -> "Model":
+        """Column ``<name>.angle`` (rad): θ of ``body`` − θ of ``relative_to`` (default the
+        ground) − ``offset`` (rad)."""
+        return self._add(
+            "measure", "angle", name, body=body, relative_to=relative_to, offset=offset
+        )
+
+    def measure_angular_velocity(
+        self, name: str, *, body: str, relative_to: Optional[str] = None
+    ) -> "Model":
+        """Column ``<name>.omega`` (rad/s), relative to ``relative_to`` (default the ground)."""
+        return self._add("measure", "angular_velocity", name, body=body, relative_to=relative_to)
+
+    def measure_angular_acceleration(
+        self, name: str, *, body: str, relative_to: Optional[str] = None
+    ) -> "Model":
+        """Column ``<name>.alpha`` (rad/s²), relative to ``relative_to`` (default the ground)."""
+        return self._add(
+            "measure", "angular_acceleration", name, body=body, relative_to=relative_to
+        )
+
+    def measure_distance(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
+        """Columns ``<name>.distance`` (m) and ``<name>.distance_rate`` (m/s) between two
+        points."""
+        return self._add("measure", "distance", name, a=a, b=b)
+
+    def measure_reaction(self, name: str, *, joint: str, frame: Optional[str] = None) -> "Model":
+        """Columns ``<name>.Fx``, ``<name>.Fy`` (N) and ``<name>.M`` (N·m): the reaction of
+        ``joint`` (or a driver), in the world axes or those of body ``frame``."""
+        return self._add("measure", "reaction", name, joint=joint, frame=frame)
+
+    def measure_contact(self, name: str, *, element: str, quantity: str) -> "Model":
+        """Column ``<name>.<quantity>``: one quantity (``normal_force``, ``penetration``, ...)
+        of the contact element ``element``."""
+        return self._add("measure", "contact", name, element=element, quantity=quantity)
+
+    def measure_energy(self, name: str, *, term: str) -> "Model":
+        """Column ``<name>.energy`` (J): the energy ``term`` (``kinetic``, ``total``, ...)."""
+        return self._add("measure", "energy", name, term=term)
+
+    def measure_momentum(
+        self, name: str, *, bodies: Optional[Sequence[str]] = None, about: Optional[Vec2] = None
+    ) -> "Model":
+        """Columns ``<name>.px``, ``<name>.py`` (kg·m/s) and ``<name>.L`` (kg·m²/s, about the
+        world point ``about``, m) of the rigid ``bodies`` (default all, in a model without
+        flexible parts)."""
+        bodies = None if bodies is None else list(bodies)
+        return self._add("measure", "momentum", name, bodies=bodies, about=about)
+
 
 #: A 3-vector (m, m/s, rad/s or N): a tuple, list or numpy array of three numbers.
 Vec3 = Union[Sequence[float], Tuple[float, float, float]]
@@ -1170,6 +1246,14 @@ _PLANAR_ONLY = {
     "nodal_load": "spatial models have no flexible beams yet",
     "translational_clearance": "spatial models have no translational clearance joint yet",
     "slider_on_beam": "spatial models have no flexible beams yet",
+    **{
+        m: "spatial models have no [[measure]] yet; use the columns every spatial run writes"
+        for m in (
+            "measure_position", "measure_velocity", "measure_acceleration", "measure_angle",
+            "measure_angular_velocity", "measure_angular_acceleration", "measure_distance",
+            "measure_reaction", "measure_contact", "measure_energy", "measure_momentum",
+        )
+    },
 }
 
 #: The spatial builder's methods a planar model refuses, with what to use instead.
@@ -1228,6 +1312,17 @@ METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("clearance", "translational"): "translational_clearance",
     ("clearance", "slider_on_beam"): "slider_on_beam",
     ("clearance", "contact"): "contact",
+    ("measure", "position"): "measure_position",
+    ("measure", "velocity"): "measure_velocity",
+    ("measure", "acceleration"): "measure_acceleration",
+    ("measure", "angle"): "measure_angle",
+    ("measure", "angular_velocity"): "measure_angular_velocity",
+    ("measure", "angular_acceleration"): "measure_angular_acceleration",
+    ("measure", "distance"): "measure_distance",
+    ("measure", "reaction"): "measure_reaction",
+    ("measure", "contact"): "measure_contact",
+    ("measure", "energy"): "measure_energy",
+    ("measure", "momentum"): "measure_momentum",
 }
 
 

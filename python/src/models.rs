@@ -580,11 +580,13 @@ pub(crate) fn element_kinds(space: Option<&str>) -> PyResult<Vec<(String, Vec<St
         return spatial_element_kinds();
     }
     use clr_sim::mbd::element::{Clearance, Driver, Force, Joint};
-    let tagged: [(&str, &[&str]); 4] = [
+    use clr_sim::mbd::Measure;
+    let tagged: [(&str, &[&str]); 5] = [
         ("joint", Joint::KINDS),
         ("driver", Driver::KINDS),
         ("force", Force::KINDS),
         ("clearance", Clearance::KINDS),
+        ("measure", Measure::KINDS),
     ];
     let probe = |text: &str, marker: &str, what: &str| {
         let message = probe_message(text);

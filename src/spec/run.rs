@@ -926,37 +926,4 @@ pub fn flexible_json(flexible: &[clr_mbd::node_output::FlexibleCoordinates]) -> 
     serde_json::Value::Object(bodies)
 }
 
-/// Unit of a recorded column, from its clr-mbd name (see `clr_mbd::Results`): `s`, `m`,
-/// `rad`, `N`, … or `-`.
-pub fn unit_of(column: &str) -> &'static str {
-    if column == "t" {
-        return "s";
-    }
-    if column == "violation.position" {
-        return "m or rad";
-    }
-    if column == "violation.velocity" {
-        return "m/s or rad/s";
-    }
-    if column.starts_with("energy.") {
-        return "J";
-    }
-    if column == "violation.quaternion" {
-        return "-";
-    }
-    match column.rsplit('.').next().unwrap_or("") {
-        "x" | "y" | "z" | "u" | "v" | "ux" | "uy" | "penetration" | "ex" | "ey" | "ez"
-        | "lugre_z" | "lugre_zx" | "lugre_zy" | "lugre_zz" | "film_thickness" | "axial_offset" => {
-            "m"
-        }
-        "theta" | "rz" | "tilt" => "rad",
-        "vx" | "vy" | "vz" | "rate" => "m/s",
-        "omega" | "wx" | "wy" | "wz" => "rad/s",
-        "ax" | "ay" | "az" => "m/s^2",
-        "alpha" | "alphax" | "alphay" | "alphaz" => "rad/s^2",
-        "Fx" | "Fy" | "Fz" | "normal_force" | "friction_force" | "film_force" | "ftx" | "fty"
-        | "ftz" => "N",
-        "M" | "Mx" | "My" | "Mz" => "N*m",
-        _ => "-",
-    }
-}
+pub use clr_mbd::results::unit_of;

@@ -53,6 +53,7 @@ mod initial_data;
 pub mod jacobian;
 pub mod linsys;
 mod lugre;
+pub mod measure;
 pub mod model;
 pub mod newton;
 pub mod node_output;
@@ -79,6 +80,7 @@ pub use init::{
 };
 pub use jacobian::Jacobians;
 pub use linsys::{LinearSolver, SPARSE_FROM};
+pub use measure::Measure;
 pub use model::{
     FlexibleGuideSpec, ModelBuilder, RevoluteClearanceSpec, TranslationalClearanceSpec,
 };

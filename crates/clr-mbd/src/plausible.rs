@@ -180,8 +180,36 @@ impl Model {
         self.check_corrections(ic, &sc, &mut out);
         self.check_bodies(y0, &sc, &mut out);
         self.check_contact_inputs(&sc, &mut out);
+        self.check_measure_points(&sc, &mut out);
         self.check_initial_contacts(t0, y0, ic, &mut out)?;
         Ok(out)
+    }
+
+    /// A measured point far outside its body and the mechanism ([`MAX_MEASURE_REACH`] times the
+    /// larger of the mechanism's size and the body's radius of gyration) is most likely given in
+    /// millimetres: the measure is still written, with a warning at its field.
+    fn check_measure_points(&self, sc: &Scales, out: &mut Vec<Warning>) {
+        for m in &self.measures {
+            for (field, (k, s)) in m.points() {
+                let Some(b) = self.bodies.get(k) else {
+                    continue;
+                };
+                let reach = MAX_MEASURE_REACH * sc.size.max((b.inertia / b.mass).sqrt());
+                if s.norm() > reach {
+                    out.push(warn(
+                        format!("{}.{field}", m.name),
+                        format!(
+                            "the point is {:.3e} m from the centre of mass of `{}`, more than \
+                             {MAX_MEASURE_REACH} times the mechanism's size ({:.3e} m) and the \
+                             body's radius of gyration: lengths are in metres",
+                            s.norm(),
+                            self.body_names[k],
+                            sc.size
+                        ),
+                    ));
+                }
+            }
+        }
     }
 
     fn check_corrections(&self, ic: &InitialConditions, sc: &Scales, out: &mut Vec<Warning>) {
@@ -558,6 +586,11 @@ pub(crate) fn tip_speed(field: String, symbol: &str, w: f64, ext: f64) -> Option
         )
     })
 }
+
+/// How far a measured point may lie from its body, in units of the larger of the mechanism's
+/// size and the body's radius of gyration, before it is flagged (a point in mm is 1000 times
+/// too far; a sensor on a long boom is still well inside).
+const MAX_MEASURE_REACH: f64 = 30.0;
 
 /// A radius of gyration `gyration` (m; `what` says which) above [`MAX_GYRATION`] times the
 /// body's extent `ext` (m).

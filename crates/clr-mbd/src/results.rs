@@ -27,6 +27,37 @@ pub(crate) const CONTACT_COLUMNS: [&str; 5] = [
     "contact",
 ];
 
+/// Unit of a result column from its name (the columns of [`Results`], planar and spatial, the
+/// `[[measure]]` suffixes of [`crate::measure`] and the derived columns of the built-in models):
+/// `s`, `m`, `rad`, `N`, … or `-` (modal amplitudes, flags, unknown names).
+pub fn unit_of(column: &str) -> &'static str {
+    match column {
+        "t" => return "s",
+        "violation.position" => return "m or rad",
+        "violation.velocity" => return "m/s or rad/s",
+        "violation.quaternion" => return "-",
+        _ if column.starts_with("energy.") => return "J",
+        _ => {}
+    }
+    match column.rsplit('.').next().unwrap_or(column) {
+        "x" | "y" | "z" | "u" | "v" | "ux" | "uy" | "ex" | "ey" | "ez" | "penetration"
+        | "lugre_z" | "lugre_zx" | "lugre_zy" | "lugre_zz" | "film_thickness" | "axial_offset"
+        | "error" | "distance" => "m",
+        "theta" | "rz" | "tilt" | "angle" => "rad",
+        "vx" | "vy" | "vz" | "rate" | "distance_rate" => "m/s",
+        "omega" | "wx" | "wy" | "wz" => "rad/s",
+        "ax" | "ay" | "az" => "m/s^2",
+        "alpha" | "alphax" | "alphay" | "alphaz" => "rad/s^2",
+        "Fx" | "Fy" | "Fz" | "F" | "normal_force" | "friction_force" | "film_force" | "ftx"
+        | "fty" | "ftz" => "N",
+        "M" | "Mx" | "My" | "Mz" => "N*m",
+        "px" | "py" => "kg*m/s",
+        "L" => "kg*m^2/s",
+        "energy" => "J",
+        _ => "-",
+    }
+}
+
 /// Recorded output: one row per output point, named columns; arrays via [`Results::column`].
 ///
 /// Columns, in order: `t`; per body `B.x B.y B.theta B.vx B.vy B.omega B.ax B.ay B.alpha`; per

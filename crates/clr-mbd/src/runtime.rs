@@ -410,6 +410,16 @@ pub(crate) fn body_state(frames: &[Frame], k: usize, q: &[f64], qd: &[f64]) -> B
     )
 }
 
+/// (d²r/dt², d²θ/dt²) of frame `k` from the accelerations `qdd` (zero for the ground and
+/// constrained node directions).
+pub(crate) fn frame_rates(frames: &[Frame], k: usize, qdd: &[f64]) -> (Vector2<f64>, f64) {
+    if k == GROUND_ID {
+        return (Vector2::zeros(), 0.0);
+    }
+    let v = |d: usize| frames[k].cols[d].map_or(0.0, |c| qdd[c]);
+    (Vector2::new(v(0), v(1)), v(2))
+}
+
 #[inline]
 pub(crate) fn put(frames: &[Frame], phiq: &mut [f64], n: usize, r: usize, k: usize, v: [f64; 3]) {
     if k != GROUND_ID {

@@ -20,8 +20,21 @@ use crate::system::Model;
 use crate::JacobianMode;
 
 impl Model {
-    /// The output column names (see [`Results`]).
+    /// The output column names (see [`Results`]): the run's own, then those of the
+    /// `[[measure]]` items.
     pub fn columns(&self) -> Vec<String> {
+        let mut c = self.own_columns();
+        c.extend(self.measure_columns().into_iter().map(|(n, _)| n));
+        c
+    }
+
+    /// The `[[measure]]` columns with their units.
+    pub fn measure_columns(&self) -> Vec<(String, &'static str)> {
+        (self.measures.iter().flat_map(|m| m.columns.iter().cloned())).collect()
+    }
+
+    /// The columns every run writes, before the measures.
+    pub(crate) fn own_columns(&self) -> Vec<String> {
         let mut c = vec!["t".to_string()];
         for b in &self.body_names {
             for s in ["x", "y", "theta", "vx", "vy", "omega", "ax", "ay", "alpha"] {
@@ -99,6 +112,7 @@ impl Model {
         self.load_bristles(y);
         let (q, qd) = y.split_at(n);
         self.solve_accelerations(t, q, qd);
+        let row_start = out.len();
         out.push(t);
         for k in 0..self.bodies.len() {
             out.extend_from_slice(&q[3 * k..3 * k + 3]);
@@ -149,6 +163,15 @@ impl Model {
             pv,
             vv,
         ]);
+        let row = crate::measure::runtime::Row {
+            frames: &self.frames,
+            q,
+            qd,
+            qdd: self.accelerations(),
+        };
+        for m in &self.measures {
+            m.write(&row, out, row_start);
+        }
     }
 
     /// World position (m) of a body-fixed point `local` on body k at coordinates q.

@@ -40,7 +40,8 @@ use nalgebra::Vector2;
 
 use crate::error::MbdError;
 use crate::runtime::{
-    add_gen, body_state, perp, put, rot, Con, ConKind, ForceEl, Frame, RigidBody, GROUND_ID,
+    add_gen, body_state, frame_rates, perp, put, rot, Con, ConKind, ForceEl, Frame, RigidBody,
+    GROUND_ID,
 };
 
 /// Default Baumgarte coefficient α (1/s) multiplying 2Φ̇ (Flores et al., *Kinematics and
@@ -118,6 +119,8 @@ pub struct Model {
     /// What compiling the description computed or decided, in words (in every run's notes,
     /// after those of the initial conditions).
     pub(crate) notes: Vec<String>,
+    /// The `[[measure]]` items, written after the run's own columns ([`crate::measure`]).
+    pub(crate) measures: Vec<crate::measure::runtime::CompiledMeasure>,
     /// Findings of the plausibility checks of the description's values (materials, laws),
     /// reported by every run ([`crate::plausible`]).
     pub(crate) input_warnings: Vec<crate::initial_data::Warning>,
@@ -748,16 +751,6 @@ pub(crate) fn add_mass(
     for f in floating {
         f.add_mass(q, sink);
     }
-}
-
-/// (d²r/dt², d²θ/dt²) of frame `k` from the accelerations `qdd` (zero for the ground and
-/// constrained node directions).
-fn frame_rates(frames: &[Frame], k: usize, qdd: &[f64]) -> (Vector2<f64>, f64) {
-    if k == GROUND_ID {
-        return (Vector2::zeros(), 0.0);
-    }
-    let v = |d: usize| frames[k].cols[d].map_or(0.0, |c| qdd[c]);
-    (Vector2::new(v(0), v(1)), v(2))
 }
 
 #[inline]

@@ -436,46 +436,7 @@ pub(crate) fn check_settings(model: &str, settings: &RunSettings) -> Result<(), 
     Ok(())
 }
 
-/// Unit of a result column, from clr-mbd's column naming (see `clr_mbd::Results`) and the
-/// derived columns of clr-models (`*.px`, `*.py` momentum, `*.L` angular momentum).
-pub fn unit_of(column: &str) -> &'static str {
-    if column == "t" {
-        return "s";
-    }
-    if let Some(rest) = column.strip_prefix("energy.") {
-        let _ = rest;
-        return "J";
-    }
-    match column {
-        "violation.position" => return "m or rad",
-        "violation.velocity" => return "m/s or rad/s",
-        _ => {}
-    }
-    let mut parts = column.rsplit('.');
-    let suffix = parts.next().unwrap_or(column);
-    // beam nodal coordinates `<beam>.n<k>.u|v|theta` (clr-mbd flexible beams)
-    let node = parts
-        .next()
-        .and_then(|p| p.strip_prefix('n'))
-        .is_some_and(|k| !k.is_empty() && k.bytes().all(|b| b.is_ascii_digit()));
-    if node && (suffix == "u" || suffix == "v") {
-        return "m";
-    }
-    match suffix {
-        "x" | "y" | "ex" | "ey" | "penetration" | "error" => "m",
-        "theta" | "angle" => "rad",
-        "vx" | "vy" | "rate" => "m/s",
-        "omega" => "rad/s",
-        "ax" | "ay" => "m/s^2",
-        "alpha" => "rad/s^2",
-        "Fx" | "Fy" | "normal_force" | "friction_force" | "F" => "N",
-        "M" => "N*m",
-        "contact" => "-",
-        "px" | "py" => "kg*m/s",
-        "L" => "kg*m^2/s",
-        _ => "-",
-    }
-}
+pub use clr_mbd::results::unit_of;
 
 /// Units of every column of `results`.
 pub fn units(results: &Results) -> Vec<String> {

@@ -32,6 +32,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
                 .map(|s| (s.name.as_str(), s.at.iter().collect())),
         )
         .chain(desc.clearances.iter().map(|e| (e.name(), e.anchors())))
+        .chain(desc.measures.iter().map(|e| (e.name(), e.anchors())))
         .collect();
     let mut c = Compiler::new(&Inputs {
         model: &desc.model,
@@ -65,6 +66,10 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     for cl in desc.clearances.iter().filter(|cl| !cl.is_ideal()) {
         cl.compile(&mut c)?;
     }
+    for (k, m) in desc.measures.iter().enumerate() {
+        crate::measure::named(m.name(), k)?;
+        m.compile(&mut c)?;
+    }
     let g = desc.model.gravity;
     if !(g[0].is_finite() && g[1].is_finite()) {
         return Err(MbdError::Invalid {
@@ -80,6 +85,8 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     model.set_contact_events(desc.solver.contact_events);
     model.input_warnings = super::checks::description_warnings(desc);
     model.set_output_nodes(&desc.output.nodes)?;
+    let own = model.own_columns();
+    crate::measure::runtime::resolve(&mut model.measures, &own)?;
     Ok(model)
 }
 

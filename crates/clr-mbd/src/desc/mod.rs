@@ -73,6 +73,9 @@ pub struct ModelDesc {
     /// Clearance joints and sliders (contact elements).
     #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
     pub clearances: Vec<Clearance>,
+    /// Named outputs written as result columns ([`crate::measure`]).
+    #[serde(default, rename = "measure", skip_serializing_if = "Vec::is_empty")]
+    pub measures: Vec<crate::measure::Measure>,
     /// Integrator settings.
     #[serde(default)]
     pub solver: SolverSettings,
@@ -113,6 +116,7 @@ impl ModelDesc {
             "joint" => Joint::from_toml(item).err(),
             "driver" => Driver::from_toml(item).err(),
             "force" => Force::from_toml(item).err(),
+            "measure" => crate::measure::Measure::from_toml(item).err(),
             _ => Clearance::from_toml(item).err(),
         };
         Err(match inner {
@@ -130,7 +134,7 @@ impl ModelDesc {
 /// `("joint", 2)` for the path `joint[2]` of an item in a section tagged by `type`.
 fn section_item(path: &str) -> Option<(&'static str, usize)> {
     let (name, rest) = path.split_once('[')?;
-    let section = ["joint", "driver", "force", "clearance"]
+    let section = ["joint", "driver", "force", "clearance", "measure"]
         .into_iter()
         .find(|s| *s == name)?;
     let k = rest.strip_suffix(']')?.parse().ok()?;

@@ -55,6 +55,8 @@ pub(crate) struct Compiler {
     /// shapes, placements from `between`, clearance joints of clearance 0 run as ideal joints),
     /// for the run's notes.
     pub(crate) notes: Vec<String>,
+    /// `[[measure]]` items compiled so far.
+    pub(crate) measures: Vec<crate::measure::runtime::CompiledMeasure>,
 }
 
 /// What the compiler needs of a description before its element sections: `[model]`, bodies,
@@ -102,6 +104,7 @@ impl Compiler {
             shapes: HashMap::new(),
             initial_offsets: HashMap::new(),
             notes: Vec::new(),
+            measures: Vec::new(),
             force_application: match desc.model.clearance_force_application {
                 Some(ForceApplicationDesc::ContactPoints) => ForceApplication::ContactPoints,
                 _ => ForceApplication::CommonPoint,
@@ -336,6 +339,7 @@ impl Compiler {
             mut clearances,
             initial_offsets,
             notes,
+            measures,
             ..
         } = self;
         let mut m = 0;
@@ -396,6 +400,7 @@ impl Compiler {
             clearances,
             initial_offsets,
             notes,
+            measures,
             input_warnings: Vec::new(),
             gravity,
             memory,

@@ -151,6 +151,8 @@ macro_rules! section {
     };
 }
 
+pub(crate) use section;
+
 section! {
     /// `[[joint]]`: ideal joints (constraint equations).
     Joint {
