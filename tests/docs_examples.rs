@@ -173,6 +173,7 @@ fn base_for(section: &str, kind: Option<&str>) -> Option<&'static str> {
         ("clearance", Some("revolute")) => "tests/data/journal_bearing.toml",
         ("clearance", Some("translational")) => "tests/data/slider_in_guide.toml",
         ("clearance", Some("slider_on_beam")) => "models/guide.toml",
+        ("metric", _) => "models/examples/four_bar_measures.toml",
         _ => return None,
     })
 }

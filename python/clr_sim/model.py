@@ -48,9 +48,9 @@ Table = Mapping[str, Any]
 # The sections of a model file, in the order `clr export` writes them.
 _LISTS = (
     "body", "point", "beam", "flexible_body", "joint", "driver", "force", "shape", "clearance",
-    "measure",
+    "measure", "metric",
 )
-_TABLES = ("model", "solver", "output")
+_TABLES = ("model", "twin", "solver", "output")
 
 
 _PACKAGE_DIR = os.path.dirname(os.path.abspath(__file__))
@@ -887,6 +887,34 @@ class Model:
         bodies = None if bodies is None else list(bodies)
         return self._add("measure", "momentum", name, bodies=bodies, about=about)
 
+    def measure_deviation(self, name: str, *, of: Sequence[str]) -> "Model":
+        """Column ``<name>.error``: the columns ``of`` minus those of the ideal-joint twin (every
+        clearance joint made ideal, run alongside): a signed difference for one column, the
+        distance for several (an end-effector's ``.x`` and ``.y``); :meth:`twin` sets how the
+        twin records."""
+        return self._add("measure", "deviation", name, of=list(of))
+
+    def twin(self, *, intervals: Optional[int] = None) -> "Model":
+        """``[twin]``: the ideal-joint twin of the deviation measures records at ``intervals``
+        equal intervals (default: those of :meth:`output`, 1000 with ``every_step`` only)."""
+        return self._set_table("twin", intervals=intervals)
+
+    def metric(
+        self,
+        name: str,
+        *,
+        of: str,
+        statistic: str,
+        t_start: Optional[float] = None,
+        t_end: Optional[float] = None,
+    ) -> "Model":
+        """``[[metric]]``: ``statistic`` (``peak``, ``max``, ``min``, ``mean``, ``rms``,
+        ``final``, ``time_of_peak``, ``time_of_max``, ``time_of_min``) of column ``of`` over
+        [``t_start``, ``t_end``] (s; default the whole run), in ``Result.metrics``."""
+        return self._add(
+            "metric", None, name, of=of, statistic=statistic, t_start=t_start, t_end=t_end
+        )
+
 
 #: A 3-vector (m, m/s, rad/s or N): a tuple, list or numpy array of three numbers.
 Vec3 = Union[Sequence[float], Tuple[float, float, float]]
@@ -1252,6 +1280,7 @@ _PLANAR_ONLY = {
             "measure_position", "measure_velocity", "measure_acceleration", "measure_angle",
             "measure_angular_velocity", "measure_angular_acceleration", "measure_distance",
             "measure_reaction", "measure_contact", "measure_energy", "measure_momentum",
+            "measure_deviation", "metric", "twin",
         )
     },
 }
@@ -1323,6 +1352,9 @@ METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("measure", "contact"): "measure_contact",
     ("measure", "energy"): "measure_energy",
     ("measure", "momentum"): "measure_momentum",
+    ("measure", "deviation"): "measure_deviation",
+    ("metric", None): "metric",
+    ("twin", None): "twin",
 }
 
 

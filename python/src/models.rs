@@ -528,7 +528,7 @@ const PROBE: &str = "zz_probe_field_zz";
 /// other dotted name.
 fn probe_header(section: &str) -> Option<String> {
     Some(match section {
-        "model" | "solver" | "output" => format!("[{section}]"),
+        "model" | "twin" | "solver" | "output" => format!("[{section}]"),
         "shape.geometry" => "[[shape]]\n[shape.geometry]".to_string(),
         "shape.geometry.parts" => {
             "[[shape]]\n[shape.geometry]\ntype = \"compound\"\n[[shape.geometry.parts]]".to_string()

@@ -22,7 +22,7 @@ def crank_with_measures() -> clr_sim.Model:
 
 
 def test_measures_write_columns_with_units_and_equal_the_closed_form():
-    r = crank_with_measures().simulate()
+    r = clr_sim.simulate(crank_with_measures())
     t = r["t"]
     # uniform rotation at 7 rad/s: v = L ω (−sin ωt, cos ωt), to rounding (the driver is exact)
     assert np.allclose(r["tip.vx"], -0.5 * 7.0 * np.sin(7.0 * t), rtol=0, atol=1e-12)
@@ -51,3 +51,22 @@ def test_a_spatial_model_refuses_measures_with_what_to_use():
     with pytest.raises(clr_sim.errors.ModelError) as e:
         m.measure_position("p", at="x")
     assert "spatial" in str(e.value)
+
+
+def test_deviation_from_the_ideal_twin_and_a_metric_of_it():
+    from test_package import slider_crank_in_python
+
+    m = slider_crank_in_python()
+    m.output(t_end=0.02, intervals=0, every_step=True)
+    m.measure_deviation("slider", of=["slider.x"])
+    m.twin(intervals=20000)
+    m.metric("slider_error_max", of="slider.error", statistic="peak", t_start=0.012)
+    m.metric("B_peak", of="B.normal_force", statistic="max", t_start=0.012)
+    r = clr_sim.simulate(m)
+    assert r.units["slider.error"] == "m"
+    # the deviation's peak after the first revolution, as the metric and from the column
+    after = r["t"] >= 0.012
+    assert r.metrics["slider_error_max"] == pytest.approx(np.abs(r["slider.error"][after]).max())
+    # the built-in's peak contact force after its first revolution is the same located peak
+    b = clr_sim.simulate("slider_crank", 0.02)
+    assert r.metrics["B_peak"] == pytest.approx(b.metrics["peak_contact_force"], rel=1e-9)

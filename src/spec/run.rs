@@ -476,7 +476,7 @@ impl Outcome {
             o.results
                 .columns
                 .iter()
-                .map(|c| unit_of(c).to_string())
+                .map(|c| o.results.unit(c).to_string())
                 .collect()
         };
         let notes = o.results.notes.clone();
@@ -505,7 +505,7 @@ impl Outcome {
         let units = results
             .columns
             .iter()
-            .map(|c| unit_of(c).to_string())
+            .map(|c| results.unit(c).to_string())
             .collect();
         let notes = s.notes.iter().chain(&results.notes).cloned().collect();
         Self {
@@ -636,9 +636,40 @@ pub fn execute(
                     p(t);
                 }
             };
-            match model.simulate_with(&built.options, &hook) {
+            let run = model
+                .simulate_with(&built.options, &hook)
+                .and_then(|mut r| {
+                    clr_mbd::measure::deviation::append_deviations(
+                        s.desc(),
+                        &built.options,
+                        &mut r,
+                    )?;
+                    Ok(r)
+                })
+                .map_err(|e| match e {
+                    clr_mbd::MbdError::Failed {
+                        source,
+                        mut partial,
+                        cause,
+                    } => {
+                        // the rows of a failed run get the deviation columns too (every column
+                        // of a complete run); a twin that cannot run leaves them NaN
+                        let _ = clr_mbd::measure::deviation::append_deviations(
+                            s.desc(),
+                            &built.options,
+                            &mut partial,
+                        );
+                        clr_mbd::MbdError::Failed {
+                            source,
+                            partial,
+                            cause,
+                        }
+                    }
+                    e => e,
+                });
+            match run {
                 Ok(res) => {
-                    let metrics = generic_metrics(&res, s.as_ref().into());
+                    let metrics = file_metrics(&res, s);
                     Ok(Outcome::from_results(s.as_ref().into(), res, metrics, None)
                         .with_flexible(flexible))
                 }
@@ -651,7 +682,7 @@ pub fn execute(
                         "{source} (in the model file these are [solver] max_steps, rtol, atol, \
                          method){cause}"
                     );
-                    let metrics = generic_metrics(&partial, s.as_ref().into());
+                    let metrics = file_metrics(&partial, s);
                     Ok(
                         Outcome::from_results(s.as_ref().into(), *partial, metrics, Some(msg))
                             .with_flexible(flexible),
@@ -665,7 +696,7 @@ pub fn execute(
                 ) => {
                     let msg = e.to_string();
                     let partial = e.into_partial().unwrap_or_default();
-                    let metrics = generic_metrics(&partial, s.as_ref().into());
+                    let metrics = file_metrics(&partial, s);
                     Ok(
                         Outcome::from_results(s.as_ref().into(), partial, metrics, Some(msg))
                             .with_flexible(flexible),
@@ -733,6 +764,19 @@ fn run_settings(
 
 fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
+}
+
+/// The metrics of a planar model file's run: its `[[metric]]` items, then the generic ones
+/// ([`generic_metrics`]) whose names the file does not take: a `[[metric]]` may redefine one
+/// (docs/model-file.md).
+fn file_metrics(r: &clr_mbd::Results, s: &super::ModelSpec) -> Vec<Metric> {
+    let mut out = clr_models::described_metrics::evaluate(&s.desc().metrics, r);
+    for m in generic_metrics(r, s.into()) {
+        if !out.iter().any(|o| o.name == m.name) {
+            out.push(m);
+        }
+    }
+    out
 }
 
 /// Metrics of a generic model run, computed from its recorded columns.

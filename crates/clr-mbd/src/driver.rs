@@ -208,6 +208,7 @@ impl<W> Run<W> {
             impacts: std::mem::replace(&mut self.impacts, ImpactTracker::empty()).into_impacts(),
             initial_conditions: None,
             warnings: Vec::new(),
+            units: Vec::new(),
         }
     }
 }

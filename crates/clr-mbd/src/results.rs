@@ -111,9 +111,39 @@ pub struct Results {
     /// Findings of the plausibility checks before and after the run ([`crate::plausible`];
     /// set by [`Model::simulate`](crate::Model::simulate)).
     pub warnings: Vec<crate::initial_data::Warning>,
+    /// Units of the columns whose name does not fix them (the deviation columns `<name>.error`,
+    /// in the unit of what they compare); every other column's unit is [`unit_of`] its name.
+    pub units: Vec<(String, &'static str)>,
 }
 
 impl Results {
+    /// The unit of column `name`: its entry in [`Results::units`], else [`unit_of`] its name.
+    pub fn unit(&self, name: &str) -> &'static str {
+        (self.units.iter())
+            .find(|(c, _)| c == name)
+            .map_or_else(|| unit_of(name), |(_, u)| *u)
+    }
+
+    /// Append columns (name, one value per row) after the last one.
+    ///
+    /// # Panics
+    /// When a column does not have one value per row (a caller's bug, not an input).
+    pub fn append_columns(&mut self, new: Vec<(String, Vec<f64>)>) {
+        if new.is_empty() {
+            return;
+        }
+        let n = self.len();
+        assert!(new.iter().all(|(_, v)| v.len() == n), "one value per row");
+        let w = self.columns.len();
+        let mut data = Vec::with_capacity(n * (w + new.len()));
+        for r in 0..n {
+            data.extend_from_slice(&self.data[r * w..(r + 1) * w]);
+            data.extend(new.iter().map(|(_, v)| v[r]));
+        }
+        self.columns.extend(new.into_iter().map(|(c, _)| c));
+        self.data = data;
+    }
+
     /// Number of rows.
     pub fn len(&self) -> usize {
         if self.columns.is_empty() {

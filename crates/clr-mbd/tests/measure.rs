@@ -438,7 +438,10 @@ fn measures_are_refused_with_what_to_change() {
     let e = compile_err(&with(
         "name = \"w\"\ntype = \"angular_velocity\"\nbody = \"crank\"\noffset = 1.0",
     ));
-    assert!(e.contains("offset"), "{e}");
+    assert!(
+        e.contains("measure[0].offset") && e.contains("unknown field"),
+        "{e}"
+    );
     let e = compile_err(&with(
         "name = \"p\"\ntype = \"position\"\nat = \"origin\"\nframe = \"disk\"",
     ));
@@ -455,4 +458,68 @@ fn measures_survive_the_model_file_round_trip() {
     let again = ModelDesc::from_toml_table(desc.to_toml().unwrap().parse().unwrap()).unwrap();
     assert_eq!(desc.measures, again.measures);
     assert_eq!(desc.measures.len(), 10);
+}
+
+#[test]
+fn deviation_from_the_ideal_twin_equals_the_closed_form_slider_error() {
+    // tests/data/slider_crank.toml (Flores: r = 0.05 m, l = 0.3 m, 5000 rpm, c = 0.5 mm) with
+    // the slider's deviation from the ideal twin; the twin is the ideal slider–crank, whose
+    // slider follows x(θ) = r cos θ + √(l² − r² sin² θ), θ = ωt, in closed form
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/data/slider_crank.toml"
+    ))
+    .unwrap();
+    let mut doc: toml::Table = text.parse().unwrap();
+    doc.insert(
+        "output".into(),
+        "t_end = 0.01\nintervals = 1000\n"
+            .parse::<toml::Table>()
+            .unwrap()
+            .into(),
+    );
+    let extra: toml::Table = "[[measure]]\nname = \"slider\"\ntype = \"deviation\"\nof = [\"slider.x\"]\n\n[twin]\nintervals = 10000\n"
+        .parse()
+        .unwrap();
+    doc.extend(extra);
+    let desc = ModelDesc::from_toml_table(doc).unwrap();
+    let opts = desc.sim_options().unwrap();
+    let mut r = desc.compile().unwrap().simulate(&opts).unwrap();
+    clr_mbd::measure::deviation::append_deviations(&desc, &opts, &mut r).unwrap();
+    let (t, x, e) = (col(&r, "t"), col(&r, "slider.x"), col(&r, "slider.error"));
+    let (rc, l, w) = (0.05, 0.3, 5000.0 * std::f64::consts::PI / 30.0);
+    let mut worst = 0.0f64;
+    for k in 0..t.len() {
+        let th = w * t[k];
+        let ideal = rc * th.cos() + (l * l - (rc * th.sin()).powi(2)).sqrt();
+        worst = worst.max((e[k] - (x[k] - ideal)).abs());
+    }
+    // the twin's own integration error plus linear interpolation over h = 1e-6 s (h²/8·|ẍ| with
+    // |ẍ| ≤ rω²(1 + r/l) ≈ 1.6e4 m/s²: 2e-9 m), against a deviation of order c = 5e-4 m;
+    // measured 4.0e-9 m (the file's rtol 1e-7), tolerance 2e-8 m
+    assert!(worst < 2e-8, "largest difference {worst:e} m");
+    assert!(
+        e.iter().fold(0.0f64, |a, v| a.max(v.abs())) > 1e-4,
+        "the clearance shows"
+    );
+    assert_eq!(r.unit("slider.error"), "m");
+    assert!(
+        r.notes.iter().any(|n| n.contains("ideal twin")),
+        "{:?}",
+        r.notes
+    );
+}
+
+#[test]
+fn a_deviation_of_a_contact_quantity_is_refused_before_the_run() {
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../tests/data/slider_crank.toml"
+    ))
+    .unwrap()
+        + "\n[[measure]]\nname = \"f\"\ntype = \"deviation\"\nof = [\"B.normal_force\"]\n";
+    let e = compile_err(&text);
+    assert!(e.contains("f.of") && e.contains("contact quantity"), "{e}");
+    let e = compile_err(&text.replace("B.normal_force", "sldr.x"));
+    assert!(e.contains("no such column"), "{e}");
 }

@@ -443,7 +443,7 @@ pub fn units(results: &Results) -> Vec<String> {
     results
         .columns
         .iter()
-        .map(|c| unit_of(c).to_string())
+        .map(|c| results.unit(c).to_string())
         .collect()
 }
 
@@ -454,20 +454,7 @@ pub(crate) fn col(results: &Results, name: &str) -> Vec<f64> {
 
 /// Append derived columns (same number of rows) to results.
 pub(crate) fn append_columns(results: &mut Results, new: Vec<(String, Vec<f64>)>) {
-    if new.is_empty() {
-        return;
-    }
-    let n = results.len();
-    let w = results.columns.len();
-    let mut data = Vec::with_capacity(n * (w + new.len()));
-    for r in 0..n {
-        data.extend_from_slice(&results.data[r * w..(r + 1) * w]);
-        for (_, v) in &new {
-            data.push(v[r]);
-        }
-    }
-    results.columns.extend(new.into_iter().map(|(c, _)| c));
-    results.data = data;
+    results.append_columns(new);
 }
 
 /// Largest |v| over rows with t ≥ t_from.
@@ -485,16 +472,36 @@ pub fn peak_abs(t: &[f64], v: &[f64], t_from: f64) -> f64 {
 /// located onset, and the rows cover it). clr-mbd locates the extrema on the dense output
 /// (`clr_mbd::Impact`), so the result does not depend on where the output rows fall.
 pub fn located_peaks(res: &Results, joint: &str, t_from: f64, rows: (f64, f64)) -> (f64, f64) {
-    let of_joint = || res.impacts.iter().filter(move |i| i.joint == joint);
-    let force = of_joint()
-        .filter(|i| i.peak_force_time >= t_from)
-        .map(|i| i.peak_force)
-        .fold(rows.0, f64::max);
-    let pen = of_joint()
-        .filter(|i| i.max_penetration_time >= t_from)
-        .map(|i| i.max_penetration)
-        .fold(rows.1, f64::max);
-    (force, pen)
+    let window = (t_from, f64::INFINITY);
+    (
+        located_extreme(res, joint, "normal_force", window, rows.0),
+        located_extreme(res, joint, "penetration", window, rows.1),
+    )
+}
+
+/// The largest of `rows` and the located peaks of `quantity` (`normal_force` or `penetration`)
+/// of contact element `joint`'s impacts whose extremum lies in `window` (s); `rows` for any
+/// other quantity.
+pub fn located_extreme(
+    res: &Results,
+    joint: &str,
+    quantity: &str,
+    window: (f64, f64),
+    rows: f64,
+) -> f64 {
+    let inside = |at: f64| at >= window.0 && at <= window.1;
+    let of_joint = res.impacts.iter().filter(|i| i.joint == joint);
+    match quantity {
+        "normal_force" => of_joint
+            .filter(|i| inside(i.peak_force_time))
+            .map(|i| i.peak_force)
+            .fold(rows, f64::max),
+        "penetration" => of_joint
+            .filter(|i| inside(i.max_penetration_time))
+            .map(|i| i.max_penetration)
+            .fold(rows, f64::max),
+        _ => rows,
+    }
 }
 
 /// Largest v (signed) over rows with t ≥ t_from; 0 when every value is negative.
@@ -530,24 +537,7 @@ pub fn time_rms(t: &[f64], v: &[f64], t_from: f64) -> f64 {
     time_mean(t, &sq, t_from).sqrt()
 }
 
-/// Linear interpolation of (t, v) at `at` (t increasing; clamped at the ends).
-pub fn interp(t: &[f64], v: &[f64], at: f64) -> f64 {
-    if t.is_empty() {
-        return f64::NAN;
-    }
-    if at <= t[0] {
-        return v[0];
-    }
-    if at >= t[t.len() - 1] {
-        return v[v.len() - 1];
-    }
-    let k = t.partition_point(|&x| x <= at);
-    let (t0, t1) = (t[k - 1], t[k]);
-    if t1 == t0 {
-        return v[k];
-    }
-    v[k - 1] + (v[k] - v[k - 1]) * (at - t0) / (t1 - t0)
-}
+pub use clr_mbd::measure::deviation::interp;
 
 /// Write results as CSV into `dir/name.csv` (creating `dir`).
 ///

@@ -11,6 +11,7 @@
 
 pub mod catalog;
 pub mod common;
+pub mod described_metrics;
 pub mod dual_guide;
 pub mod dual_guide_map;
 pub mod error;

@@ -87,6 +87,14 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     model.set_output_nodes(&desc.output.nodes)?;
     let own = model.own_columns();
     crate::measure::runtime::resolve(&mut model.measures, &own)?;
+    let mut columns = model.columns();
+    crate::measure::deviation::check_sources(desc, &columns)?;
+    columns.extend(
+        desc.deviations()
+            .iter()
+            .map(|d| format!("{}.error", d.name)),
+    );
+    super::metric::check(&desc.metrics, &columns)?;
     Ok(model)
 }
 

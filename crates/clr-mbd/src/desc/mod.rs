@@ -12,6 +12,7 @@ pub mod checks;
 mod compile;
 pub mod inertia;
 pub mod laws;
+pub mod metric;
 pub mod parts;
 mod settings;
 
@@ -76,6 +77,12 @@ pub struct ModelDesc {
     /// Named outputs written as result columns ([`crate::measure`]).
     #[serde(default, rename = "measure", skip_serializing_if = "Vec::is_empty")]
     pub measures: Vec<crate::measure::Measure>,
+    /// Numbers taken of columns over time windows ([`metric`]).
+    #[serde(default, rename = "metric", skip_serializing_if = "Vec::is_empty")]
+    pub metrics: Vec<metric::MetricDesc>,
+    /// How the ideal-joint twin of the `deviation` measures records (`[twin]`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub twin: Option<crate::measure::deviation::TwinSettings>,
     /// Integrator settings.
     #[serde(default)]
     pub solver: SolverSettings,

@@ -8,21 +8,19 @@ use crate::element::{Compiler, Element};
 use crate::error::MbdError;
 use crate::runtime::GROUND;
 
-/// An angle measure; `Q` selects the quantity (0 angle, 1 angular velocity, 2 angular
-/// acceleration): use the aliases [`Angle`], [`AngularVelocity`], [`AngularAcceleration`].
+/// Angle of a body: `<name>.angle`, rad.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
-pub struct AngleMeasure<const Q: u8> {
-    /// Unique measure name; the column is `<name>.angle` (rad), `<name>.omega` (rad/s) or
-    /// `<name>.alpha` (rad/s²).
+pub struct Angle {
+    /// Unique measure name.
     pub name: String,
     /// The rigid body.
     pub body: String,
     /// The body the angle is measured from (default: `ground`, i.e. the world x axis).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub relative_to: Option<String>,
-    /// Subtracted from the angle, rad (default 0; `angle` only): the angle of a reference
-    /// position, so that the measure starts from 0 there.
+    /// Subtracted from the angle, rad (default 0): the angle of a reference position, so that
+    /// the measure starts from 0 there.
     #[serde(default, skip_serializing_if = "is_zero")]
     pub offset: f64,
 }
@@ -31,29 +29,27 @@ fn is_zero(x: &f64) -> bool {
     *x == 0.0
 }
 
-/// Angle of a body: `<name>.angle`, rad.
-pub type Angle = AngleMeasure<0>;
-/// Angular velocity of a body: `<name>.omega`, rad/s.
-pub type AngularVelocity = AngleMeasure<1>;
-/// Angular acceleration of a body: `<name>.alpha`, rad/s².
-pub type AngularAcceleration = AngleMeasure<2>;
+/// A rate of an angle; `Q` selects it (1 angular velocity, 2 angular acceleration): use the
+/// aliases [`AngularVelocity`], [`AngularAcceleration`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AngleRate<const Q: u8> {
+    /// Unique measure name; the column is `<name>.omega` (rad/s) or `<name>.alpha` (rad/s²).
+    pub name: String,
+    /// The rigid body.
+    pub body: String,
+    /// The body the rate is relative to (default: `ground`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub relative_to: Option<String>,
+}
 
-impl<const Q: u8> Element for AngleMeasure<Q> {
+/// Angular velocity of a body: `<name>.omega`, rad/s.
+pub type AngularVelocity = AngleRate<1>;
+/// Angular acceleration of a body: `<name>.alpha`, rad/s².
+pub type AngularAcceleration = AngleRate<2>;
+
+impl Element for Angle {
     fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
-        let (quantity, suffix, unit) = match Q {
-            0 => (Quantity::Position, "angle", "rad"),
-            1 => (Quantity::Velocity, "omega", "rad/s"),
-            _ => (Quantity::Acceleration, "alpha", "rad/s^2"),
-        };
-        if quantity != Quantity::Position && self.offset != 0.0 {
-            return Err(MbdError::Invalid {
-                path: format!("{}.offset", self.name),
-                message: format!(
-                    "an offset is subtracted from an angle only; `{suffix}` is a rate: leave \
-                     `offset` out"
-                ),
-            });
-        }
         if !self.offset.is_finite() {
             return Err(MbdError::InvalidParameter {
                 item: self.name.clone(),
@@ -62,19 +58,40 @@ impl<const Q: u8> Element for AngleMeasure<Q> {
                 requirement: "must be finite",
             });
         }
-        let body = c.body(&self.name, "body", &self.body)?;
-        let relative = self.relative_to.as_deref().unwrap_or(GROUND);
-        let relative_to = c.body(&self.name, "relative_to", relative)?;
-        c.measures.push(CompiledMeasure {
-            name: self.name.clone(),
-            columns: vec![(format!("{}.{suffix}", self.name), unit)],
-            el: MeasureEl::Angle {
-                quantity,
-                body,
-                relative_to,
-                offset: self.offset,
-            },
-        });
-        Ok(())
+        let m = (&self.name, &self.body, self.relative_to.as_deref());
+        push(c, m, (Quantity::Position, "angle", "rad"), self.offset)
     }
+}
+
+impl<const Q: u8> Element for AngleRate<Q> {
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        let column = match Q {
+            1 => (Quantity::Velocity, "omega", "rad/s"),
+            _ => (Quantity::Acceleration, "alpha", "rad/s^2"),
+        };
+        let m = (&self.name, &self.body, self.relative_to.as_deref());
+        push(c, m, column, 0.0)
+    }
+}
+
+/// Push the measure (name, body, relative_to) of `quantity` with its column (suffix, unit).
+fn push(
+    c: &mut Compiler,
+    (name, body, relative_to): (&String, &String, Option<&str>),
+    (quantity, suffix, unit): (Quantity, &str, &'static str),
+    offset: f64,
+) -> Result<(), MbdError> {
+    let body = c.body(name, "body", body)?;
+    let relative_to = c.body(name, "relative_to", relative_to.unwrap_or(GROUND))?;
+    c.measures.push(CompiledMeasure {
+        name: name.clone(),
+        columns: vec![(format!("{name}.{suffix}"), unit)],
+        el: MeasureEl::Angle {
+            quantity,
+            body,
+            relative_to,
+            offset,
+        },
+    });
+    Ok(())
 }

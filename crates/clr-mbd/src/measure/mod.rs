@@ -23,10 +23,13 @@
 //! - `reaction` of a joint or driver, in the world frame or a body's ([`copy`]);
 //! - `contact`: one quantity of a contact element ([`copy`]);
 //! - `energy`: one energy term ([`copy`]);
-//! - `momentum`: linear and angular momentum of rigid bodies about a world point ([`momentum`]).
+//! - `momentum`: linear and angular momentum of rigid bodies about a world point ([`momentum`]);
+//! - `deviation` of columns from the ideal-joint twin ([`deviation`]), written after the twin
+//!   has run by whoever runs it ([`deviation::deviation_columns`]; `clr run` does).
 
 pub mod angle;
 pub mod copy;
+pub mod deviation;
 pub mod distance;
 pub mod momentum;
 pub mod point;
@@ -62,6 +65,8 @@ section! {
         Energy(copy::Energy) = "energy",
         /// Linear and angular momentum of rigid bodies.
         Momentum(momentum::Momentum) = "momentum",
+        /// Deviation of columns from the ideal-joint twin.
+        Deviation(deviation::Deviation) = "deviation",
     }
 }
 
