@@ -145,7 +145,7 @@ pub fn ideal_kinds(clearances: &[f64; 4]) -> IdealKinds {
 }
 
 /// A body in the plane z = 0: position (x, y), angle θ about z, mass, principal moments.
-fn planar_body(
+pub(crate) fn planar_body(
     name: &str,
     mass: f64,
     inertia: [f64; 3],
