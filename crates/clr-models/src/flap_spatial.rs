@@ -39,7 +39,6 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
-use clr_mbd::desc::OutputSettings;
 use clr_mbd::spatial::{
     ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, Space,
     SpatialBody, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint, VectorFrame,
@@ -381,19 +380,7 @@ pub fn spatial_desc(
         clearances,
         ..SpatialDesc::default()
     };
-    let s = &mut d.solver;
-    s.method = p.solver.into();
-    s.rtol = p.rtol;
-    s.atol = Some(p.rtol * 1e-3);
-    s.max_steps = 1_000_000;
-    s.contact_events = true;
-    d.output = OutputSettings {
-        t_start: 0.0,
-        t_end: Some(p.duration),
-        intervals: 0,
-        every_step: true,
-        nodes: Default::default(),
-    };
+    common::builtin_run(&mut d.solver, &mut d.output, p.duration, p.rtol, p.solver);
     Ok(d)
 }
 
@@ -434,15 +421,12 @@ fn journal_joint(
     misalignment: Misalignment,
 ) -> JournalClearanceDesc {
     bearing.axis = Some(misalignment.bore_axis());
-    let mut normal = common::preset_desc(
+    let normal = common::journal_preset_desc(
         &p.normal_law,
         p.youngs_modulus,
         p.poisson_ratio,
-        p.axial_length,
         p.restitution,
     );
-    // the line laws' length is the joint's own contact length min(L_b, L_j) = L
-    normal.length = None;
     JournalClearanceDesc {
         name: name.into(),
         kind: ClearanceKind::Revolute,

@@ -23,12 +23,12 @@
 //! contact (the spatial joint has no worn bore yet): the extrapolation is the first update of
 //! the planar study's scheme, exact while the wear stays small against the clearance.
 
+use std::f64::consts::TAU;
 use std::path::Path;
 
 use clr_contact::journal::{JournalClearance, JournalFriction, JournalLaws, GROUPS};
 use clr_contact::journal_wear::{BearingWearMap, JournalSample, JournalWear};
 use clr_contact::{ContactMemory, JournalState};
-use clr_mbd::desc::OutputSettings;
 use clr_mbd::spatial::{
     ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, SpatialBody, SpatialDesc,
     SpatialDriver, SpatialInfo, SpatialJoint,
@@ -38,7 +38,9 @@ use nalgebra::{Quaternion, UnitQuaternion, Vector3};
 use rayon::prelude::*;
 
 use crate::common::{self, col};
-use crate::lubrication_wear::{WEAR_ANGLES, WEAR_COEFFICIENT, WEAR_HARDNESS, WEAR_MAX_CYCLES};
+use crate::lubrication_wear::{
+    WEAR_ANGLES, WEAR_COEFFICIENT, WEAR_DEPTH_PER_UPDATE, WEAR_HARDNESS, WEAR_MAX_CYCLES,
+};
 use crate::slider_crank::SliderCrankParams;
 
 /// Misalignments of the slider's bore axis, rad (0, 0.1°, 0.2°).
@@ -81,32 +83,6 @@ pub fn spatial_desc(
         kind,
         a,
         b,
-    };
-    let mut normal = common::preset_desc(
-        &p.normal_law,
-        p.youngs_modulus,
-        p.poisson_ratio,
-        p.axial_length,
-        p.restitution,
-    );
-    // the joint gives the line laws its contact length min(L_b, L_j) = L
-    normal.length = None;
-    let (s, c) = misalignment.sin_cos();
-    let clearance = JournalClearanceDesc {
-        name: JOINT.into(),
-        kind: ClearanceKind::Revolute,
-        bearing: end("slider", 0.0, Some([s, 0.0, c])),
-        journal: end("rod", l / 2.0, z),
-        bearing_radius: p.bearing_radius,
-        bearing_length: p.axial_length,
-        journal_radius: p.journal_radius,
-        journal_length: p.axial_length + AXIAL_CLEARANCE,
-        axial_clearance: Some(AXIAL_CLEARANCE),
-        thrust_radius: None,
-        quadrature_order: None,
-        normal,
-        thrust_normal: None,
-        friction: Some(p.friction.desc()),
     };
     let mut d = SpatialDesc {
         model: SpatialInfo {
@@ -175,56 +151,79 @@ pub fn spatial_desc(
             joint: "O".into(),
             motion: TimeFn::linear(0.0, w),
         }],
-        clearances: vec![clearance.into()],
+        clearances: vec![clearance_desc(p, misalignment).into()],
         ..SpatialDesc::default()
     };
-    let sv = &mut d.solver;
-    sv.method = p.solver.into();
-    sv.rtol = p.rtol;
-    sv.atol = Some(p.rtol * 1e-3);
-    sv.max_steps = 1_000_000;
-    sv.contact_events = true;
-    d.output = OutputSettings {
-        t_start: 0.0,
-        t_end: Some(duration),
-        intervals: 0,
-        every_step: true,
-        nodes: Default::default(),
-    };
+    common::builtin_run(&mut d.solver, &mut d.output, duration, p.rtol, p.solver);
     Ok(d)
 }
 
+/// Joint B of [`spatial_desc`]: bore on the slider (axis turned by `misalignment` rad about the
+/// slider's y axis), journal on the rod's end, the planar joint's radii, length L, end play
+/// [`AXIAL_CLEARANCE`], the Wan normal law (its line laws' length left to the joint: the
+/// contact length min(L_b, L_j) = L) on the bore and the thrust faces, Ambrósio friction.
+pub fn clearance_desc(p: &SliderCrankParams, misalignment: f64) -> JournalClearanceDesc {
+    let normal = common::journal_preset_desc(
+        &p.normal_law,
+        p.youngs_modulus,
+        p.poisson_ratio,
+        p.restitution,
+    );
+    let (s, c) = misalignment.sin_cos();
+    JournalClearanceDesc {
+        name: JOINT.into(),
+        kind: ClearanceKind::Revolute,
+        bearing: End {
+            body: "slider".into(),
+            at: [0.0; 3],
+            axis: Some([s, 0.0, c]),
+        },
+        journal: End {
+            body: "rod".into(),
+            at: [p.rod_length / 2.0, 0.0, 0.0],
+            axis: Some([0.0, 0.0, 1.0]),
+        },
+        bearing_radius: p.bearing_radius,
+        bearing_length: p.axial_length,
+        journal_radius: p.journal_radius,
+        journal_length: p.axial_length + AXIAL_CLEARANCE,
+        axial_clearance: Some(AXIAL_CLEARANCE),
+        thrust_radius: None,
+        quadrature_order: None,
+        normal,
+        thrust_normal: None,
+        friction: Some(p.friction.desc()),
+    }
+}
+
 /// The joint's geometry and radial law as the spatial engine compiles them from
-/// [`spatial_desc`] (clr-mbd spatial compile: the line law over L_c = L), and the floor of the
-/// impact velocity of its contact memory.
+/// [`clearance_desc`] (clr-mbd spatial compile: a revolute journal joint, the line laws over
+/// the contact length L_c = min(L_b, L_j)), and the floor of the impact velocity of its contact
+/// memory.
 ///
 /// # Errors
 /// Invalid parameters.
 pub fn joint_and_laws(
     p: &SliderCrankParams,
 ) -> Result<(JournalClearance, JournalLaws, f64), String> {
+    let d = clearance_desc(p, 0.0);
     let joint = JournalClearance::revolute(
-        p.bearing_radius,
-        p.axial_length,
-        p.journal_radius,
-        p.axial_length + AXIAL_CLEARANCE,
+        d.bearing_radius,
+        d.bearing_length,
+        d.journal_radius,
+        d.journal_length,
         AXIAL_CLEARANCE,
-        None,
+        d.thrust_radius,
     )
     .map_err(|e| e.to_string())?;
-    let mut normal = common::preset_desc(
-        &p.normal_law,
-        p.youngs_modulus,
-        p.poisson_ratio,
-        p.axial_length,
-        p.restitution,
-    );
-    normal.length =
-        clr_contact::normal::preset_uses_length(&p.normal_law).then_some(joint.contact_length());
+    let mut normal = d.normal;
+    if normal.takes_length() {
+        normal.length = Some(joint.contact_length());
+    }
     let radial = normal
         .build(
             &format!("{JOINT}.normal"),
-            Some((p.bearing_radius, p.journal_radius)),
+            Some((d.bearing_radius, d.journal_radius)),
         )
         .map_err(|e| e.message)?;
     // friction does not enter the wear (the slip does): the laws' normal part is what counts
@@ -292,11 +291,9 @@ pub fn joint_history(
     let (joint, _, min_v) = joint_and_laws(p)?;
     let mut memory = ContactMemory::new(GROUPS, min_v).map_err(|e| e.to_string())?;
     let t = col(res, "t");
-    let (s, c) = misalignment.sin_cos();
-    let (bore_axis, pin) = (
-        Vector3::new(s, 0.0, c),
-        Vector3::new(p.rod_length / 2.0, 0.0, 0.0),
-    );
+    let d = clearance_desc(p, misalignment);
+    let bore_axis = Vector3::from(d.bearing.axis.unwrap_or([0.0, 0.0, 1.0]));
+    let pin = Vector3::from(d.journal.at);
     let (slider, rod) = (
         BodyColumns::new(res, "slider"),
         BodyColumns::new(res, "rod"),
@@ -401,10 +398,13 @@ pub fn run_case(
     ))
 }
 
-/// The study: the three misalignments in parallel; writes `summary.csv`, `axial.csv` (worn
-/// area per unit length and largest depth per station after [`WEAR_CYCLES`]), `angular.csv`
-/// (the depth at the rim stations and the mid station) and the figures `axial_profile` and
-/// `rim_profile`.
+/// The study: the three misalignments in parallel; writes `summary.csv` (per case: worn volume
+/// and largest depth of one revolution, the cycles after which the deepest point has worn
+/// [`WEAR_DEPTH_PER_UPDATE`] (the planar study's update, the range of the no-feedback
+/// extrapolation), largest and mean depth and volume after [`WEAR_CYCLES`], edge
+/// concentration), `axial.csv` (per station after [`WEAR_CYCLES`]: worn area per unit length,
+/// largest depth over φ, depth at the angle of the deepest point), `map_<deg>.csv` (the wear map
+/// of one revolution, φ × z) and the figures `axial_profile` and `rim_profile`.
 ///
 /// # Errors
 /// A failing case or an output error.
@@ -414,107 +414,153 @@ pub fn study(dir: &Path) -> Result<Vec<JournalWearCase>, String> {
         .par_iter()
         .map(|&a| run_case(&p, a).map(|c| c.0))
         .collect::<Result<_, _>>()?;
-    write_outputs(dir, &cases)?;
+    std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+    write_summary(dir, &cases)?;
+    write_maps(dir, &cases)?;
+    figures(dir, &cases)?;
     Ok(cases)
 }
 
-fn write_outputs(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
-    use clr_plot::Figure;
-    std::fs::create_dir_all(dir).map_err(|e| e.to_string())?;
+/// The angle (rad) and station of the deepest knot of `map`.
+pub fn deepest(map: &BearingWearMap) -> (f64, usize) {
+    let (mut best, mut at) = (f64::NEG_INFINITY, (0, 0));
+    for (m, s) in map.stations().iter().enumerate() {
+        for (k, &h) in s.depths().iter().enumerate() {
+            if h > best {
+                (best, at) = (h, (k, m));
+            }
+        }
+    }
+    (TAU * at.0 as f64 / map.angles() as f64, at.1)
+}
+
+fn write_summary(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
     let header = [
         "misalignment_deg",
         "volume_per_cycle_m3",
         "max_depth_per_cycle_m",
+        "cycles_to_1um",
         "max_depth_after_cycles_m",
         "mean_depth_after_cycles_m",
+        "volume_after_cycles_m3",
         "edge_concentration",
+        "deepest_angle_deg",
+        "deepest_z_mm",
         "peak_radial_force_N",
         "wall_s",
     ];
     let rows: Vec<Vec<String>> = cases
         .iter()
         .map(|c| {
+            let (phi, m) = deepest(&c.cycle);
             vec![
                 format!("{}", c.misalignment_deg),
                 format!("{:e}", c.volume_per_cycle),
                 format!("{:e}", c.depth_per_cycle),
+                format!("{:.0}", WEAR_DEPTH_PER_UPDATE / c.depth_per_cycle),
                 format!("{:e}", WEAR_CYCLES * c.depth_per_cycle),
                 format!("{:e}", WEAR_CYCLES * c.cycle.mean_depth()),
+                format!("{:e}", WEAR_CYCLES * c.volume_per_cycle),
                 format!("{:.4}", c.edge_concentration),
+                format!("{:.1}", phi.to_degrees()),
+                format!("{:.1}", c.cycle.station_z(m) * 1e3),
                 format!("{:.3}", c.peak_force),
                 format!("{:.2}", c.wall_s),
             ]
         })
         .collect();
-    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)?;
-    let map0 = &cases[0].cycle;
-    let mut ah = vec!["z_mm".to_string()];
+    common::write_table_csv(&dir.join("summary.csv"), &header, &rows)
+}
+
+/// `axial.csv` and one `map_<deg>.csv` per case.
+fn write_maps(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
+    let mut header = vec!["z_mm".to_string()];
     for c in cases {
-        ah.push(format!("worn_area_m2_{}deg", c.misalignment_deg));
-        ah.push(format!("max_depth_m_{}deg", c.misalignment_deg));
+        let a = c.misalignment_deg;
+        header.push(format!("worn_area_m2_{a}deg"));
+        header.push(format!("max_depth_m_{a}deg"));
+        header.push(format!("depth_at_deepest_angle_m_{a}deg"));
     }
-    let ah_ref: Vec<&str> = ah.iter().map(String::as_str).collect();
-    let arows: Vec<Vec<String>> = (0..map0.station_count())
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    let rows: Vec<Vec<String>> = (0..WEAR_STATIONS)
         .map(|m| {
-            let mut r = vec![format!("{}", map0.station_z(m) * 1e3)];
+            let mut r = vec![format!("{:.1}", cases[0].cycle.station_z(m) * 1e3)];
             for c in cases {
-                r.push(format!("{:e}", WEAR_CYCLES * c.cycle.worn_area(m)));
-                r.push(format!(
-                    "{:e}",
-                    WEAR_CYCLES * c.cycle.station(m).max_depth()
-                ));
+                let phi = deepest(&c.cycle).0;
+                let s = c.cycle.station(m);
+                for v in [c.cycle.worn_area(m), s.max_depth(), s.depth_at(phi)] {
+                    r.push(format!("{:e}", WEAR_CYCLES * v));
+                }
             }
             r
         })
         .collect();
-    common::write_table_csv(&dir.join("axial.csv"), &ah_ref, &arows)?;
-    let mut axial = Figure::new(format!(
-        "Spatial Wan slider-crank joint B: largest wear depth along the bore after {WEAR_CYCLES:.0e} cycles"
-    ))
-    .x_label("z along the bore (mm)")
-    .y_label("largest wear depth over φ (µm)");
-    let mut rim = Figure::new("Wear depth around the bore at the most worn station")
-        .x_label("angle φ (deg, slider frame)")
-        .y_label("wear depth (µm)");
+    common::write_table_csv(&dir.join("axial.csv"), &header, &rows)?;
     for c in cases {
-        let label = format!("misalignment {}°", c.misalignment_deg);
-        let pts = (0..c.cycle.station_count())
-            .map(|m| {
-                (
-                    c.cycle.station_z(m) * 1e3,
-                    WEAR_CYCLES * c.cycle.station(m).max_depth() * 1e6,
-                )
+        let map = &c.cycle;
+        let n = map.angles();
+        let rows: Vec<Vec<String>> = (0..WEAR_STATIONS)
+            .flat_map(|m| {
+                (0..n).map(move |k| {
+                    vec![
+                        format!("{}", 360.0 * k as f64 / n as f64),
+                        format!("{:.1}", map.station_z(m) * 1e3),
+                        format!("{:e}", map.station(m).depths()[k]),
+                    ]
+                })
             })
             .collect();
-        axial = axial.line(label.clone(), pts);
-        let worn = (0..c.cycle.station_count())
-            .max_by(|&a, &b| {
-                c.cycle
-                    .station(a)
-                    .max_depth()
-                    .total_cmp(&c.cycle.station(b).max_depth())
-            })
-            .unwrap_or(0);
+        common::write_table_csv(
+            &dir.join(format!("map_{}deg.csv", c.misalignment_deg)),
+            &["phi_deg", "z_mm", "depth_per_cycle_m"],
+            &rows,
+        )?;
+    }
+    Ok(())
+}
+
+/// `axial_profile`: the depth along the bore at the angle of the deepest point after
+/// [`WEAR_CYCLES`]; `rim_profile`: the depth around the bore at the most worn station.
+fn figures(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
+    use clr_plot::Figure;
+    let um = WEAR_CYCLES * 1e6;
+    let mut axial = Figure::new(format!(
+        "Spatial Wan slider-crank, joint B: wear depth along the bore after {WEAR_CYCLES:.0e} \
+         cycles (no feedback)"
+    ))
+    .x_label("z along the bore (mm)")
+    .y_label("wear depth at the angle of the deepest point (µm)");
+    let mut rim = Figure::new(format!(
+        "Wear depth around the bore at the most worn station after {WEAR_CYCLES:.0e} cycles"
+    ))
+    .x_label("angle φ (deg, slider frame)")
+    .y_label("wear depth (µm)");
+    for c in cases {
+        let (phi, worn) = deepest(&c.cycle);
+        let label = format!(
+            "misalignment {}° (φ = {:.0}°)",
+            c.misalignment_deg,
+            phi.to_degrees()
+        );
+        let z_mm = |m: usize| c.cycle.station_z(m) * 1e3;
+        let pts = (0..WEAR_STATIONS)
+            .map(|m| (z_mm(m), um * c.cycle.station(m).depth_at(phi)))
+            .collect();
+        axial = axial.line(label, pts);
         let s = c.cycle.station(worn);
         let n = s.len();
         let pts = (0..=n)
-            .map(|k| {
-                (
-                    360.0 * k as f64 / n as f64,
-                    WEAR_CYCLES * s.depths()[k % n] * 1e6,
-                )
-            })
+            .map(|k| (360.0 * k as f64 / n as f64, um * s.depths()[k % n]))
             .collect();
         rim = rim.line(
             format!(
-                "{label}, station z = {:.1} mm",
-                c.cycle.station_z(worn) * 1e3
+                "misalignment {}°, z = {:.1} mm",
+                c.misalignment_deg,
+                z_mm(worn)
             ),
             pts,
         );
     }
-    for (f, name) in [(axial, "axial_profile"), (rim, "rim_profile")] {
-        f.save(dir.join(name)).map_err(|e| e.to_string())?;
-    }
-    Ok(())
+    common::save_figure(axial, dir, "axial_profile")?;
+    common::save_figure(rim, dir, "rim_profile")
 }
