@@ -520,7 +520,7 @@ fn write_maps(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
 }
 
 /// `axial_profile`: the depth along the bore at the angle of the deepest point after
-/// [`WEAR_CYCLES`]; `rim_profile`: the depth around the bore at the most worn station.
+/// [`WEAR_CYCLES`] (and, misaligned, the largest depth over φ per station: the other rim); `rim_profile`: the depth around the bore at the most worn station.
 fn figures(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
     use clr_plot::Figure;
     let um = WEAR_CYCLES * 1e6;
@@ -547,6 +547,17 @@ fn figures(dir: &Path, cases: &[JournalWearCase]) -> Result<(), String> {
             .map(|m| (z_mm(m), um * c.cycle.station(m).depth_at(phi)))
             .collect();
         axial = axial.line(label, pts);
+        if c.misalignment_deg > 0.0 {
+            // the other rim wears at another angle: the largest depth over φ shows both
+            let pts = (0..WEAR_STATIONS)
+                .map(|m| (z_mm(m), um * c.cycle.station(m).max_depth()))
+                .collect();
+            axial = axial.series(
+                format!("misalignment {}°, largest over φ", c.misalignment_deg),
+                pts,
+                clr_plot::Style::Points,
+            );
+        }
         let s = c.cycle.station(worn);
         let n = s.len();
         let pts = (0..=n)

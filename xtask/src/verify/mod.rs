@@ -26,6 +26,7 @@ mod spatial_ref;
 mod spatial_shapes;
 mod spatial_slider_crank;
 mod wear;
+pub mod wear_spatial;
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -155,6 +156,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "wear",
         run: wear::cases,
+    },
+    Group {
+        name: "wear.spatial",
+        run: wear_spatial::cases,
     },
 ];
 
