@@ -15,28 +15,19 @@
 //!   and per-node slips, each on its own integrator's steps.
 
 use clr_contact::body::{BodyState, Vector2};
-use clr_contact::journal::{JournalClearance, JournalFriction, JournalLaws, GROUPS};
-use clr_contact::journal_wear::{BearingWearMap, JournalWear};
 use clr_contact::revolute::RevoluteClearance;
-use clr_contact::wear::{ArchardWear, BearingProfile, LineContact};
-use clr_contact::{DampingFactor, ElasticLaw, Material, NormalLaw};
+use clr_contact::wear::BearingProfile;
 use clr_models::journal_wear;
 use clr_models::lubrication_wear::{self, WEAR_ANGLES};
 use clr_models::slider_crank::SliderCrankParams;
-use nalgebra::Vector3;
 
 use super::Filter;
 use crate::report::Case;
 
 #[path = "../../../crates/clr-contact/tests/support/journal_setup.rs"]
 mod journal_setup;
-use journal_setup::{state, tilted, v3, C, L, RB, RJ};
-
-const K: f64 = 1e-5;
-const H: f64 = 2e9;
-const OMEGA: f64 = 100.0;
-const DT: f64 = 1e-3;
-const NO_IMPACT: [f64; GROUPS] = [0.0; GROUPS];
+#[path = "../../../crates/clr-contact/tests/support/journal_wear_forms.rs"]
+mod journal_wear_forms;
 
 const SRC_ARCHARD: &str = "Archard, J. Appl. Phys. 24 (1953) 981: V = K ∫ p |v_t| dz dt / H";
 
@@ -57,75 +48,21 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
     out
 }
 
-fn e_star() -> f64 {
-    Material::steel().composite_modulus(&Material::steel())
-}
-
-fn laws(law: ElasticLaw) -> Result<JournalLaws, String> {
-    let n = NormalLaw::new(law, DampingFactor::None, 1.0).map_err(|e| e.to_string())?;
-    JournalLaws::new(n, n, JournalFriction::None).map_err(|e| e.to_string())
-}
-
-fn hertz() -> Result<ElasticLaw, String> {
-    ElasticLaw::hertz_internal_cylinder(&Material::steel(), RB, &Material::steel(), RJ)
-        .map_err(|e| e.to_string())
-}
-
-fn wear() -> Result<JournalWear, String> {
-    JournalWear::new(K, H, e_star()).map_err(|e| e.to_string())
-}
-
 /// A case id's failure as a failed case.
 fn failed(id: &str, what: &str, unit: &str, why: String) -> Case {
     Case::new(id, what, unit, SRC_ARCHARD).failed(f64::NAN, why)
 }
 
-/// The aligned journal pressed 2 µm along +x, spinning: uniform line load F_N/L along the
-/// bore, slip ω R_j. Every station must carry the planar Archard profile of F_N over
-/// ds = ω R_j dt, and the volume is K F_N ω R_j dt / H.
+/// The aligned journal pressed 2 µm along +x, spinning (journal_wear_forms::aligned_uniform):
+/// uniform line load F_N/L along the bore, slip ω R_j. Every station must carry the planar
+/// Archard profile of F_N over ds = ω R_j dt, and the volume is K F_N ω R_j dt / H.
 fn aligned_cases() -> Vec<Case> {
     let (id_p, id_v) = (
         "wear.spatial.aligned.profile",
         "wear.spatial.aligned.volume",
     );
-    let run = || -> Result<(f64, f64, f64), String> {
-        let joint = JournalClearance::cylindrical(RB, L, RJ, L).map_err(|e| e.to_string())?;
-        let laws = laws(hertz()?)?;
-        let st = state(
-            v3(C + 2e-6, 0.0, 0.0),
-            Vector3::z(),
-            Vector3::zeros(),
-            v3(0.0, 0.0, OMEGA),
-        );
-        let mut map = BearingWearMap::zero(360, 12, RB, L).map_err(|e| e.to_string())?;
-        let v = wear()?
-            .accumulate(&mut map, &joint, &laws, &st, &Vector3::x(), &NO_IMPACT, DT)
-            .map_err(|e| e.to_string())?;
-        let f = joint
-            .geometry(&st)
-            .map_err(|e| e.to_string())?
-            .forces(&laws, &NO_IMPACT);
-        let f_n = f.groups[0].normal_force + f.groups[1].normal_force;
-        let line = LineContact::new(RB, RJ, L, e_star()).map_err(|e| e.to_string())?;
-        let planar = ArchardWear::new(K, H, line).map_err(|e| e.to_string())?;
-        let mut profile = BearingProfile::zero(360).map_err(|e| e.to_string())?;
-        planar
-            .accumulate(&mut profile, 0.0, f_n, OMEGA * RJ * DT)
-            .map_err(|e| e.to_string())?;
-        let worst = map
-            .stations()
-            .iter()
-            .flat_map(|s| s.depths().iter().zip(profile.depths()))
-            .map(|(h, hp)| (h - hp).abs())
-            .fold(0.0, f64::max);
-        Ok((
-            worst / profile.max_depth(),
-            v,
-            K * f_n * OMEGA * RJ * DT / H,
-        ))
-    };
-    match run() {
-        Ok((worst, v, archard)) => vec![
+    match journal_wear_forms::aligned_uniform() {
+        Ok(r) => vec![
             Case::new(
                 id_p,
                 "aligned journal, uniform load: largest difference of any station's depth from \
@@ -135,7 +72,7 @@ fn aligned_cases() -> Vec<Case> {
                  planar bearing (clr_contact::wear, Archard + Hertz width); tolerance 1e-12 \
                  (the Gauss shares tile the bore to rounding)",
             )
-            .absolute(worst, 0.0, 1e-12),
+            .absolute(r.worst_station_error(), 0.0, 1e-12),
             Case::new(
                 id_v,
                 "aligned journal, uniform load: worn volume",
@@ -143,7 +80,7 @@ fn aligned_cases() -> Vec<Case> {
                 "Archard's global law V = K F_N ω R_j dt / H; tolerance 1e-12 relative \
                  (the spreading over φ and z conserves the volume)",
             )
-            .relative(v, archard, 1e-12),
+            .relative(r.volume, r.archard, 1e-12),
         ],
         Err(e) => vec![
             failed(id_p, "aligned profile", "-", e.clone()),
@@ -152,58 +89,13 @@ fn aligned_cases() -> Vec<Case> {
     }
 }
 
-/// Both rims wetted on opposite sides (a crossed journal), Hertz line load, spin and axial
-/// sliding: the worn volume against an independent composite Simpson integral (4000 intervals
-/// per wetted region) of K p |v_t| dt / H over the joint's public sections.
+/// Both rims wetted on opposite sides, Hertz, spin and axial sliding
+/// (journal_wear_forms::global_law): the worn volume against an independent composite Simpson
+/// integral of K p |v_t| dt / H over the joint's public sections.
 fn global_law_case() -> Case {
     let id = "wear.spatial.global_law";
-    let run = || -> Result<(f64, f64), String> {
-        let joint = JournalClearance::cylindrical(RB, L, RJ, L).map_err(|e| e.to_string())?;
-        let law = hertz()?;
-        let laws = laws(law)?;
-        let uj = tilted(2.0 * (C + 3e-6) / L, 0.3);
-        let (vj, wj) = (v3(0.0, 0.0, 0.02), uj * OMEGA + v3(0.0, 0.0, 5.0));
-        let st = state(Vector3::zeros(), uj, vj, wj);
-        let geo = joint.geometry(&st).map_err(|e| e.to_string())?;
-        let mut map = BearingWearMap::zero(360, 15, RB, L).map_err(|e| e.to_string())?;
-        let v = wear()?
-            .accumulate(
-                &mut map,
-                &joint,
-                &laws,
-                &st,
-                &v3(1.0, 1.0, 0.3),
-                &NO_IMPACT,
-                DT,
-            )
-            .map_err(|e| e.to_string())?;
-        let normal = NormalLaw::new(law, DampingFactor::None, 1.0).map_err(|e| e.to_string())?;
-        let mut integral = 0.0;
-        for k in 0..2 {
-            let (lo, hi) = geo.wetted(k).ok_or("a rim region is dry")?;
-            let n = 4000;
-            let h = (hi - lo) / n as f64;
-            for i in 0..=n {
-                let s = geo.section(lo + i as f64 * h);
-                if s.penetration <= 0.0 {
-                    continue;
-                }
-                let (xj, nn) = (s.journal_point.value(), s.normal.value());
-                let vel = vj + wj.cross(&(xj - st.journal_centre.value()));
-                let slip = (vel - nn * vel.dot(&nn)).norm();
-                let w = match i {
-                    0 => 1.0,
-                    _ if i == n => 1.0,
-                    _ if i % 2 == 1 => 4.0,
-                    _ => 2.0,
-                };
-                integral += w * h / 3.0 * normal.force(s.penetration, vel.dot(&nn), 0.0) / L * slip;
-            }
-        }
-        Ok((v, K * integral * DT / H))
-    };
-    match run() {
-        Ok((v, archard)) => Case::new(
+    match journal_wear_forms::global_law() {
+        Ok(r) => Case::new(
             id,
             "crossed journal (both rims, opposite sides), Hertz, spin + axial sliding: worn \
              volume against Simpson's rule of K ∫ p |v_t| dz dt / H on the sections",
@@ -212,50 +104,21 @@ fn global_law_case() -> Case {
              tolerance 1e-6 (Simpson's own error on the (z − z₀)^{3/2} root ~1e-7, the order-10 \
              Gauss rule < 1e-8: docs/contact.md)",
         )
-        .relative(v, archard, 1e-6),
+        .relative(r.volume, r.simpson, 1e-6),
         Err(e) => failed(id, "global law", "m^3", e),
     }
 }
 
-/// The journal tilted by γ and offset so that it touches towards the rim z = +L/2 only: with
-/// the linear law F = kδ the line load is the wedge p(z) = k tan γ (z − z₀)/L and the slip
-/// ω R_j, so station m's worn area is K ω R_j dt ∫_cell p dz / (H Δz) in closed form.
+/// The journal tilted onto one rim, linear law F = kδ (journal_wear_forms::rim_wedge): the
+/// line load is the wedge p(z) = k tan γ (z − z₀)/L and the slip ω R_j, so station m's worn
+/// area is K ω R_j dt ∫_cell p dz / (H Δz) in closed form.
 fn rim_wedge_cases() -> Vec<Case> {
     let (id_v, id_s) = (
         "wear.spatial.rim_wedge.volume",
         "wear.spatial.rim_wedge.stations",
     );
-    let run = || -> Result<(f64, f64, f64), String> {
-        let joint = JournalClearance::cylindrical(RB, L, RJ, 1.2 * L)
-            .and_then(|j| j.with_quadrature_order(32))
-            .map_err(|e| e.to_string())?;
-        let k = 2e8;
-        let laws = laws(ElasticLaw::linear(k).map_err(|e| e.to_string())?)?;
-        let (z0, d_max) = (0.1 * L, 5e-6);
-        let tan_g = d_max / (0.5 * L - z0);
-        let g = tan_g.atan();
-        let e0 = RB - RJ / g.cos() - z0 * tan_g;
-        let uj = tilted(g, 0.0);
-        let st = state(v3(e0, 0.0, 0.0), uj, Vector3::zeros(), uj * OMEGA);
-        let stations = 10;
-        let mut map = BearingWearMap::zero(720, stations, RB, L).map_err(|e| e.to_string())?;
-        let v = wear()?
-            .accumulate(&mut map, &joint, &laws, &st, &Vector3::x(), &NO_IMPACT, DT)
-            .map_err(|e| e.to_string())?;
-        let c = K * OMEGA * RJ * DT / H * k * tan_g / L;
-        let prim = |z: f64| c * (z.max(z0) - z0).powi(2) / 2.0;
-        let dz = map.station_step();
-        let rim = (prim(0.5 * L) - prim(0.5 * L - dz)) / dz;
-        let worst = (0..stations)
-            .map(|m| {
-                let (a, b) = (-0.5 * L + m as f64 * dz, -0.5 * L + (m + 1) as f64 * dz);
-                (map.worn_area(m) - (prim(b) - prim(a)) / dz).abs() / rim
-            })
-            .fold(0.0, f64::max);
-        Ok((v, prim(0.5 * L), worst))
-    };
-    match run() {
-        Ok((v, total, worst)) => vec![
+    match journal_wear_forms::rim_wedge() {
+        Ok(r) => vec![
             Case::new(
                 id_v,
                 "journal tilted onto one rim, linear law: worn volume of the wedge",
@@ -263,7 +126,7 @@ fn rim_wedge_cases() -> Vec<Case> {
                 "closed form K ω R_j dt k tan γ (L/2 − z₀)²/(2 L H); tolerance 1e-9 (Gauss is \
                  exact for the linear load after the u² substitution; z₀ solved to 1e-11 L)",
             )
-            .relative(v, total, 1e-9),
+            .relative(r.volume, r.total, 1e-9),
             Case::new(
                 id_s,
                 "journal tilted onto one rim: largest error of a station's worn area (10 \
@@ -273,7 +136,7 @@ fn rim_wedge_cases() -> Vec<Case> {
                  a cell boundary misplaces up to p′w²/8 of its load, w the share's length, at \
                  Gauss order 32)",
             )
-            .at_most(worst, 3e-3),
+            .at_most(r.worst_station_error(), 3e-3),
         ],
         Err(e) => vec![
             failed(id_v, "rim wedge volume", "m^3", e.clone()),
