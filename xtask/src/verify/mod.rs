@@ -3,6 +3,10 @@
 pub mod beam;
 pub mod contact;
 mod contact_geometry;
+/// The journal-in-bearing configurations shared with the clr-contact tests (spatial_journal,
+/// wear_spatial), loaded once.
+#[path = "../../../crates/clr-contact/tests/support/journal_setup.rs"]
+mod journal_setup;
 pub mod lubrication;
 mod lubrication_mbd;
 mod lubrication_spatial;

@@ -24,8 +24,8 @@ use clr_models::slider_crank::SliderCrankParams;
 use super::Filter;
 use crate::report::Case;
 
-#[path = "../../../crates/clr-contact/tests/support/journal_setup.rs"]
-mod journal_setup;
+// journal_wear_forms reads the bearing of `super::journal_setup`
+use super::journal_setup;
 #[path = "../../../crates/clr-contact/tests/support/journal_wear_forms.rs"]
 mod journal_wear_forms;
 
