@@ -77,11 +77,16 @@ pub unsafe extern "C" fn clr_bearing_wear_map_new(
     out: *mut *mut ClrBearingWearMap,
 ) -> ClrStatus {
     new_handle(out, || {
+        let knots = angles.checked_mul(stations).ok_or_else(|| {
+            CapiError::Model(format!(
+                "{angles} angles × {stations} stations overflow: use at most a few thousand each"
+            ))
+        })?;
         let map = BearingWearMap::zero(angles, stations, bearing_radius, bearing_length)?;
         if depths.is_null() {
             return Ok(ClrBearingWearMap(map));
         }
-        let h = std::slice::from_raw_parts(depths, angles * stations);
+        let h = std::slice::from_raw_parts(depths, knots);
         let at = |phi: f64, z: f64| {
             let m = ((z + 0.5 * bearing_length) / map.station_step()).floor() as usize;
             let k = (phi / std::f64::consts::TAU * angles as f64).round() as usize;
