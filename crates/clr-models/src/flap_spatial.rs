@@ -43,7 +43,7 @@ use clr_mbd::spatial::{
     ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, Space,
     SpatialBody, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint, VectorFrame,
 };
-use clr_mbd::TimeFn;
+use clr_mbd::{FrictionLawDesc, NormalLawDesc, TimeFn};
 
 use clr_mbd::Results;
 
@@ -427,22 +427,46 @@ fn journal_joint(
         p.poisson_ratio,
         p.restitution,
     );
+    let radii = [p.bearing_radius, p.bearing_radius - clearance];
+    revolute_journal(
+        name,
+        bearing,
+        journal,
+        radii,
+        p.axial_length,
+        normal,
+        p.friction.desc(),
+    )
+}
+
+/// A spatial revolute clearance joint of a planar model's pin joint: bore and journal radii
+/// `radii` = [R_b, R_j] (m), bore length `length` = L (m), the journal spanning its collars
+/// (L + [`AXIAL_CLEARANCE`]: the pin is longer than its bore, as in a clevis), thrust collars of
+/// the journal radius, the radial law `normal` also on the thrust faces, Gauss order by default.
+pub(crate) fn revolute_journal(
+    name: &str,
+    bearing: End,
+    journal: End,
+    radii: [f64; 2],
+    length: f64,
+    normal: NormalLawDesc,
+    friction: FrictionLawDesc,
+) -> JournalClearanceDesc {
     JournalClearanceDesc {
         name: name.into(),
         kind: ClearanceKind::Revolute,
         bearing,
         journal,
-        bearing_radius: p.bearing_radius,
-        bearing_length: p.axial_length,
-        journal_radius: p.bearing_radius - clearance,
-        // the pin spans its collars, which sit outside the bore with the end play
-        journal_length: p.axial_length + AXIAL_CLEARANCE,
+        bearing_radius: radii[0],
+        bearing_length: length,
+        journal_radius: radii[1],
+        journal_length: length + AXIAL_CLEARANCE,
         axial_clearance: Some(AXIAL_CLEARANCE),
         thrust_radius: None,
         quadrature_order: None,
         normal,
         thrust_normal: None,
-        friction: Some(p.friction.desc()),
+        friction: Some(friction),
     }
 }
 

@@ -30,8 +30,8 @@ use clr_contact::journal::{JournalClearance, JournalFriction, JournalLaws, GROUP
 use clr_contact::journal_wear::{BearingWearMap, JournalSample, JournalWear};
 use clr_contact::{ContactMemory, JournalState};
 use clr_mbd::spatial::{
-    ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, SpatialBody, SpatialDesc,
-    SpatialDriver, SpatialInfo, SpatialJoint,
+    DriverKind, End, JointKind, JournalClearanceDesc, SpatialBody, SpatialDesc, SpatialDriver,
+    SpatialInfo, SpatialJoint,
 };
 use clr_mbd::{Results, TimeFn};
 use nalgebra::{Quaternion, UnitQuaternion, Vector3};
@@ -49,8 +49,8 @@ pub const MISALIGNMENTS_DEG: [f64; 3] = [0.0, 0.1, 0.2];
 pub const WEAR_STATIONS: usize = 15;
 /// Cycles the one-cycle wear is extrapolated to (the planar study's end).
 pub const WEAR_CYCLES: f64 = WEAR_MAX_CYCLES;
-/// Axial end play of the spatial joint, m (as the spatial flap's).
-pub const AXIAL_CLEARANCE: f64 = 1e-4;
+/// Axial end play of the spatial joint, m (the spatial flap's).
+pub const AXIAL_CLEARANCE: f64 = crate::flap_spatial::AXIAL_CLEARANCE;
 /// Name of the clearance joint.
 pub const JOINT: &str = "B";
 
@@ -170,30 +170,26 @@ pub fn clearance_desc(p: &SliderCrankParams, misalignment: f64) -> JournalCleara
         p.restitution,
     );
     let (s, c) = misalignment.sin_cos();
-    JournalClearanceDesc {
-        name: JOINT.into(),
-        kind: ClearanceKind::Revolute,
-        bearing: End {
-            body: "slider".into(),
-            at: [0.0; 3],
-            axis: Some([s, 0.0, c]),
-        },
-        journal: End {
-            body: "rod".into(),
-            at: [p.rod_length / 2.0, 0.0, 0.0],
-            axis: Some([0.0, 0.0, 1.0]),
-        },
-        bearing_radius: p.bearing_radius,
-        bearing_length: p.axial_length,
-        journal_radius: p.journal_radius,
-        journal_length: p.axial_length + AXIAL_CLEARANCE,
-        axial_clearance: Some(AXIAL_CLEARANCE),
-        thrust_radius: None,
-        quadrature_order: None,
+    let bearing = End {
+        body: "slider".into(),
+        at: [0.0; 3],
+        axis: Some([s, 0.0, c]),
+    };
+    let journal = End {
+        body: "rod".into(),
+        at: [p.rod_length / 2.0, 0.0, 0.0],
+        axis: Some([0.0, 0.0, 1.0]),
+    };
+    let radii = [p.bearing_radius, p.journal_radius];
+    crate::flap_spatial::revolute_journal(
+        JOINT,
+        bearing,
+        journal,
+        radii,
+        p.axial_length,
         normal,
-        thrust_normal: None,
-        friction: Some(p.friction.desc()),
-    }
+        p.friction.desc(),
+    )
 }
 
 /// The joint's geometry and radial law as the spatial engine compiles them from
