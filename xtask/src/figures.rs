@@ -25,12 +25,16 @@ const MAKERS: &[(&str, Maker)] = &[
         crate::verify::models_dual_guide::figures,
     ),
     ("lubrication", crate::verify::lubrication::figures),
+    ("wear.spatial", crate::verify::wear_spatial::figures),
 ];
 
-pub fn run(_args: &[String]) -> ExitCode {
+/// `cargo xtask figures [NAME...]`: every maker, or those whose name starts with one of the
+/// given names (`cargo xtask figures wear.spatial`).
+pub fn run(args: &[String]) -> ExitCode {
     let dir = crate::workspace_root().join("docs").join("figures");
     let mut ok = true;
-    for (name, make) in MAKERS {
+    let wanted = |name: &str| args.is_empty() || args.iter().any(|a| name.starts_with(a.as_str()));
+    for (name, make) in MAKERS.iter().filter(|(n, _)| wanted(n)) {
         match make(&dir) {
             Ok(()) => println!("figure {name}: written"),
             Err(e) => {

@@ -4,7 +4,7 @@
 //!   exit non-zero when a case fails;
 //! - `cargo xtask bench [GROUP]`: side-by-side benchmarks against peer solvers, written to
 //!   `target/bench/`;
-//! - `cargo xtask figures`: regenerate the figures under `docs/figures/`;
+//! - `cargo xtask figures [NAME...]`: regenerate the figures under `docs/figures/`;
 //! - `cargo xtask fuzz [--cases N] [--seed S] [--threads T]`: fuzz the model-file path and the C
 //!   ABI, write `target/fuzz/report.md` and reproducers in `target/fuzz/findings/`;
 //! - `cargo xtask octave`: build the MATLAB/Octave MEX gateway `matlab/clr_mex.c` with Octave
@@ -66,10 +66,10 @@ pub fn command_without_arguments(
     }
 }
 
-const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures | fuzz [OPTIONS] | octave | report-check>
+const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures [NAME...] | fuzz [OPTIONS] | octave | report-check>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
   bench    benchmarks against peers (groups: ode, mbd, beam, shapes); writes target/bench/<group>.json
-  figures  regenerate docs/figures/
+  figures  regenerate docs/figures/ (all, or the makers whose name starts with NAME)
   fuzz     fuzz the model files and the C ABI (--cases N, --seed S, --threads T; --help for all);
            writes target/fuzz/report.md and target/fuzz/findings/
   octave   build matlab/clr_mex.c with Octave's mkoctfile (apt-get install if missing), run

@@ -68,6 +68,12 @@ typedef struct ClrArchardWear ClrArchardWear;
 // shape-preserving C¹ cubic (docs/wear.md).
 typedef struct ClrBearingProfile ClrBearingProfile;
 
+// Opaque handle of a worn bore h_w(φ, z) (m): N angles φ_k = 2πk/N about the bore axis from the
+// bearing frame's reference direction, M stations at the cell centres
+// z_m = −L_b/2 + (m + ½) L_b/M; periodic monotone cubic in φ, linear in z between station
+// centres, constant in the rim half cells (docs/wear.md).
+typedef struct ClrBearingWearMap ClrBearingWearMap;
+
 // Opaque handle of a stateless friction law F_T = μ(v_T) F_N.
 typedef struct ClrFrictionLaw ClrFrictionLaw;
 
@@ -76,6 +82,10 @@ typedef struct ClrHydrodynamicBearing ClrHydrodynamicBearing;
 
 // Opaque handle of a journal-in-bearing joint (immutable: may be shared between threads).
 typedef struct ClrJournalJoint ClrJournalJoint;
+
+// Opaque handle of Archard's law for a journal joint's bore (K, H, E*, pressure distribution).
+// Immutable: may be shared between threads.
+typedef struct ClrJournalWear ClrJournalWear;
 
 // Opaque handle of a LuGre friction model (Canudas de Wit et al. 1995), whose bristle deflection
 // z (m) is a state the caller integrates.
@@ -267,6 +277,23 @@ typedef struct ClrJournalForces {
   double elastic_energy;
 } ClrJournalForces;
 
+// The readings of a wear map.
+typedef struct ClrWearMapSummary {
+  // Largest knot depth, m.
+  double max_depth;
+  // Mean depth over the bore surface (1/(NM)) Σ h_km, m.
+  double mean_depth;
+  // Worn volume R_b (2π/N) (L_b/M) Σ h_km, m³.
+  double worn_volume;
+  // The larger rim station's largest depth over the mean of all stations' largest depths, –
+  // (1: uniform along the axis; NaN for an unworn map).
+  double edge_concentration;
+} ClrWearMapSummary;
+
+// Code of the contact-pressure distribution of `clr_archard_wear_new` (one of the
+// `CLR_PRESSURE_*` constants).
+typedef uint32_t ClrPressureKind;
+
 // The film force on the journal in the frame of the line of centres, N.
 typedef struct ClrFilmForce {
   // Radial component along **n** = **e**/|**e**| (negative: pushes the journal back toward
@@ -349,10 +376,6 @@ typedef struct ClrMultipointContact {
   // Friction force F_T on the slider along t at this point, N.
   double tangential_force;
 } ClrMultipointContact;
-
-// Code of the contact-pressure distribution of `clr_archard_wear_new` (one of the
-// `CLR_PRESSURE_*` constants).
-typedef uint32_t ClrPressureKind;
 
 // Hertz F = K δ^1.5 with a given K. Parameters: K (N/m^1.5).
 #define CLR_ELASTIC_HERTZ 0
@@ -795,6 +818,108 @@ enum ClrStatus clr_journal_joint_forces(const struct ClrJournalJoint *joint,
 // # Safety
 // `joint` is NULL or a handle from `clr_journal_joint_new_*` not freed yet.
 void clr_journal_joint_free(struct ClrJournalJoint *joint);
+
+// Create a wear map of a bore of radius R_b and length L_b (m) with `angles` = N ≥ 8 angles and
+// `stations` = M ≥ 1 axial stations, from `depths` (m, finite, ≥ 0; N·M values, station by
+// station from z = −L_b/2: h_km at index m·N + k), or the unworn map when `depths` is NULL. On
+// success `*out` receives a handle to free with `clr_bearing_wear_map_free`.
+//
+// # Errors
+// `CLR_STATUS_INVALID_PARAMETER` for N < 8, M = 0, a radius or length not positive and finite,
+// or a negative or non-finite depth; `CLR_STATUS_NULL_POINTER` for a NULL `out`.
+//
+// # Safety
+// `depths` is NULL or points to N·M readable doubles; `out` is NULL or writable.
+enum ClrStatus clr_bearing_wear_map_new(uintptr_t angles,
+                                        uintptr_t stations,
+                                        double bearing_radius,
+                                        double bearing_length,
+                                        const double *depths,
+                                        struct ClrBearingWearMap **out);
+
+// Wear depth h_w(φ, z) (m) at the bearing-frame angle φ (rad, periodic) and axial position z
+// (m from the bore centre along its axis; 0 outside |z| ≤ L_b/2). Allocates nothing.
+//
+// # Safety
+// `map` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_bearing_wear_map_depth_at(const struct ClrBearingWearMap *map,
+                                             double phi,
+                                             double z,
+                                             double *out);
+
+// The map's readings ([`ClrWearMapSummary`]). Allocates nothing.
+//
+// # Safety
+// `map` is NULL or a live handle; `out` is NULL or writable.
+enum ClrStatus clr_bearing_wear_map_summary(const struct ClrBearingWearMap *map,
+                                            struct ClrWearMapSummary *out);
+
+// Copy the N·M knot depths h_km (m; index m·N + k, station m from z = −L_b/2, angle
+// φ_k = 2πk/N) into `buf` of room `capacity` doubles and write N·M to `*count`. When `capacity`
+// < N·M nothing is copied, `*count` receives N·M and the status is
+// `CLR_STATUS_BUFFER_TOO_SMALL`; `buf` may be NULL when `capacity` is 0. Allocates nothing.
+//
+// # Safety
+// `map` is NULL or a live handle; `buf` is NULL or points to `capacity` writable doubles;
+// `count` is NULL or writable.
+enum ClrStatus clr_bearing_wear_map_depths(const struct ClrBearingWearMap *map,
+                                           double *buf,
+                                           uintptr_t capacity,
+                                           uintptr_t *count);
+
+// Free a wear map. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `map` is NULL or a handle from `clr_bearing_wear_map_new` not freed yet.
+void clr_bearing_wear_map_free(struct ClrBearingWearMap *map);
+
+// Create Archard's law for a journal joint's bore from the wear coefficient K (–, in (0, 1]),
+// the hardness H of the bore (Pa, ≥ 1 MPa), the composite modulus E* = 1/(σ_b + σ_j) (Pa) and
+// the pressure distribution over the Hertz width (`CLR_PRESSURE_*`). On success `*out` receives
+// a handle to free with `clr_journal_wear_free`.
+//
+// # Safety
+// `out` is NULL or writable.
+enum ClrStatus clr_journal_wear_new(double wear_coefficient,
+                                    double hardness,
+                                    double composite_modulus,
+                                    ClrPressureKind pressure_kind,
+                                    struct ClrJournalWear **out);
+
+// Accumulate the wear of one state of `joint` over the sliding interval `dt` (s, ≥ 0) into
+// `map` and write the worn volume K Σ_k w_k p_k |v_t,k| dt / H (m³) to `*worn_volume`: the line
+// loads of the radial law `radial` (and `thrust`, NULL: the radial law, which only decides the
+// thrust faces' contact and wears nothing) at the force evaluation's Gauss nodes, the impact
+// velocities of the four groups (m/s, as for `clr_journal_joint_forces`), and `reference`
+// (3 doubles, world) the direction of the bearing frame's φ = 0. The map must be made for the
+// joint's bore (R_b, L_b). The map is unchanged on any error.
+//
+// # Errors
+// `CLR_STATUS_INVALID_PARAMETER` for a map of another bore, a negative `dt`, a reference
+// parallel to the bore axis or a Hertz half-angle over π/2; `CLR_STATUS_NON_FINITE` for a
+// non-finite input; a model error for a state the joint refuses (tilt beyond 60°).
+//
+// # Safety
+// `wear`, `joint`, `radial` are NULL or live handles; `thrust` is NULL or a live handle; `map`
+// is NULL or a live handle not used by another thread during the call; `state` is NULL or points
+// to a `ClrJournalState`; `reference` is NULL or points to 3 doubles; `impact_velocities` is NULL
+// or points to 4 doubles; `worn_volume` is NULL or writable.
+enum ClrStatus clr_journal_wear_accumulate(const struct ClrJournalWear *wear,
+                                           struct ClrBearingWearMap *map,
+                                           const struct ClrJournalJoint *joint,
+                                           const struct ClrNormalLaw *radial,
+                                           const struct ClrNormalLaw *thrust,
+                                           const struct ClrJournalState *state,
+                                           const double *reference,
+                                           const double *impact_velocities,
+                                           double dt,
+                                           double *worn_volume);
+
+// Free a journal wear law. NULL is ignored. Freeing a handle twice is undefined behaviour.
+//
+// # Safety
+// `wear` is NULL or a handle from `clr_journal_wear_new` not freed yet.
+void clr_journal_wear_free(struct ClrJournalWear *wear);
 
 // Create a bearing from the bearing radius R and journal radius r (m, 0 < r < R), the axial
 // length L (m), the dynamic viscosity μ (Pa·s) and the model (`CLR_BEARING_SHORT` or

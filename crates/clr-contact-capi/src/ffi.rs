@@ -275,6 +275,33 @@ pub(crate) fn out_ptr<T>(name: &'static str, p: *mut T) -> Result<*mut T, CapiEr
     non_null(name, p).map(<*const T>::cast_mut)
 }
 
+/// A variable-length result into the caller's buffer `buf` of room `capacity` (checked non-NULL
+/// by the caller when `capacity` > 0): `*count` receives `needed`; when `capacity` < `needed`
+/// nothing is copied and the error is [`CapiError::BufferTooSmall`] naming `name`; otherwise
+/// `fill` writes the `needed` values from `buf` on.
+///
+/// # Safety
+/// `buf` points to `capacity` writable values; `count` is writable.
+pub(crate) unsafe fn fill_buffer<T>(
+    name: &'static str,
+    buf: *mut T,
+    capacity: usize,
+    count: *mut usize,
+    needed: usize,
+    fill: impl FnOnce(*mut T),
+) -> Result<(), CapiError> {
+    count.write(needed);
+    if needed > capacity {
+        return Err(CapiError::BufferTooSmall {
+            name,
+            needed,
+            capacity,
+        });
+    }
+    fill(buf);
+    Ok(())
+}
+
 /// The body of a C function with one output `out`: at the boundary ([`guard`]), `out` is checked
 /// for NULL first, then `f` computes the value, which is written to `*out` only on success.
 ///

@@ -27,7 +27,7 @@ pub const CLR_JOURNAL_THRUST_MINUS: u32 = 2;
 pub const CLR_JOURNAL_THRUST_PLUS: u32 = 3;
 
 /// Opaque handle of a journal-in-bearing joint (immutable: may be shared between threads).
-pub struct ClrJournalJoint(JournalClearance);
+pub struct ClrJournalJoint(pub(crate) JournalClearance);
 
 /// The pose and velocity of both bodies at the joint, world frame, SI units.
 #[repr(C)]
@@ -189,18 +189,7 @@ pub fn journal_forces(
     s: &ClrJournalState,
     impact_velocities: &[f64; GROUPS],
 ) -> Result<ClrJournalForces, CapiError> {
-    let v = |a: [f64; 3]| Vector3::from(a);
-    let state = JournalState::new(
-        v(s.bearing_centre),
-        v(s.bearing_axis),
-        v(s.bearing_velocity),
-        v(s.bearing_angular_velocity),
-        v(s.journal_centre),
-        v(s.journal_axis),
-        v(s.journal_velocity),
-        v(s.journal_angular_velocity),
-    );
-    let g = joint.geometry::<f64>(&state)?;
+    let g = joint.geometry::<f64>(&journal_state(s))?;
     let f = g.forces(laws, impact_velocities);
     let mut out = ClrJournalForces {
         force: f.force.value().into(),
@@ -218,6 +207,21 @@ pub fn journal_forces(
         out.point[k] = grp.point.into();
     }
     Ok(out)
+}
+
+/// The clr-contact state of a C state (shared with the journal wear).
+pub(crate) fn journal_state(s: &ClrJournalState) -> JournalState<f64> {
+    let v = |a: [f64; 3]| Vector3::from(a);
+    JournalState::new(
+        v(s.bearing_centre),
+        v(s.bearing_axis),
+        v(s.bearing_velocity),
+        v(s.bearing_angular_velocity),
+        v(s.journal_centre),
+        v(s.journal_axis),
+        v(s.journal_velocity),
+        v(s.journal_angular_velocity),
+    )
 }
 
 /// Free a journal joint. NULL is ignored. Freeing a handle twice is undefined behaviour.

@@ -1,6 +1,6 @@
 //! C ABI of `clr-contact`: normal-force laws, friction laws (stateless and LuGre), the planar
 //! revolute and translational clearance joints, the spatial journal-in-bearing joint
-//! ([`journal`]), the multipoint slider-in-guide contact
+//! ([`journal`]) and the wear of its bore along the axis ([`journal_wear`]), the multipoint slider-in-guide contact
 //! ([`multipoint`]), and whole models loaded from model-file text
 //! and run as `clr run` runs them ([`model`]), for user force subroutines of other codes (C, C++, Fortran through `bind(C)`, MATLAB
 //! `loadlibrary`, Python `ctypes`).
@@ -30,6 +30,7 @@
 pub mod error;
 pub mod ffi;
 pub mod journal;
+pub mod journal_wear;
 pub mod lubrication;
 pub mod model;
 pub mod multipoint;
@@ -44,6 +45,7 @@ mod multipoint_case;
 pub use error::{CapiError, ClrStatus};
 pub use ffi::*;
 pub use journal::*;
+pub use journal_wear::*;
 pub use lubrication::*;
 pub use model::*;
 pub use multipoint::*;

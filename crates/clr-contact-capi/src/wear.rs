@@ -17,8 +17,8 @@ use clr_contact::RevoluteClearance;
 
 use crate::error::{finite, guard, CapiError};
 use crate::ffi::{
-    body_state, borrow, borrow_mut, free_handle, new_handle, non_null, out_ptr, write_out,
-    ClrBodyState, ClrRevoluteJoint,
+    body_state, borrow, borrow_mut, fill_buffer, free_handle, new_handle, non_null, out_ptr,
+    write_out, ClrBodyState, ClrRevoluteJoint,
 };
 use crate::ClrStatus;
 
@@ -141,18 +141,9 @@ pub unsafe extern "C" fn clr_bearing_profile_depths(
             non_null("buf", buf)?;
         }
         let depths = p.0.depths();
-        let needed = depths.len();
-        if needed > capacity {
-            count.write(needed);
-            return Err(CapiError::BufferTooSmall {
-                name: "buf",
-                needed,
-                capacity,
-            });
-        }
-        std::ptr::copy_nonoverlapping(depths.as_ptr(), buf, needed);
-        count.write(needed);
-        Ok(())
+        fill_buffer("buf", buf, capacity, count, depths.len(), |b| {
+            std::ptr::copy_nonoverlapping(depths.as_ptr(), b, depths.len())
+        })
     })
 }
 
@@ -202,7 +193,9 @@ pub unsafe extern "C" fn clr_archard_wear_new(
     })
 }
 
-fn pressure_distribution(code: ClrPressureKind) -> Result<PressureDistribution, CapiError> {
+pub(crate) fn pressure_distribution(
+    code: ClrPressureKind,
+) -> Result<PressureDistribution, CapiError> {
     match code {
         CLR_PRESSURE_HERTZ => Ok(PressureDistribution::Hertz),
         CLR_PRESSURE_UNIFORM => Ok(PressureDistribution::Uniform),

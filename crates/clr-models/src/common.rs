@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use clr_contact::{DampingFactor, ElasticLaw, FrictionLaw, JournalBearing, Material, NormalLaw};
-use clr_mbd::desc::{MaterialDesc, OutputSettings, SolverMethod};
+use clr_mbd::desc::{MaterialDesc, OutputSettings, SolverMethod, SolverSettings};
 use clr_mbd::SolverKind;
 use clr_mbd::{
     FrictionLawDesc, MbdError, Model, ModelBuilder, ModelDesc, NormalLawDesc, Results, SimOptions,
@@ -188,6 +188,21 @@ pub fn preset_desc(
     length: f64,
     restitution: f64,
 ) -> NormalLawDesc {
+    NormalLawDesc {
+        // only the Liu-based presets take L (a file refuses it for the others)
+        length: clr_contact::normal::preset_uses_length(name).then_some(length),
+        ..journal_preset_desc(name, youngs_modulus, poisson_ratio, restitution)
+    }
+}
+
+/// [`preset_desc`] for a spatial journal clearance joint: no length, as the joint gives its
+/// line laws its own contact length min(L_b, L_j) (clr-mbd spatial compile).
+pub fn journal_preset_desc(
+    name: &str,
+    youngs_modulus: f64,
+    poisson_ratio: f64,
+    restitution: f64,
+) -> NormalLawDesc {
     let mat = MaterialDesc {
         youngs_modulus,
         poisson_ratio,
@@ -196,8 +211,7 @@ pub fn preset_desc(
         law: "preset".into(),
         preset: Some(name.into()),
         restitution,
-        // only the Liu-based presets take L (a file refuses it for the others)
-        length: clr_contact::normal::preset_uses_length(name).then_some(length),
+        length: None,
         bearing_material: Some(mat),
         journal_material: Some(mat),
         ..NormalLawDesc::default()
@@ -350,7 +364,22 @@ pub(crate) fn finish_desc(
 ) -> ModelDesc {
     let mut d = b.into_desc();
     d.model.name = Some(model.to_string());
-    let s = &mut d.solver;
+    builtin_run(&mut d.solver, &mut d.output, t_end, rtol, solver);
+    d
+}
+
+/// The default run of a built-in, planar ([`finish_desc`]) or spatial (the spatial flap and
+/// the spatial Wan slider–crank): `solver` at relative tolerance `rtol` and absolute tolerance
+/// rtol·10⁻³, no step bound, a budget of 10⁶ steps, no projection, located contact onsets;
+/// every accepted step recorded over [0, `t_end`] (s). The Baumgarte coefficients and the other
+/// knobs are left as they are.
+pub(crate) fn builtin_run(
+    s: &mut SolverSettings,
+    output: &mut OutputSettings,
+    t_end: f64,
+    rtol: f64,
+    solver: Solver,
+) {
     s.method = solver.into();
     s.rtol = rtol;
     s.atol = Some(rtol * 1e-3);
@@ -358,14 +387,13 @@ pub(crate) fn finish_desc(
     s.max_steps = 1_000_000;
     s.projection = None;
     s.contact_events = true;
-    d.output = OutputSettings {
+    *output = OutputSettings {
         t_start: 0.0,
         t_end: Some(t_end),
         intervals: 0,
         every_step: true,
         nodes: Default::default(),
     };
-    d
 }
 
 /// The run a built-in simulates: its description from `desc` (see [`finish_desc`]) with the

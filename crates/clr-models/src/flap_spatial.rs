@@ -39,12 +39,11 @@
 use std::f64::consts::FRAC_PI_2;
 use std::path::Path;
 
-use clr_mbd::desc::OutputSettings;
 use clr_mbd::spatial::{
     ClearanceKind, DriverKind, End, JointKind, JournalClearanceDesc, Orientation, Space,
     SpatialBody, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint, VectorFrame,
 };
-use clr_mbd::TimeFn;
+use clr_mbd::{FrictionLawDesc, NormalLawDesc, TimeFn};
 
 use clr_mbd::Results;
 
@@ -145,7 +144,7 @@ pub fn ideal_kinds(clearances: &[f64; 4]) -> IdealKinds {
 }
 
 /// A body in the plane z = 0: position (x, y), angle θ about z, mass, principal moments.
-fn planar_body(
+pub(crate) fn planar_body(
     name: &str,
     mass: f64,
     inertia: [f64; 3],
@@ -381,19 +380,7 @@ pub fn spatial_desc(
         clearances,
         ..SpatialDesc::default()
     };
-    let s = &mut d.solver;
-    s.method = p.solver.into();
-    s.rtol = p.rtol;
-    s.atol = Some(p.rtol * 1e-3);
-    s.max_steps = 1_000_000;
-    s.contact_events = true;
-    d.output = OutputSettings {
-        t_start: 0.0,
-        t_end: Some(p.duration),
-        intervals: 0,
-        every_step: true,
-        nodes: Default::default(),
-    };
+    common::builtin_run(&mut d.solver, &mut d.output, p.duration, p.rtol, p.solver);
     Ok(d)
 }
 
@@ -434,31 +421,52 @@ fn journal_joint(
     misalignment: Misalignment,
 ) -> JournalClearanceDesc {
     bearing.axis = Some(misalignment.bore_axis());
-    let mut normal = common::preset_desc(
+    let normal = common::journal_preset_desc(
         &p.normal_law,
         p.youngs_modulus,
         p.poisson_ratio,
-        p.axial_length,
         p.restitution,
     );
-    // the line laws' length is the joint's own contact length min(L_b, L_j) = L
-    normal.length = None;
+    let radii = [p.bearing_radius, p.bearing_radius - clearance];
+    revolute_journal(
+        name,
+        bearing,
+        journal,
+        radii,
+        p.axial_length,
+        normal,
+        p.friction.desc(),
+    )
+}
+
+/// A spatial revolute clearance joint of a planar model's pin joint: bore and journal radii
+/// `radii` = [R_b, R_j] (m), bore length `length` = L (m), the journal spanning its collars
+/// (L + [`AXIAL_CLEARANCE`]: the pin is longer than its bore, as in a clevis), thrust collars of
+/// the journal radius, the radial law `normal` also on the thrust faces, Gauss order by default.
+pub(crate) fn revolute_journal(
+    name: &str,
+    bearing: End,
+    journal: End,
+    radii: [f64; 2],
+    length: f64,
+    normal: NormalLawDesc,
+    friction: FrictionLawDesc,
+) -> JournalClearanceDesc {
     JournalClearanceDesc {
         name: name.into(),
         kind: ClearanceKind::Revolute,
         bearing,
         journal,
-        bearing_radius: p.bearing_radius,
-        bearing_length: p.axial_length,
-        journal_radius: p.bearing_radius - clearance,
-        // the pin spans its collars, which sit outside the bore with the end play
-        journal_length: p.axial_length + AXIAL_CLEARANCE,
+        bearing_radius: radii[0],
+        bearing_length: length,
+        journal_radius: radii[1],
+        journal_length: length + AXIAL_CLEARANCE,
         axial_clearance: Some(AXIAL_CLEARANCE),
         thrust_radius: None,
         quadrature_order: None,
         normal,
         thrust_normal: None,
-        friction: Some(p.friction.desc()),
+        friction: Some(friction),
     }
 }
 

@@ -24,6 +24,7 @@ pub mod flap_params;
 pub mod flap_spatial;
 pub mod guide;
 pub mod guide_map;
+pub mod journal_wear;
 pub mod lubrication_wear;
 pub mod lyapunov;
 pub mod manipulator;

@@ -3,6 +3,10 @@
 pub mod beam;
 pub mod contact;
 mod contact_geometry;
+/// The journal-in-bearing configurations shared with the clr-contact tests (spatial_journal,
+/// wear_spatial), loaded once.
+#[path = "../../../crates/clr-contact/tests/support/journal_setup.rs"]
+mod journal_setup;
 pub mod lubrication;
 mod lubrication_mbd;
 mod lubrication_spatial;
@@ -26,6 +30,7 @@ mod spatial_ref;
 mod spatial_shapes;
 mod spatial_slider_crank;
 mod wear;
+pub mod wear_spatial;
 
 use std::process::ExitCode;
 use std::time::Instant;
@@ -155,6 +160,10 @@ const GROUPS: &[Group] = &[
     Group {
         name: "wear",
         run: wear::cases,
+    },
+    Group {
+        name: "wear.spatial",
+        run: wear_spatial::cases,
     },
 ];
 

@@ -40,9 +40,7 @@ use nalgebra::Vector3;
 use super::Filter;
 use crate::report::Case;
 
-#[path = "../../../crates/clr-contact/tests/support/journal_setup.rs"]
-mod journal_setup;
-use journal_setup::{state, still, tilted, v3, C, L, RB, RJ};
+use super::journal_setup::{state, still, tilted, v3, C, L, RB, RJ};
 
 const PREFIX: &str = "contact.spatial.revolute";
 

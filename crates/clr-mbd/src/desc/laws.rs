@@ -309,7 +309,7 @@ impl NormalLawDesc {
     }
 
     /// Whether the law takes the axial `length` L (liu, johnson, pereira, presets with length).
-    pub(crate) fn takes_length(&self) -> bool {
+    pub fn takes_length(&self) -> bool {
         let norm = self.law.trim().to_ascii_lowercase().replace('_', "-");
         matches!(norm.as_str(), "liu" | "johnson" | "pereira")
             || (norm == "preset" && self.preset_uses_length())
