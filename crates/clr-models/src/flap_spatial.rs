@@ -459,6 +459,7 @@ fn journal_joint(
         normal,
         thrust_normal: None,
         friction: Some(p.friction.desc()),
+        lubrication: None,
     }
 }
 
