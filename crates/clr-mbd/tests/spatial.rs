@@ -8,6 +8,15 @@ fn desc(text: &str) -> SpatialDesc {
     SpatialDesc::from_toml_table(text.parse().unwrap()).unwrap()
 }
 
+/// Compile and run a model file's text.
+fn run(text: &str) -> Results {
+    let d = desc(text);
+    d.compile()
+        .unwrap()
+        .simulate(&d.sim_options().unwrap())
+        .unwrap()
+}
+
 fn col(r: &Results, name: &str) -> Vec<f64> {
     r.column(name).unwrap_or_else(|| panic!("no column {name}"))
 }
@@ -453,12 +462,7 @@ fn an_axial_clearance_in_millimetres_warns() {
     let pin = include_str!("../../../models/examples/spatial_revolute_clearance.toml")
         .replace("axial_clearance = 2e-4", "axial_clearance = 0.2");
     let pin = pin.replacen("t_end = ", "t_end = 0.002 # ", 1);
-    let d = desc(&pin);
-    let r = d
-        .compile()
-        .unwrap()
-        .simulate(&d.sim_options().unwrap())
-        .unwrap();
+    let r = run(&pin);
     assert!(
         r.warnings.iter().any(|w| w.field == "pin.axial_clearance"),
         "{:?}",
@@ -509,12 +513,7 @@ fn lubricated_journal_carries_its_weight_on_the_film_and_balances_energy() {
             "principal_inertia = [0.5, 0.5, 1.0]\nangular_velocity = [0.0, 0.0, 200.0]\nangular_velocity_frame = \"body\"",
         )
         .replace("intervals = 10", "intervals = 10\n[solver]\nrtol = 1e-9");
-    let d = desc(&text);
-    let r = d
-        .compile()
-        .unwrap()
-        .simulate(&d.sim_options().unwrap())
-        .unwrap();
+    let r = run(&text);
     let last = |c: &str| *col(&r, c).last().unwrap();
     let w = 2.0 * 9.81;
     let film = last("J.film_force");
