@@ -399,23 +399,6 @@ fn journal(friction: &str, slips: &[Option<Slip>]) -> Result<(f64, String), Stri
     ))
 }
 
-/// An oil film of the lubricated journal checks (model `short_bearing` or `long_bearing`).
-fn film_line(model: &str) -> String {
-    format!("lubrication = {{ model = \"{model}\", viscosity = 0.05, film_threshold = 1e-7 }}\n")
-}
-
-/// Tolerance of a case: the short-bearing film's ψ rule has a split angle that is a value and
-/// kinks in the tilted integrand, so central differences also differentiate its quadrature
-/// error (clr-mbd `jacobian::dual` test `journal_film_gradient_matches_central_differences`:
-/// 2e-3 on the film alone).
-fn tolerance(name: &str) -> f64 {
-    if name.ends_with("lubricated.short") {
-        2e-3
-    } else {
-        TOL
-    }
-}
-
 /// Regularized Coulomb friction of the contact checks.
 const COULOMB: &str = "friction = { law = \"coulomb\", mu = 0.1, v_reg = 1e-3 }\n";
 
@@ -423,7 +406,7 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
     type Check = Box<dyn Fn() -> Result<(f64, String), String>>;
     let plain =
         |f: fn() -> Result<f64, String>| -> Check { Box::new(move || Ok((f()?, String::new()))) };
-    let list: [(&str, &str, Check); 8] = [
+    let list: [(&str, &str, Check); 6] = [
         (
             "forces",
             "spring–damper, actuator, six-axis bushing, body-frame force, world torque, rotational \
@@ -469,16 +452,6 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
                 )
             }),
         ),
-        (
-            "revolute_clearance.lubricated.long",
-            "the tilted poses with a long-bearing oil film (μ 0.05 Pa·s) added, spinning at              30 rad/s and sliding at 0.05 m/s: Q_x, Q_v",
-            Box::new(|| journal(&film_line("long_bearing"), &[Some((30.0, 0.05, 0.002))])),
-        ),
-        (
-            "revolute_clearance.lubricated.short",
-            "the tilted poses with a short-bearing oil film (μ 0.05 Pa·s) added, spinning at              30 rad/s and sliding at 0.05 m/s: Q_x, Q_v",
-            Box::new(|| journal(&film_line("short_bearing"), &[Some((30.0, 0.05, 0.002))])),
-        ),
     ];
     let mut out = Vec::new();
     for (name, what, run) in list {
@@ -498,12 +471,12 @@ pub fn cases(filter: &Filter) -> Vec<Case> {
         out.push(match run() {
             Ok((v, extra)) => {
                 let sep = if extra.is_empty() { "" } else { "; " };
-                case.at_most(v, tolerance(name)).note(format!(
+                case.at_most(v, TOL).note(format!(
                     "{what}{sep}{extra}; {:.1} s",
                     start.elapsed().as_secs_f64()
                 ))
             }
-            Err(e) => case.failed(tolerance(name), e),
+            Err(e) => case.failed(TOL, e),
         });
     }
     out
