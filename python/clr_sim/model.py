@@ -1194,6 +1194,7 @@ class SpatialModel(Model):
         thrust_normal: Optional[Table] = None,
         quadrature_order: Optional[int] = None,
         friction: Optional[Table] = None,
+        lubrication: Optional[Table] = None,
     ) -> "Model":
         """Spatial revolute clearance joint (``[[clearance]] type = "revolute"``): a journal of
         radius ``journal_radius`` and length ``journal_length`` (m) about the axis of the anchor
@@ -1203,14 +1204,17 @@ class SpatialModel(Model):
         ``thrust_radius`` (m; default the journal radius). ``normal`` is the law of the whole
         contact length min(L_b, L_j) (laws that take a length get it), ``thrust_normal`` that of a
         thrust face (default ``normal``), ``friction`` a stateless law (LuGre refused);
-        ``quadrature_order`` of the line contact (default 10). docs/spatial.md."""
+        ``quadrature_order`` of the line contact (default 10); ``lubrication`` an oil film
+        (``{"model": "short_bearing"|"long_bearing", "viscosity", "film_threshold",
+        "dry_threshold"}``, no ``length``: the overlap of journal and bore; docs/lubrication.md
+        §13). docs/spatial.md."""
         return self._add(
             "clearance", "revolute", name, bearing=bearing, journal=journal,
             bearing_radius=bearing_radius, bearing_length=bearing_length,
             journal_radius=journal_radius, journal_length=journal_length,
             axial_clearance=axial_clearance, thrust_radius=thrust_radius,
             quadrature_order=quadrature_order, normal=normal, thrust_normal=thrust_normal,
-            friction=friction,
+            friction=friction, lubrication=lubrication,
         )
 
     def cylindrical_clearance(
@@ -1229,18 +1233,20 @@ class SpatialModel(Model):
         axial_clearance: Optional[float] = None,
         thrust_radius: Optional[float] = None,
         thrust_normal: Optional[Table] = None,
+        lubrication: Optional[Table] = None,
     ) -> "Model":
         """Spatial cylindrical clearance joint (``[[clearance]] type = "cylindrical"``): as
         :meth:`revolute_clearance` without thrust faces (the journal slides and turns freely
         along the bore); ``axial_clearance``, ``thrust_radius`` and ``thrust_normal`` are
-        refused (they are listed because the file's table accepts them for the revolute kind)."""
+        refused (they are listed because the file's table accepts them for the revolute kind);
+        ``lubrication`` as for :meth:`revolute_clearance`."""
         return self._add(
             "clearance", "cylindrical", name, bearing=bearing, journal=journal,
             bearing_radius=bearing_radius, bearing_length=bearing_length,
             journal_radius=journal_radius, journal_length=journal_length,
             axial_clearance=axial_clearance, thrust_radius=thrust_radius,
             quadrature_order=quadrature_order, normal=normal, thrust_normal=thrust_normal,
-            friction=friction,
+            friction=friction, lubrication=lubrication,
         )
 
 

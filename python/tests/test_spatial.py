@@ -382,3 +382,34 @@ def test_the_spatial_example_of_the_docs_runs():
     exec(compile(blocks[0], "docs/python.md", "exec"), scope)
     r = scope["r"]
     assert r.ok and len(r.time) > 1
+
+
+def lubricated_journal(film) -> clr_sim.Model:
+    """The journal of crates/clr-mbd/tests/spatial.rs (lubricated_journal_carries_its_weight_...):
+    a 2 kg pin spinning at 200 rad/s in a short-bearing film, 50 ms."""
+    m = clr_sim.Model("film", space="spatial", gravity=(0.0, -9.81, 0.0))
+    m.body("pin", mass=2.0, principal_inertia=(0.5, 0.5, 1.0), position=(0.0, 0.0, 0.0),
+           angular_velocity=(0.0, 0.0, 200.0), angular_velocity_frame="body")
+    m.cylindrical_clearance("J", bearing=spatial.at("ground", axis=(0.0, 0.0, 1.0)),
+                            journal=spatial.at("pin", axis=(0.0, 0.0, 1.0)),
+                            bearing_radius=0.010, bearing_length=0.02, journal_radius=0.0095,
+                            journal_length=0.02,
+                            normal=clr_sim.normal("linear", 0.5, stiffness=1e8,
+                                                  damping="hunt-crossley"),
+                            lubrication=film)
+    m.output(t_end=0.05, intervals=10)
+    return m
+
+
+def test_a_lubricated_journal_writes_its_film_columns():
+    # only the field and its columns here (the closed forms are checked in Rust): the film takes
+    # up the weight 19.62 N, so its force is positive and below 1.5 times the weight during the
+    # squeeze transient, the minimum film thickness within the clearance 0.5 mm; `length` is
+    # refused (the film length is the overlap of journal and bore)
+    film = {"model": "short_bearing", "viscosity": 0.05, "film_threshold": 1e-6}
+    r = clr_sim.simulate(lubricated_journal(film))
+    assert r.ok, r.error
+    assert 0.0 < r["J.film_force"][-1] < 1.5 * 2.0 * 9.81
+    assert 0.0 < r["J.film_thickness"][-1] <= 5e-4
+    with pytest.raises(clr_sim.FieldError, match="overlap"):
+        clr_sim.simulate(lubricated_journal(dict(film, length=0.02)))

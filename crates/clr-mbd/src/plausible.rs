@@ -490,7 +490,8 @@ fn contact_scale(c: &crate::clearance::Clearance) -> Scale {
     }
 }
 
-fn check_film(
+/// Warn on a viscosity outside real lubricants and an L/D outside the film form's range.
+pub(crate) fn check_film(
     name: &str,
     b: &clr_contact::lubrication::HydrodynamicBearing,
     out: &mut Vec<Warning>,

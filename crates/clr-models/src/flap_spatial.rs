@@ -467,6 +467,7 @@ pub(crate) fn revolute_journal(
         normal,
         thrust_normal: None,
         friction: Some(friction),
+        lubrication: None,
     }
 }
 

@@ -1100,6 +1100,7 @@ fn journal(cx: &Ctx, d: &JournalClearanceDesc, slot: usize) -> Result<Journal, M
         },
     )
     .map_err(|e| invalid(format!("{name}.friction"), e.to_string()))?;
+    let film = journal_film(d, &joint)?;
     Ok(Journal {
         name: name.clone(),
         i: a.k,
@@ -1113,8 +1114,37 @@ fn journal(cx: &Ctx, d: &JournalClearanceDesc, slot: usize) -> Result<Journal, M
         radial,
         thrust,
         friction,
+        film,
         memory: slot,
     })
+}
+
+/// The oil film of a lubricated journal joint, validated at `lubrication.<field>`.
+fn journal_film(
+    d: &JournalClearanceDesc,
+    joint: &clr_contact::JournalClearance,
+) -> Result<Option<clr_contact::journal_film::JournalFilm>, MbdError> {
+    use crate::element::revolute_clearance::LubricationModel;
+    use clr_contact::lubrication::{BearingModel, Transition};
+    let Some(l) = &d.lubrication else {
+        return Ok(None);
+    };
+    let path = format!("{}.lubrication", d.name);
+    if l.length.is_some() {
+        return Err(invalid(
+            format!("{path}.length"),
+            "the film length of a spatial journal is the overlap of journal and bore (from              bearing_length, journal_length and the pose): remove `length`",
+        ));
+    }
+    let model = match l.model {
+        LubricationModel::ShortBearing => BearingModel::ShortBearing,
+        LubricationModel::LongBearing => BearingModel::LongBearing,
+    };
+    let at = |e: clr_contact::ContactError| invalid(path.clone(), e.to_string());
+    let transition = Transition::new(l.film_threshold, l.dry_threshold).map_err(at)?;
+    clr_contact::journal_film::JournalFilm::new(joint, l.viscosity, model, transition)
+        .map(Some)
+        .map_err(at)
 }
 
 /// The validated geometry of a journal joint (errors name the field).

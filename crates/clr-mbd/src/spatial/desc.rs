@@ -416,6 +416,30 @@ pub struct JournalClearanceDesc {
     /// Gauss point and thrust point.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub friction: Option<FrictionLawDesc>,
+    /// An oil film in the joint (default none): clr-contact `JournalFilm`, docs/lubrication.md
+    /// §13; its length is the overlap of journal and bore.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lubrication: Option<JournalLubricationDesc>,
+}
+
+/// `lubrication = { model, viscosity, film_threshold, dry_threshold }` of a spatial journal
+/// joint: the planar joint's fields without `length` (the film length is the overlap of journal
+/// and bore, from the geometry; a `length` is refused with that reason).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JournalLubricationDesc {
+    /// `short_bearing` (Ocvirk) or `long_bearing` (Sommerfeld, half film).
+    pub model: crate::element::revolute_clearance::LubricationModel,
+    /// Dynamic viscosity μ of the lubricant, Pa·s.
+    pub viscosity: f64,
+    /// Film threshold h_t, m (> 0): the film force is frozen below this minimum film thickness.
+    pub film_threshold: f64,
+    /// Dry threshold h_d, m (0 ≤ h_d < h_t, default 0).
+    #[serde(default)]
+    pub dry_threshold: f64,
+    /// Refused when given (read only to say why): the film length comes from the geometry, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub length: Option<f64>,
 }
 
 /// One `[[clearance]]` of a spatial model: a ball in a socket, or a journal in a bearing.

@@ -475,12 +475,30 @@ impl Journal {
             return;
         };
         let f = geo.forces_with_memory(&self.laws, memory, self.memory);
-        let force = V3(f.force.0);
+        let (mut force, mut mj, mut mi) = (f.force, f.journal_moment, f.bearing_moment);
+        // the film's loads, generic in the same dual numbers (clr-contact journal_film)
+        // at an exactly centred and aligned journal |e| has no derivative (non-finite dual
+        // parts): Newton then goes without the film's block for that iteration
+        let film = self.film.as_ref().map(|film| film.loads(&state));
+        if let Some(Ok(l)) = film.filter(|l| l.as_ref().is_ok_and(finite_gradient)) {
+            force = force + l.force;
+            mj = mj + l.journal_moment;
+            mi = mi + l.bearing_moment;
+        }
+        let force = V3(force.0);
         out.force(&p, 1, oj, force);
-        out.torque(&p, 1, V3(f.journal_moment.0));
+        out.torque(&p, 1, V3(mj.0));
         out.force(&p, 0, ob, -force);
-        out.torque(&p, 0, V3(f.bearing_moment.0));
+        out.torque(&p, 0, V3(mi.0));
     }
+}
+
+/// Whether every derivative of the film's loads is finite.
+fn finite_gradient<const N: usize>(l: &clr_contact::journal_film::FilmLoads<D<N>>) -> bool {
+    [&l.force, &l.journal_moment, &l.bearing_moment]
+        .iter()
+        .flat_map(|v| v.0.iter())
+        .all(|d| d.v.is_finite() && d.g.iter().all(|x| x.is_finite()))
 }
 
 /// The x- and v-gradients of the constraint rows at one state (row-major m × nv each).

@@ -15,6 +15,7 @@
 use nalgebra::Vector3;
 
 use clr_contact::journal::{JournalForces, JournalGeometry, GROUPS};
+use clr_contact::journal_film::{FilmLoads, JournalFilm};
 use clr_contact::{ContactMemory, JournalClearance, JournalError, JournalLaws, JournalState};
 use clr_contact::{FrictionLaw, NormalLaw};
 
@@ -42,6 +43,9 @@ pub(crate) struct Journal {
     pub(crate) radial: NormalLaw,
     pub(crate) thrust: NormalLaw,
     pub(crate) friction: Option<FrictionLaw>,
+    /// The oil film of a lubricated joint (added unweighted to the dry contact, clr-contact
+    /// `journal_film` module docs).
+    pub(crate) film: Option<JournalFilm>,
     /// First of its [`GROUPS`] slots in the contact memory.
     pub(crate) memory: usize,
 }
@@ -69,6 +73,10 @@ pub struct JournalReport {
     pub dissipated: f64,
     /// Elastic energy, J.
     pub elastic_energy: f64,
+    /// Magnitude of the film force on the journal, N (0 without a film).
+    pub film_force: f64,
+    /// Minimum film thickness, m (0 without a film).
+    pub film_thickness: f64,
 }
 
 impl Default for JournalReport {
@@ -83,6 +91,8 @@ impl Default for JournalReport {
             axial_offset: 0.0,
             dissipated: 0.0,
             elastic_energy: 0.0,
+            film_force: 0.0,
+            film_thickness: 0.0,
         }
     }
 }
@@ -169,14 +179,36 @@ impl Journal {
             }
         };
         let f = geo.forces_with_memory(&self.laws, memory, self.memory);
-        let rep = self.report(&state, &geo, &f);
+        let mut rep = self.report(&state, &geo, &f);
+        let film = match self.film.as_ref().map(|film| film.loads(&state)) {
+            None => None,
+            Some(Ok(l)) => Some(l),
+            Some(Err(_)) => {
+                if let Some(q) = q {
+                    q.fill(f64::NAN);
+                }
+                return JournalReport::default();
+            }
+        };
+        if let Some(l) = &film {
+            rep.film_force = l.force.value().norm();
+            rep.film_thickness = l.min_film_thickness;
+            rep.dissipated += film_dissipated(&state, l);
+        }
         if let Some(q) = q {
             let (ob, oj) = (state.bearing_centre.value(), state.journal_centre.value());
-            let force = f.force.value();
+            let mut force = f.force.value();
+            let mut mj = f.journal_moment.value();
+            let mut mi = f.bearing_moment.value();
+            if let Some(l) = &film {
+                force += l.force.value();
+                mj += l.journal_moment.value();
+                mi += l.bearing_moment.value();
+            }
             add_force(q, kin, self.j, &oj, &force);
-            add_torque(q, kin, self.j, &f.journal_moment.value());
+            add_torque(q, kin, self.j, &mj);
             add_force(q, kin, self.i, &ob, &(-force));
-            add_torque(q, kin, self.i, &f.bearing_moment.value());
+            add_torque(q, kin, self.i, &mi);
         }
         rep
     }
@@ -206,6 +238,21 @@ impl Journal {
         }
         rep
     }
+}
+
+/// Power the film dissipates, W: minus the power of its loads on both bodies (force on the
+/// journal at O_j, its opposite on the bearing at O_b, the two moments), so that the energy
+/// balance closes.
+fn film_dissipated(state: &JournalState<f64>, l: &FilmLoads<f64>) -> f64 {
+    let force = l.force.value();
+    let power = force.dot(&(state.journal_velocity.value() - state.bearing_velocity.value()))
+        + l.journal_moment
+            .value()
+            .dot(&state.journal_angular_velocity.value())
+        + l.bearing_moment
+            .value()
+            .dot(&state.bearing_angular_velocity.value());
+    -power
 }
 
 /// A thrust face of the cylindrical kind has the gap −∞: the event and memory get a finite

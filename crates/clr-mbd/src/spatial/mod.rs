@@ -44,9 +44,10 @@ mod system;
 
 pub use compile::ShapeSurface;
 pub use desc::{
-    ClearanceKind, DriverKind, End, Geometry3, JointKind, JournalClearanceDesc, Orientation, Part3,
-    ShapeContactDesc3, Space, SpatialBody, SpatialClearance, SpatialDesc, SpatialDriver,
-    SpatialForce, SpatialInfo, SpatialJoint, SpatialShape, SphericalClearance, VectorFrame,
+    ClearanceKind, DriverKind, End, Geometry3, JointKind, JournalClearanceDesc,
+    JournalLubricationDesc, Orientation, Part3, ShapeContactDesc3, Space, SpatialBody,
+    SpatialClearance, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint,
+    SpatialShape, SphericalClearance, VectorFrame,
 };
 pub use journal::JournalReport;
 pub use model::SpatialModel;

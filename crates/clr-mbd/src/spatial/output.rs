@@ -13,7 +13,8 @@
 //! `J.G.penetration J.G.normal_force` (m, N), then `J.Fx J.Fy J.Fz J.Mx J.My J.Mz` (resultant
 //! contact force on the journal, N, and its moment about the journal centre, N·m, world),
 //! `J.tilt` (rad) and `J.axial_offset` (m, journal centre along the bore axis from the bore
-//! centre); per shape contact `C.penetration C.rate C.normal_force C.friction_force C.contact
+//! centre), then for a lubricated joint `J.film_force J.film_thickness` (magnitude of the film
+//! force on the journal, N, not in `J.Fx..`; minimum film thickness, m); per shape contact `C.penetration C.rate C.normal_force C.friction_force C.contact
 //! C.ex C.ey C.ez` (deepest tracked point's δ in m, −prediction when none is within it, and δ̇
 //! in m/s; normal and friction forces summed over the active points, N; the number of active
 //! points; the deepest point on shape A, world, m); `energy.kinetic energy.potential energy.elastic energy.total
@@ -63,6 +64,11 @@ impl SpatialModel {
             }
             for s in ["Fx", "Fy", "Fz", "Mx", "My", "Mz", "tilt", "axial_offset"] {
                 c.push(format!("{}.{s}", jn.name));
+            }
+            if jn.film.is_some() {
+                for s in ["film_force", "film_thickness"] {
+                    c.push(format!("{}.{s}", jn.name));
+                }
             }
         }
         for sc in &self.shape_contacts {
@@ -207,6 +213,9 @@ impl SpatialModel {
             }
             data.extend(r.force.iter().chain(r.moment.iter()));
             data.extend([r.tilt, r.axial_offset]);
+            if jn.film.is_some() {
+                data.extend([r.film_force, r.film_thickness]);
+            }
         }
         for r in &self.ws.shape_reports {
             data.extend([

@@ -224,6 +224,18 @@ impl SpatialModel {
             if s.thrust != s.radial {
                 out.extend(restitution(&format!("{name}.thrust_normal"), &s.thrust));
             }
+            if let Some(film) = &s.film {
+                // the planar checks on the aligned film: length min(L_b, L_j)
+                if let Ok(b) = clr_contact::lubrication::HydrodynamicBearing::new(
+                    s.joint.bearing_radius(),
+                    s.joint.journal_radius(),
+                    s.joint.contact_length(),
+                    film.viscosity(),
+                    film.model(),
+                ) {
+                    crate::plausible::check_film(name, &b, out);
+                }
+            }
         }
         for c in &self.shape_contacts {
             out.extend(friction(&c.name, c.friction.map_or(0.0, |f| f.mu_max())));
