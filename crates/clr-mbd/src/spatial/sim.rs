@@ -99,6 +99,11 @@ impl SpatialModel {
         }
     }
 
+    /// Whether a journal joint carries an oil film.
+    fn lubricated(&self) -> bool {
+        self.journals.iter().any(|j| j.film.is_some())
+    }
+
     /// Options a spatial run does not have yet: refused, or noted when the choice only
     /// changes the cost.
     fn option_notes(&self, opts: &SimOptions) -> Vec<String> {
@@ -121,6 +126,17 @@ impl SpatialModel {
             notes.push(
                 "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
                  \"finite_difference\"): the shape contacts have no analytic Jacobian blocks"
+                    .to_string(),
+            );
+        }
+        if opts.solver == crate::SolverKind::Ndf
+            && opts.jacobian == JacobianMode::Analytic
+            && self.lubricated()
+        {
+            notes.push(
+                "NDF differenced the whole right-hand side for its Newton matrix (jacobian = \
+                 \"finite_difference\"): the film blocks of lubricated journals do not yet match \
+                 central differences (docs/lubrication.md §13)"
                     .to_string(),
             );
         }
@@ -225,7 +241,8 @@ impl SpatialModel {
         self.events_on = opts.contact_events;
         self.ws.newton.on = opts.jacobian == JacobianMode::Analytic
             && self.n_bristle == 0
-            && self.shape_contacts.is_empty();
+            && self.shape_contacts.is_empty()
+            && !self.lubricated();
         let (nq, nv) = (self.n_q(), self.n_v());
         let mut solver = AnySolver::new(opts, |ode| {
             if opts.scale_velocity_error {
