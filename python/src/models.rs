@@ -453,6 +453,11 @@ fn names_an_undefined_item(root: toml::Table, message: &str) -> bool {
             (path.contains(".shapes[") && message.starts_with("no [[shape]] named"))
                 || (path.starts_with("output.nodes.")
                     && message.contains("is not a flexible body or beam"))
+                // a measure or metric naming a column of an item (joint, contact element,
+                // measure) not defined yet
+                || message.starts_with("the model writes no column")
+                || message.starts_with("the run writes no column")
+                || message.ends_with("the run writes no such column")
         }
         _ => false,
     }

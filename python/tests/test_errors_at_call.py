@@ -240,8 +240,8 @@ def _generic_model_files():
 
 
 _ITEMS = ("body", "point", "beam", "flexible_body", "joint", "driver", "force", "shape",
-          "clearance")
-_TAGGED = ("joint", "driver", "force", "clearance")
+          "clearance", "measure", "metric")
+_TAGGED = ("joint", "driver", "force", "clearance", "measure")
 
 
 @pytest.mark.parametrize("path", _generic_model_files(), ids=lambda p: p.name)
@@ -266,7 +266,7 @@ def test_every_model_file_rebuilt_call_by_call_is_accepted_and_the_same(path):
                 item = dict(item)
                 kind = item.pop("type") if section in _TAGGED else None
                 getattr(m, m.METHODS[(section, kind)])(**item)
-        for table in ("solver", "output"):
+        for table in ("twin", "solver", "output"):
             if table in doc:
                 getattr(m, table)(**doc[table])
         if order == 1:
