@@ -70,3 +70,23 @@ def test_deviation_from_the_ideal_twin_and_a_metric_of_it():
     # the built-in's peak contact force after its first revolution is the same located peak
     b = clr_sim.simulate("slider_crank", 0.02)
     assert r.metrics["B_peak"] == pytest.approx(b.metrics["peak_contact_force"], rel=1e-9)
+
+
+def test_the_measures_example_of_the_docs_runs():
+    """docs/python.md, section "Measures and metrics": its block runs as written on the
+    slider–crank of "Build a model"."""
+    import pathlib
+    import re
+
+    from test_package import slider_crank_in_python
+
+    text = (pathlib.Path(__file__).parents[2] / "docs" / "python.md").read_text()
+    section = text.split("## Measures and metrics", 1)[1].split("\n## ", 1)[0]
+    block = re.findall(r"```python\n(.*?)```", section, re.S)[0]
+    m = slider_crank_in_python()
+    m.output(t_end=0.02, intervals=0, every_step=True)
+    scope = {"m": m, "clr_sim": clr_sim}
+    exec(compile(block, "docs/python.md", "exec"), scope)
+    r = scope["r"]
+    assert r.units["pin.M"] == "N*m" and r.units["rod.angle"] == "rad"
+    assert r.metrics["slider_error_max"] > 1e-4  # the clearance of 0.5 mm shows
