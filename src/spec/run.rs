@@ -654,11 +654,15 @@ pub fn execute(
                     } => {
                         // the rows of a failed run get the deviation columns too (every column
                         // of a complete run); a twin that cannot run leaves them NaN
-                        let _ = clr_mbd::measure::deviation::append_deviations(
+                        if let Err(e) = clr_mbd::measure::deviation::append_deviations(
                             s.desc(),
                             &built.options,
                             &mut partial,
-                        );
+                        ) {
+                            partial
+                                .notes
+                                .push(format!("deviation measures: not written ({e})"));
+                        }
                         clr_mbd::MbdError::Failed {
                             source,
                             partial,

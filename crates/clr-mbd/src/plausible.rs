@@ -185,11 +185,22 @@ impl Model {
         Ok(out)
     }
 
-    /// A measured point far outside its body and the mechanism ([`MAX_MEASURE_REACH`] times the
+    /// An angle offset beyond a whole turn (most likely degrees), and a measured point far
+    /// outside its body and the mechanism ([`MAX_MEASURE_REACH`] times the
     /// larger of the mechanism's size and the body's radius of gyration) is most likely given in
     /// millimetres: the measure is still written, with a warning at its field.
     fn check_measure_points(&self, sc: &Scales, out: &mut Vec<Warning>) {
         for m in &self.measures {
+            if let Some(offset) = m.angle_offset().filter(|o| o.abs() > std::f64::consts::TAU) {
+                out.push(warn(
+                    format!("{}.offset", m.name),
+                    format!(
+                        "an angle offset of {offset} rad is more than a whole turn: angles are in \
+                         radians ({offset}° would be {:.6} rad)",
+                        offset.to_radians()
+                    ),
+                ));
+            }
             for (field, (k, s)) in m.points() {
                 let Some(b) = self.bodies.get(k) else {
                     continue;

@@ -523,3 +523,20 @@ fn a_deviation_of_a_contact_quantity_is_refused_before_the_run() {
     let e = compile_err(&text.replace("B.normal_force", "sldr.x"));
     assert!(e.contains("no such column"), "{e}");
 }
+
+#[test]
+fn an_angle_offset_in_degrees_and_a_point_in_millimetres_are_flagged() {
+    // a usual mistake: offset = 90 (degrees) and a point at 500 (mm) on a 0.5 m crank
+    let base = TWO_ROTORS.split("[[measure]]").next().unwrap().to_string();
+    let text = format!(
+        "{base}\n[[measure]]\nname = \"a\"\ntype = \"angle\"\nbody = \"crank\"\noffset = 90.0\n\
+         \n[[measure]]\nname = \"p\"\ntype = \"position\"\nat = {{ body = \"crank\", at = [500.0, 0.0] }}\n\
+         \n[output]\nt_end = 0.01\nintervals = 2\n"
+    );
+    let r = run(&text);
+    let fields: Vec<&str> = r.warnings.iter().map(|w| w.field.as_str()).collect();
+    assert!(
+        fields.contains(&"a.offset") && fields.contains(&"p.at"),
+        "{fields:?}"
+    );
+}

@@ -123,6 +123,18 @@ fn in_frame(th: f64, w: f64, al: f64, d: [Vector2<f64>; 3]) -> [Vector2<f64>; 3]
 }
 
 impl CompiledMeasure {
+    /// The offset of an angle measure, rad (for the plausibility checks).
+    pub(crate) fn angle_offset(&self) -> Option<f64> {
+        match self.el {
+            MeasureEl::Angle {
+                quantity: Quantity::Position,
+                offset,
+                ..
+            } => Some(offset),
+            _ => None,
+        }
+    }
+
     /// The body points it reads, with their fields (for the plausibility checks).
     pub(crate) fn points(&self) -> Vec<(&'static str, (usize, Vector2<f64>))> {
         match &self.el {
