@@ -50,6 +50,7 @@ mod init;
 pub mod init_flex;
 pub mod initial;
 mod initial_data;
+pub mod input;
 pub mod jacobian;
 pub mod linsys;
 mod lugre;

@@ -124,6 +124,8 @@ pub struct Model {
     /// Findings of the plausibility checks of the description's values (materials, laws),
     /// reported by every run ([`crate::plausible`]).
     pub(crate) input_warnings: Vec<crate::initial_data::Warning>,
+    /// The `[[input]]` cells the elements are bound to ([`Model::inputs`]).
+    pub(crate) inputs: crate::input::InputBank,
     pub(crate) gravity: Vector2<f64>,
     pub(crate) memory: ContactMemory,
     pub(crate) alpha: f64,
@@ -174,6 +176,12 @@ impl Model {
     /// Body names in coordinate order (body k owns q[3k..3k+3]).
     pub fn body_names(&self) -> &[String] {
         &self.body_names
+    }
+
+    /// The `[[input]]`s of the description this model was compiled from: set a cell to change
+    /// what the elements bound to it see from the next evaluation on ([`crate::input`]).
+    pub fn inputs(&self) -> &crate::input::InputBank {
+        &self.inputs
     }
 
     /// Index of a body by name (`None` for unknown names and for the ground).

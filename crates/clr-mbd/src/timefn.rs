@@ -111,13 +111,22 @@ pub enum TimeFn {
         /// The factors.
         factors: Vec<TimeFn>,
     },
+    /// The value of the named `[[input]]` ([`crate::input`]): its default time function until
+    /// a master sets it. Bound to the input when the model compiles; unbound it evaluates to NaN.
+    Input {
+        /// The input's name.
+        name: String,
+        /// The compiled model's cell (not part of the file).
+        #[serde(skip)]
+        cell: Option<crate::input::BoundInput>,
+    },
     /// A Rust closure (opt-in; cannot be written to a model file).
     #[serde(skip)]
     Custom(UserFn),
 }
 
 /// The names of [`TimeFn`] kinds as written in files.
-pub const TIME_FN_KINDS: [&str; 9] = [
+pub const TIME_FN_KINDS: [&str; 10] = [
     "constant",
     "linear",
     "ramp",
@@ -127,6 +136,7 @@ pub const TIME_FN_KINDS: [&str; 9] = [
     "table",
     "sum",
     "product",
+    "input",
 ];
 
 impl TimeFn {
@@ -164,6 +174,25 @@ impl TimeFn {
                 v.iter().any(TimeFn::has_closure)
             }
             _ => false,
+        }
+    }
+
+    /// True when this function or one of its parts is an `[[input]]`.
+    pub fn has_input(&self) -> bool {
+        match self {
+            TimeFn::Input { .. } => true,
+            TimeFn::Sum { terms: v } | TimeFn::Product { factors: v } => {
+                v.iter().any(TimeFn::has_input)
+            }
+            _ => false,
+        }
+    }
+
+    /// A reference to the input `name` (bound when the model compiles).
+    pub fn input(name: impl Into<String>) -> Self {
+        TimeFn::Input {
+            name: name.into(),
+            cell: None,
         }
     }
 
@@ -211,6 +240,8 @@ impl TimeFn {
                     a[2] * b[0] + 2.0 * a[1] * b[1] + a[0] * b[2],
                 ]
             }),
+            TimeFn::Input { cell: Some(c), .. } => c.0.eval(t),
+            TimeFn::Input { cell: None, .. } => [f64::NAN; 3],
             TimeFn::Custom(f) => (f.0)(t),
         }
     }
@@ -308,7 +339,11 @@ impl TimeFn {
                     .enumerate()
                     .try_for_each(|(k, f)| f.validate(&format!("{path}.{field}[{k}]")))
             }
-            TimeFn::Custom(_) => Ok(()),
+            TimeFn::Input { name, .. } if name.trim().is_empty() => Err(FieldError::new(
+                format!("{path}.name"),
+                "name the [[input]] this function takes its value from",
+            )),
+            TimeFn::Input { .. } | TimeFn::Custom(_) => Ok(()),
         }
     }
 }

@@ -700,6 +700,31 @@ impl<M: Method> Solver<M> {
         self.t_end
     }
 
+    /// Move the end of the run to `t_end` (not before the current time) and keep the history:
+    /// the next [`Solver::advance`] goes on from where the last step ended, with the method's
+    /// step size and order, and its steps do not pass the new end. This is how a co-simulation
+    /// step advances to the next communication point without a restart.
+    ///
+    /// # Errors
+    /// [`OdeError::InvalidInput`] before [`Solver::start`], or for a `t_end` that is not finite
+    /// or lies before the current time.
+    pub fn extend_to(&mut self, t_end: f64) -> Result<(), OdeError> {
+        if !self.started {
+            return Err(invalid(
+                "extend_to before start: call start (or solve) first",
+            ));
+        }
+        let t = self.method.t();
+        if !t_end.is_finite() || t_end < t {
+            return Err(invalid(format!(
+                "the new end {t_end} must be finite and not before the current time {t}"
+            )));
+        }
+        self.t_end = t_end;
+        self.finished = t >= t_end;
+        Ok(())
+    }
+
     /// The solution recorded so far.
     pub fn solution(&self) -> &Solution {
         &self.solution

@@ -549,3 +549,37 @@ fn ndf_uses_the_systems_own_newton_solver() {
     assert_eq!(ya, yb);
     assert!(test_models::scd(ya, p.reference()) > 10.0);
 }
+
+/// Co-simulation stepping: `extend_to` the next communication point, 100 points of 0.1 s, with
+/// no restart. Each stop lands exactly on its point, and the state there matches the closed form
+/// (cos t, −sin t) within the tolerance of one run (reference: the closed form; tolerance 1e-6 at
+/// rtol 1e-8 over 10 s, as the whole-run test above allows).
+fn communication_steps<M: solver::Method>(s: &mut Solver<M>) {
+    let mut sys = oscillator();
+    s.start(&mut sys, 0.0, &[1.0, 0.0], 0.1).unwrap();
+    for k in 1..=100 {
+        let tc = 0.1 * k as f64;
+        s.extend_to(tc).unwrap();
+        assert_eq!(s.advance(&mut sys).unwrap(), StopReason::EndReached);
+        assert_eq!(s.t(), tc, "a stop lands on its communication point");
+        let y = s.y();
+        assert!((y[0] - tc.cos()).abs() < 1e-6 && (y[1] + tc.sin()).abs() < 1e-6);
+    }
+    assert!(
+        s.extend_to(5.0).is_err(),
+        "an end before the current time is refused"
+    );
+}
+
+#[test]
+fn extend_to_communication_points_keeps_history_and_accuracy() {
+    let opts = Options::default()
+        .rtol(1e-8)
+        .atol(1e-10)
+        .output(Output::End);
+    let mut ndf = Ndf::new(opts.clone());
+    communication_steps(&mut ndf);
+    // one start, no restart: the NDF kept a higher order across the points
+    assert!(ndf.method().order() > 1);
+    communication_steps(&mut Dopri5::new(opts));
+}

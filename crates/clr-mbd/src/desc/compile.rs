@@ -9,6 +9,7 @@ use nalgebra::Vector2;
 use super::ModelDesc;
 use crate::element::{Clearance, Compiler, Inputs};
 use crate::error::MbdError;
+use crate::input::InputBank;
 use crate::runtime::GROUND;
 use crate::system::Model;
 
@@ -23,6 +24,8 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
         });
     }
     claim_names(desc)?;
+    let (bound, inputs) = bind_inputs(desc)?;
+    let desc = &bound;
     let anchors = (desc.joints.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.drivers.iter().map(|e| (e.name(), e.anchors())))
         .chain(desc.forces.iter().map(|e| (e.name(), e.anchors())))
@@ -81,6 +84,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
         });
     }
     let mut model = c.finish(Vector2::new(g[0], g[1]))?;
+    model.inputs = inputs;
     model.set_baumgarte(desc.solver.baumgarte_alpha, desc.solver.baumgarte_beta)?;
     model.set_contact_events(desc.solver.contact_events);
     model.input_warnings = super::checks::description_warnings(desc);
@@ -96,6 +100,22 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     );
     super::metric::check(&desc.metrics, &columns)?;
     Ok(model)
+}
+
+/// The description with every `{ type = "input" }` bound to the cell of its `[[input]]`, and
+/// the cells (a fresh set per compile: no two compiled models share an input).
+fn bind_inputs(desc: &ModelDesc) -> Result<(ModelDesc, InputBank), MbdError> {
+    let mut bound = desc.clone();
+    let mut bank = InputBank::default();
+    let decl = &desc.inputs;
+    for (k, d) in bound.drivers.iter_mut().enumerate() {
+        crate::input::bind(&format!("driver[{k}]"), d.time_fns(), decl, &mut bank)?;
+    }
+    for (k, f) in bound.forces.iter_mut().enumerate() {
+        crate::input::bind(&format!("force[{k}]"), f.time_fns(), decl, &mut bank)?;
+    }
+    crate::input::finish(decl, &mut bank)?;
+    Ok((bound, bank))
 }
 
 /// A blank name cannot be referred to and would leave errors about its item without a place

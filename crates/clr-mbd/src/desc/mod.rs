@@ -34,8 +34,8 @@ pub use crate::field::{closest, edit_distance, suggestion, FieldError};
 use crate::element::{Clearance, Driver, Force, Joint};
 
 /// A whole model as data. Sections in a file: `[model]`, `[[body]]`, `[[point]]`, `[[beam]]`,
-/// `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[shape]]`, `[[clearance]]`, `[solver]`,
-/// `[output]`. Constraint rows follow the order joints, then drivers (then the node ties of
+/// `[[flexible_body]]`, `[[joint]]`, `[[driver]]`, `[[force]]`, `[[shape]]`, `[[clearance]]`,
+/// `[[input]]`, `[[measure]]`, `[[metric]]`, `[twin]`, `[solver]`, `[output]`. Constraint rows follow the order joints, then drivers (then the node ties of
 /// floating bodies, first); force elements and contacts keep their section order.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -74,6 +74,9 @@ pub struct ModelDesc {
     /// Clearance joints and sliders (contact elements).
     #[serde(default, rename = "clearance", skip_serializing_if = "Vec::is_empty")]
     pub clearances: Vec<Clearance>,
+    /// Named real inputs a master can set ([`crate::input`]).
+    #[serde(default, rename = "input", skip_serializing_if = "Vec::is_empty")]
+    pub inputs: Vec<crate::input::InputDesc>,
     /// Named outputs written as result columns ([`crate::measure`]).
     #[serde(default, rename = "measure", skip_serializing_if = "Vec::is_empty")]
     pub measures: Vec<crate::measure::Measure>,

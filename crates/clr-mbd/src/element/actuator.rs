@@ -7,6 +7,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{non_negative, Anchor, Compiler, Element};
 use crate::error::MbdError;
+use crate::input::TimeFnSlot;
 use crate::runtime::ForceEl;
 use crate::timefn::TimeFn;
 
@@ -53,7 +54,12 @@ impl Element for Actuator {
     fn anchors(&self) -> Vec<&Anchor> {
         vec![&self.a, &self.b]
     }
-    fn has_closure(&self) -> bool {
-        self.force.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![TimeFnSlot {
+            field: "force",
+            unit: "N",
+            motion: false,
+            f: &mut self.force,
+        }]
     }
 }

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{ground_load, Anchor, Compiler, Element};
 use crate::error::MbdError;
+use crate::input::TimeFnSlot;
 use crate::runtime::{ForceEl, GROUND_ID};
 use crate::timefn::TimeFn;
 
@@ -49,7 +50,20 @@ impl Element for AppliedForce {
     fn anchors(&self) -> Vec<&Anchor> {
         vec![&self.at]
     }
-    fn has_closure(&self) -> bool {
-        self.fx.has_closure() || self.fy.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![
+            TimeFnSlot {
+                field: "fx",
+                unit: "N",
+                motion: false,
+                f: &mut self.fx,
+            },
+            TimeFnSlot {
+                field: "fy",
+                unit: "N",
+                motion: false,
+                f: &mut self.fy,
+            },
+        ]
     }
 }

@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{ground_load, Compiler, Element};
 use crate::error::MbdError;
+use crate::input::TimeFnSlot;
 use crate::runtime::{ForceEl, GROUND_ID};
 use crate::timefn::TimeFn;
 
@@ -35,7 +36,12 @@ impl Element for AppliedTorque {
         });
         Ok(())
     }
-    fn has_closure(&self) -> bool {
-        self.torque.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![TimeFnSlot {
+            field: "torque",
+            unit: "N·m",
+            motion: false,
+            f: &mut self.torque,
+        }]
     }
 }

@@ -402,6 +402,7 @@ impl Compiler {
             notes,
             measures,
             input_warnings: Vec::new(),
+            inputs: crate::input::InputBank::default(),
             gravity,
             memory,
             alpha: DEFAULT_BAUMGARTE_ALPHA,

@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Compiler, Element};
 use crate::error::MbdError;
+use crate::input::TimeFnSlot;
 use crate::runtime::{Con, GROUND};
 use crate::timefn::TimeFn;
 
@@ -58,8 +59,13 @@ impl Element for DriveAngle {
             &self.motion,
         )
     }
-    fn has_closure(&self) -> bool {
-        self.motion.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![TimeFnSlot {
+            field: "motion",
+            unit: "rad",
+            motion: true,
+            f: &mut self.motion,
+        }]
     }
 }
 
@@ -72,7 +78,12 @@ impl Element for DriveRelativeAngle {
             &self.motion,
         )
     }
-    fn has_closure(&self) -> bool {
-        self.motion.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![TimeFnSlot {
+            field: "motion",
+            unit: "rad",
+            motion: true,
+            f: &mut self.motion,
+        }]
     }
 }

@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{unit_axis, Anchor, Compiler, Element};
 use crate::error::MbdError;
+use crate::input::TimeFnSlot;
 use crate::runtime::Con;
 use crate::timefn::TimeFn;
 
@@ -39,7 +40,12 @@ impl Element for DriveDisplacement {
     fn anchors(&self) -> Vec<&Anchor> {
         vec![&self.a, &self.b]
     }
-    fn has_closure(&self) -> bool {
-        self.motion.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![TimeFnSlot {
+            field: "motion",
+            unit: "m",
+            motion: true,
+            f: &mut self.motion,
+        }]
     }
 }

@@ -45,9 +45,15 @@ pub(crate) trait Element {
     fn anchors(&self) -> Vec<&Anchor> {
         Vec::new()
     }
-    /// True when it holds a Rust closure (cannot be written to a file).
+    /// True when it is a Rust closure itself (cannot be written to a file; closures inside its
+    /// time functions are found through [`Element::time_fns`]).
     fn has_closure(&self) -> bool {
         false
+    }
+    /// Its time functions, with field, unit and whether each is a driver's motion (to bind
+    /// `[[input]]` references).
+    fn time_fns(&mut self) -> Vec<crate::input::TimeFnSlot<'_>> {
+        Vec::new()
     }
 }
 
@@ -78,11 +84,20 @@ macro_rules! section {
             pub fn kind(&self) -> &'static str {
                 match self { $(Self::$var(_) => $tag,)* $(Self::$cvar(_) => $ctag,)? }
             }
-            /// True when it holds a Rust closure.
+            /// True when it holds a Rust closure: a closure element, or a time function that
+            /// is one (read on a copy: this is asked once, when a description is written).
             pub fn has_closure(&self) -> bool {
-                match self {
+                let own = match self {
                     $(Self::$var(e) => e.has_closure(),)*
                     $(Self::$cvar(e) => e.has_closure(),)?
+                };
+                own || self.clone().time_fns().iter().any(|s| s.f.has_closure())
+            }
+            /// Its time functions (field, unit, motion or load), to bind `[[input]]`s.
+            pub(crate) fn time_fns(&mut self) -> Vec<crate::input::TimeFnSlot<'_>> {
+                match self {
+                    $(Self::$var(e) => e.time_fns(),)*
+                    $(Self::$cvar(e) => e.time_fns(),)?
                 }
             }
             /// Read one item of a file (a table with its `type`), with the path of the

@@ -7,6 +7,7 @@ use super::applied_force::zero;
 use super::{Compiler, Element};
 use crate::error::MbdError;
 use crate::flexible::NodalLoadFn;
+use crate::input::TimeFnSlot;
 use crate::timefn::TimeFn;
 
 /// `type = "nodal_load"`.
@@ -73,9 +74,26 @@ impl Element for NodalLoad {
             std::sync::Arc::new(move |t| [fx.eval(t)[0], fy.eval(t)[0], m.eval(t)[0]]),
         )
     }
-    fn has_closure(&self) -> bool {
-        [&self.fx, &self.fy, &self.moment]
-            .iter()
-            .any(|f| f.has_closure())
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![
+            TimeFnSlot {
+                field: "fx",
+                unit: "N",
+                motion: false,
+                f: &mut self.fx,
+            },
+            TimeFnSlot {
+                field: "fy",
+                unit: "N",
+                motion: false,
+                f: &mut self.fy,
+            },
+            TimeFnSlot {
+                field: "moment",
+                unit: "N·m",
+                motion: false,
+                f: &mut self.moment,
+            },
+        ]
     }
 }

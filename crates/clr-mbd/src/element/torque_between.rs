@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use super::{Compiler, Element};
 use crate::error::MbdError;
+use crate::input::TimeFnSlot;
 use crate::runtime::ForceEl;
 use crate::timefn::TimeFn;
 
@@ -37,7 +38,12 @@ impl Element for TorqueBetween {
         });
         Ok(())
     }
-    fn has_closure(&self) -> bool {
-        self.torque.has_closure()
+    fn time_fns(&mut self) -> Vec<TimeFnSlot<'_>> {
+        vec![TimeFnSlot {
+            field: "torque",
+            unit: "N·m",
+            motion: false,
+            f: &mut self.torque,
+        }]
     }
 }

@@ -719,6 +719,7 @@ fn driver(
     dr.motion
         .validate(&format!("{name}.motion"))
         .map_err(|e| invalid(e.path, e.message))?;
+    planar_inputs_only(&dr.motion, &format!("{name}.motion"))?;
     let ok = match dr.kind {
         DriverKind::RevoluteAngle => matches!(kind, JointKind::Revolute | JointKind::Cylindrical),
         DriverKind::PrismaticDisplacement => {
@@ -809,6 +810,7 @@ fn force(
         for (g, n) in fs.iter().zip(names) {
             g.validate(&format!("{name}.{n}"))
                 .map_err(|e| invalid(e.path, e.message))?;
+            planar_inputs_only(g, &format!("{name}.{n}"))?;
         }
         Ok([fs[0].clone(), fs[1].clone(), fs[2].clone()])
     };
@@ -839,6 +841,7 @@ fn force(
             force
                 .validate(&format!("{name}.force"))
                 .map_err(|e| invalid(e.path, e.message))?;
+            planar_inputs_only(force, &format!("{name}.force"))?;
             let (ea, eb) = (
                 cx.end(&format!("{name}.a"), a)?,
                 cx.end(&format!("{name}.b"), b)?,
@@ -1317,4 +1320,18 @@ impl SpatialShape {
             triangles,
         })
     }
+}
+
+/// `[[input]]` is read in planar models only so far: a spatial function naming one is refused
+/// (unbound, it would evaluate to NaN).
+fn planar_inputs_only(f: &crate::TimeFn, path: &str) -> Result<(), MbdError> {
+    if f.has_input() {
+        return Err(invalid(
+            path.to_string(),
+            "`type = \"input\"` is available in planar models only in this version; give a \
+             function of time"
+                .to_string(),
+        ));
+    }
+    Ok(())
 }
