@@ -228,48 +228,177 @@ pub(crate) fn drive<E: Engine>(
     watch: E::Watch,
     progress: &dyn Fn(f64),
 ) -> Result<Results, MbdError> {
-    let mut run = Run {
-        data: Vec::new(),
-        y: y0.to_vec(),
-        recorded: 0,
-        onsets: 0,
-        projections: 0,
-        max_viol: 0.0,
-        impacts: ImpactTracker::new(model, opts.t0, y0),
-        watch,
-    };
+    let mut run = Run::new(model, opts.t0, y0, watch);
     let out = step_loop(model, opts, (solver, ws), &mut run, progress);
-    let stats = with_solver!(&*solver, s => s.stats());
     match out {
-        Ok(()) => Ok(run.results(model, stats)),
-        Err(Stop::Mbd(e)) => Err(e),
-        Err(Stop::Unphysical(reason)) => Err(MbdError::Stopped {
-            reason,
-            partial: Box::new(run.results(model, stats)),
-        }),
-        Err(Stop::Ode(e)) => {
-            // rows the solver interpolated but the loop has not recorded yet (none in practice:
-            // a failing advance records nothing), then the counters up to the failure: a failed
-            // advance hands its statistics over with the error, a failed restart leaves them in
-            // the solver
-            let sol = e.solution();
-            for k in run.recorded..sol.len() {
-                model.record(sol.t[k], sol.state(k), &mut run.data);
+        Ok(()) => {
+            let stats = with_solver!(&*solver, s => s.stats());
+            Ok(run.results(model, stats))
+        }
+        Err(stop) => Err(run.error(model, solver, stop)),
+    }
+}
+
+impl<W> Run<W> {
+    fn new<E: Engine<Watch = W>>(model: &mut E, t0: f64, y0: &[f64], watch: W) -> Self {
+        Run {
+            data: Vec::new(),
+            y: y0.to_vec(),
+            recorded: 0,
+            onsets: 0,
+            projections: 0,
+            max_viol: 0.0,
+            impacts: ImpactTracker::new(model, t0, y0),
+            watch,
+        }
+    }
+
+    /// The error of a run that `stop` ended, keeping what was computed.
+    fn error<E: Engine<Watch = W>>(
+        &mut self,
+        model: &mut E,
+        solver: &AnySolver,
+        stop: Stop,
+    ) -> MbdError {
+        let stats = with_solver!(solver, s => s.stats());
+        match stop {
+            Stop::Mbd(e) => e,
+            Stop::Unphysical(reason) => MbdError::Stopped {
+                reason,
+                partial: Box::new(self.results(model, stats)),
+            },
+            Stop::Ode(e) => {
+                // rows the solver interpolated but the loop has not recorded yet (none in
+                // practice: a failing advance records nothing), then the counters up to the
+                // failure: a failed advance hands its statistics over with the error, a failed
+                // restart leaves them in the solver
+                let sol = e.solution();
+                for k in self.recorded..sol.len() {
+                    model.record(sol.t[k], sol.state(k), &mut self.data);
+                }
+                let stats = if sol.stats == Stats::default() {
+                    stats
+                } else {
+                    sol.stats
+                };
+                if sol.y_final.len() == self.y.len() {
+                    self.y.copy_from_slice(&sol.y_final);
+                }
+                let cause = model.failure_cause(sol.t_final, self.y.as_slice());
+                MbdError::Failed {
+                    partial: Box::new(self.results(model, stats)),
+                    source: e,
+                    cause,
+                }
             }
-            let stats = if sol.stats == Stats::default() {
-                stats
-            } else {
-                sol.stats
-            };
-            if sol.y_final.len() == run.y.len() {
-                run.y.copy_from_slice(&sol.y_final);
+        }
+    }
+}
+
+/// A run advanced by its caller from one communication point to the next (co-simulation):
+/// the solver's end moves to each point ([`clr_ode::Solver::extend_to`]) and the history is
+/// kept, so between points the integrator runs as in one run, with located onsets and
+/// restarts inside a step; it restarts at a point only when asked ([`Stepping::restart_at`]).
+pub(crate) struct Stepping<E: Engine> {
+    solver: AnySolver,
+    ws: E::Ws,
+    run: Run<E::Watch>,
+    y_out: Vec<f64>,
+    t: f64,
+    started: bool,
+    restart: bool,
+}
+
+impl<E: Engine> Stepping<E> {
+    /// Ready to step `model` from (t0, y0) with `solver` (output times unused).
+    pub(crate) fn new(
+        model: &mut E,
+        (t0, y0): (f64, &[f64]),
+        (solver, ws): (AnySolver, E::Ws),
+        watch: E::Watch,
+    ) -> Self {
+        let run = Run::new(model, t0, y0, watch);
+        model.reset_memory();
+        model.commit_contacts(y0);
+        Stepping {
+            solver,
+            ws,
+            y_out: vec![0.0; y0.len()],
+            run,
+            t: t0,
+            started: false,
+            restart: false,
+        }
+    }
+
+    /// The current time, s, and state.
+    pub(crate) fn state(&self) -> (f64, &[f64]) {
+        (self.t, &self.run.y)
+    }
+
+    /// Integrator statistics so far.
+    pub(crate) fn stats(&self) -> Stats {
+        with_solver!(&self.solver, s => s.stats())
+    }
+
+    /// Continue from (t, y) with a fresh history at the next advance (an input jumped, a saved
+    /// state was restored); the contact memory restarts from y.
+    pub(crate) fn restart_at(&mut self, model: &mut E, t: f64, y: &[f64]) {
+        self.t = t;
+        self.run.y.copy_from_slice(y);
+        model.reset_memory();
+        model.commit_contacts(y);
+        self.run.impacts = ImpactTracker::new(model, t, y);
+        self.restart = true;
+    }
+
+    /// Integrate to `tc` (s; nothing to do when tc ≤ t). The last step ends exactly at tc.
+    ///
+    /// # Errors
+    /// As [`drive`]: the error keeps the counters (the partial results hold no rows: a
+    /// stepped run records none).
+    pub(crate) fn advance_to(
+        &mut self,
+        model: &mut E,
+        opts: &SimOptions,
+        tc: f64,
+    ) -> Result<(), MbdError> {
+        if tc <= self.t {
+            return Ok(());
+        }
+        match self.advance_inner(model, opts, tc) {
+            Ok(()) => Ok(()),
+            Err(stop) => Err(self.run.error(model, &self.solver, stop)),
+        }
+    }
+
+    fn advance_inner(&mut self, model: &mut E, opts: &SimOptions, tc: f64) -> Result<(), Stop> {
+        let (solver, ws) = (&mut self.solver, &mut self.ws);
+        if !self.started {
+            with_solver!(&mut *solver, s => s.start(&mut model.system(ws), self.t, &self.run.y, tc))?;
+            self.started = true;
+        } else {
+            with_solver!(&mut *solver, s => s.extend_to(tc))?;
+            if self.restart {
+                with_solver!(&mut *solver, s => s.restart(&mut model.system(ws), self.t, &self.run.y))?;
             }
-            let cause = model.failure_cause(sol.t_final, run.y.as_slice());
-            Err(MbdError::Failed {
-                partial: Box::new(run.results(model, stats)),
-                source: e,
-                cause,
-            })
+        }
+        self.restart = false;
+        loop {
+            let reason = with_solver!(&mut *solver, s => s.advance_observed(
+                &mut model.system(ws), &mut StopEachStep))?;
+            let (t, restart) =
+                after_step(model, opts, solver, &mut self.run, &mut self.y_out, reason)?;
+            self.t = t;
+            if t >= tc {
+                // the restart a step end asks for happens at the next advance, from the state
+                // the caller may still change
+                self.restart = restart;
+                return Ok(());
+            }
+            if restart {
+                with_solver!(&mut *solver, s => s.restart(&mut model.system(ws), t, &self.run.y))?;
+            }
         }
     }
 }
@@ -300,34 +429,7 @@ fn step_loop<E: Engine>(
     loop {
         let reason = with_solver!(&mut *solver, s => s.advance_observed(
             &mut model.system(ws), &mut StopEachStep))?;
-        let t = with_solver!(&*solver, s => s.solution().t_final);
-        run.y
-            .copy_from_slice(with_solver!(&*solver, s => &s.solution().y_final));
-        let n_out = with_solver!(&*solver, s => s.solution().t.len());
-        while run.recorded < n_out {
-            let to = with_solver!(&*solver, s => s.solution().t[run.recorded]);
-            y_out.copy_from_slice(with_solver!(&*solver, s => s.solution().state(run.recorded)));
-            model.record(to, &y_out, &mut run.data);
-            run.recorded += 1;
-        }
-        let interp = |tp: f64, out: &mut [f64]| with_solver!(&*solver, s => s.interpolate(tp, out));
-        run.impacts.step(model, (t, &run.y), &interp, &mut y_out);
-        model.commit_contacts(&run.y);
-        model.watch(&mut run.watch, t, &run.y)?;
-        let pv = model.violation(t, &run.y);
-        run.max_viol = run.max_viol.max(pv);
-        let onset = match reason {
-            StopReason::TerminalEvent(e) => Some(e),
-            _ => None,
-        };
-        if onset.is_some() {
-            run.onsets += 1;
-        }
-        let end = model.step_end(t, &mut run.y, onset, pv, opts)?;
-        run.projections += usize::from(end.projected);
-        if opts.every_step {
-            model.record(t, &run.y, &mut run.data);
-        }
+        let (t, restart) = after_step(model, opts, solver, run, &mut y_out, reason)?;
         let done = reason == StopReason::EndReached || t >= opts.t_end;
         if (done && t > last_report) || t - last_report >= report_every {
             progress(t);
@@ -336,8 +438,51 @@ fn step_loop<E: Engine>(
         if done {
             return Ok(());
         }
-        if onset.is_some() || end.restart {
+        if restart {
             with_solver!(&mut *solver, s => s.restart(&mut model.system(ws), t, &run.y))?;
         }
     }
+}
+
+/// The work after one accepted step of the solver (the module's list, 1 to 6), on `run`:
+/// returns the step's end time and whether the integrator must restart from `run.y` (a located
+/// onset, or the model's own step end changed the state). `y_out` is scratch of the state's
+/// length.
+fn after_step<E: Engine>(
+    model: &mut E,
+    opts: &SimOptions,
+    solver: &AnySolver,
+    run: &mut Run<E::Watch>,
+    y_out: &mut [f64],
+    reason: StopReason,
+) -> Result<(f64, bool), Stop> {
+    let t = with_solver!(solver, s => s.solution().t_final);
+    run.y
+        .copy_from_slice(with_solver!(solver, s => &s.solution().y_final));
+    let n_out = with_solver!(solver, s => s.solution().t.len());
+    while run.recorded < n_out {
+        let to = with_solver!(solver, s => s.solution().t[run.recorded]);
+        y_out.copy_from_slice(with_solver!(solver, s => s.solution().state(run.recorded)));
+        model.record(to, y_out, &mut run.data);
+        run.recorded += 1;
+    }
+    let interp = |tp: f64, out: &mut [f64]| with_solver!(solver, s => s.interpolate(tp, out));
+    run.impacts.step(model, (t, &run.y), &interp, y_out);
+    model.commit_contacts(&run.y);
+    model.watch(&mut run.watch, t, &run.y)?;
+    let pv = model.violation(t, &run.y);
+    run.max_viol = run.max_viol.max(pv);
+    let onset = match reason {
+        StopReason::TerminalEvent(e) => Some(e),
+        _ => None,
+    };
+    if onset.is_some() {
+        run.onsets += 1;
+    }
+    let end = model.step_end(t, &mut run.y, onset, pv, opts)?;
+    run.projections += usize::from(end.projected);
+    if opts.every_step {
+        model.record(t, &run.y, &mut run.data);
+    }
+    Ok((t, onset.is_some() || end.restart))
 }

@@ -35,6 +35,7 @@ mod beam_face;
 mod broad_phase;
 mod clearance;
 mod contact_report;
+pub mod cosim;
 pub mod desc;
 mod driver;
 pub mod element;

@@ -258,9 +258,23 @@ impl Model {
                 self.n_bristle_states()
             )
         })?;
+        let (mut solver, mut newton) = self.solver(opts);
+        let exits = GuideExits::new(self);
+        let mut res = drive(self, opts, y0, (&mut solver, &mut newton), exits, progress)?;
+        let mut notes = self.run_notes(opts);
+        notes.append(&mut res.notes);
+        res.notes = notes;
+        Ok(res)
+    }
+}
+
+impl Model {
+    /// The integrator and Newton workspace of a run with `opts` (contact events and the linear
+    /// solver set on the model as `opts` asks).
+    pub(crate) fn solver(&mut self, opts: &SimOptions) -> (AnySolver, NewtonWs) {
         self.events_on = opts.contact_events;
         self.set_linear_solver(opts.linear_solver);
-        let mut solver = AnySolver::new(opts, |mut ode| {
+        let solver = AnySolver::new(opts, |mut ode| {
             if opts.scale_velocity_error {
                 ode = ode.h_scaled_error(self.n..2 * self.n);
             }
@@ -269,13 +283,8 @@ impl Model {
             }
             ode
         });
-        let mut newton = NewtonWs::new(self, opts.jacobian, opts.linear_solver);
-        let exits = GuideExits::new(self);
-        let mut res = drive(self, opts, y0, (&mut solver, &mut newton), exits, progress)?;
-        let mut notes = self.run_notes(opts);
-        notes.append(&mut res.notes);
-        res.notes = notes;
-        Ok(res)
+        let newton = NewtonWs::new(self, opts.jacobian, opts.linear_solver);
+        (solver, newton)
     }
 }
 
@@ -344,7 +353,7 @@ impl Engine for Model {
 
 /// The error of `exact` initial conditions for the given changes (body, coordinate, given,
 /// assembled).
-fn inconsistent(
+pub(crate) fn inconsistent(
     ic: &crate::InitialConditions,
     corrected: &[(&str, &'static str, f64, f64)],
 ) -> MbdError {
