@@ -19,5 +19,6 @@ pub use clr_contact as contact;
 pub use clr_mbd as mbd;
 pub use clr_models as models;
 pub use clr_ode as ode;
+pub mod fmu;
 pub mod report;
 pub mod spec;

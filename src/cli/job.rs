@@ -167,6 +167,65 @@ pub(crate) fn export_command(
     }
 }
 
+/// `clr fmu`: the FMU of a model file, or of a built-in model's exported file.
+pub(crate) fn fmu_command(
+    model: &str,
+    out: &Path,
+    req: &clr_sim::fmu::FmuRequest,
+) -> Result<(), CliError> {
+    let (file, src) = if is_file(model) {
+        let src = std::fs::read_to_string(model)
+            .map_err(|e| CliError::Input(format!("cannot read {model}: {e}")))?;
+        (model.to_string(), src)
+    } else {
+        let Job::Builtin {
+            name, parameters, ..
+        } = resolve(model, &[], None, None)?
+        else {
+            return Err(CliError::Input(format!("`{model}` is not a model file")));
+        };
+        let form = ExportForm {
+            t_end: None,
+            rtol: None,
+            builtin: false,
+        };
+        (
+            format!("{name}.toml"),
+            desc_text(&name, &parameters, &[], &form)?,
+        )
+    };
+    let library = clr_sim::fmu::find_library().map_err(|e| CliError::Input(e.to_string()))?;
+    let c = clr_sim::fmu::write(out, (&file, &src), req, &library)
+        .map_err(|e| CliError::Input(e.to_string()))?;
+    let names = |v: &[clr_sim::fmu::VariableConfig]| {
+        v.iter()
+            .map(|x| x.name.as_str())
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    eprintln!(
+        "clr: wrote {} (FMI 3.0 co-simulation, model `{}`)\n  inputs ({}): {}\n  outputs ({}): \
+         {}\n  parameters ({}): {}\n  default experiment: {} s to {} s, step {} s, tolerance {}",
+        out.display(),
+        c.model_name,
+        c.inputs.len(),
+        names(&c.inputs),
+        c.outputs.len(),
+        names(&c.outputs),
+        c.parameters.len(),
+        c.parameters
+            .iter()
+            .map(|p| p.path.as_str())
+            .collect::<Vec<_>>()
+            .join(", "),
+        c.experiment[0],
+        c.experiment[1],
+        c.experiment[2],
+        c.experiment[3],
+    );
+    Ok(())
+}
+
 /// The complete model of a built-in run as a model file (`clr_models::catalog::export`), with
 /// a header naming the built-in, the overrides `set` and run settings it came from, and every
 /// parameter (commented out).

@@ -224,6 +224,28 @@ enum Command {
         #[arg(long, short = 'o', value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// Write a co-simulation FMU (FMI 3.0) of a planar model file or built-in model: its
+    /// `[[input]]`s as inputs, its `[[measure]]` columns (or the columns named) as outputs and
+    /// the fields named with --parameter as parameters (docs/fmu.md).
+    Fmu {
+        /// Model file, or a built-in model name (its exported file).
+        model: String,
+        /// The FMU to write (e.g. model.fmu).
+        #[arg(long, short = 'o', value_name = "FILE")]
+        out: PathBuf,
+        /// Output columns, comma-separated (default: the [[measure]] columns, or every
+        /// column in a model without measures).
+        #[arg(long, value_delimiter = ',', value_name = "COLUMNS")]
+        outputs: Option<Vec<String>>,
+        /// A model-file field made an FMU parameter, as a --set path (repeatable), e.g.
+        /// `clearance.B.clearance`; fixed: set before the end of initialization.
+        #[arg(long = "parameter", value_name = "PATH")]
+        parameters: Vec<String>,
+        /// The default experiment's communication step, s (default: the file's output
+        /// interval).
+        #[arg(long, value_name = "S")]
+        step_size: Option<f64>,
+    },
 }
 
 /// A failure of a command, with its exit code.
@@ -319,6 +341,21 @@ pub(crate) fn main() -> ExitCode {
                 builtin,
             },
             out.as_deref(),
+        ),
+        Command::Fmu {
+            model,
+            out,
+            outputs,
+            parameters,
+            step_size,
+        } => job::fmu_command(
+            &model,
+            &out,
+            &clr_sim::fmu::FmuRequest {
+                outputs,
+                parameters,
+                step_size,
+            },
         ),
     };
     match r {

@@ -18,7 +18,7 @@
 mod builtin;
 pub mod locate;
 mod model;
-mod overrides;
+pub(crate) mod overrides;
 mod parse;
 pub mod run;
 mod spatial;

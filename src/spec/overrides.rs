@@ -176,8 +176,62 @@ pub fn apply_json_override(
 /// # Errors
 /// [`SpecError`] naming the part of the path that does not exist.
 pub(crate) fn set_toml(root: &mut toml::Table, a: &Assignment) -> Result<(), SpecError> {
-    let err = |m: String| SpecError::plain("--set", &a.path, m);
-    let parts: Vec<&str> = a.path.split('.').collect();
+    let (table, last) = walk_mut(root, &a.path)?;
+    table.insert(last.to_string(), a.value.clone());
+    Ok(())
+}
+
+/// The value a `--set` path names in a model file's table (not defaults: the field must be
+/// written in the file).
+///
+/// # Errors
+/// A message naming the missing part.
+pub(crate) fn get_toml<'a>(root: &'a toml::Table, path: &str) -> Result<&'a toml::Value, String> {
+    let mut copy = root.clone();
+    let (_, last) = walk_mut(&mut copy, path).map_err(|e| e.to_string())?;
+    // the walk succeeded on the copy: follow the same parts on the original
+    let mut v: Option<&toml::Value> = None;
+    let mut table = root;
+    let parts: Vec<&str> = path.split('.').collect();
+    let mut k = 0;
+    while k + 1 < parts.len() {
+        match table.get(parts[k]) {
+            Some(toml::Value::Table(t)) => table = t,
+            Some(toml::Value::Array(items)) => {
+                k += 1;
+                let sel = parts[k];
+                let item = items
+                    .iter()
+                    .find(|i| i.get("name").and_then(|n| n.as_str()) == Some(sel))
+                    .or_else(|| sel.parse::<usize>().ok().and_then(|i| items.get(i)));
+                match item {
+                    Some(toml::Value::Table(t)) => table = t,
+                    _ => break,
+                }
+            }
+            _ => break,
+        }
+        k += 1;
+    }
+    if k + 1 == parts.len() {
+        v = table.get(last);
+    }
+    v.ok_or_else(|| {
+        format!(
+            "`{path}` is not written in the model file; write its value there to make it a \
+             parameter"
+        )
+    })
+}
+
+/// The table holding the last part of `path` (tables on the way are created; array items are
+/// chosen by `name` or index) and that last part.
+fn walk_mut<'a, 'p>(
+    root: &'a mut toml::Table,
+    path: &'p str,
+) -> Result<(&'a mut toml::Table, &'p str), SpecError> {
+    let err = |m: String| SpecError::plain("--set", path, m);
+    let parts: Vec<&str> = path.split('.').collect();
     let (last, init) = parts.split_last().expect("paths are non-empty");
     let mut table = root;
     let mut k = 0;
@@ -219,8 +273,7 @@ pub(crate) fn set_toml(root: &mut toml::Table, a: &Assignment) -> Result<(), Spe
         };
         k += 1;
     }
-    table.insert(last.to_string(), a.value.clone());
-    Ok(())
+    Ok((table, last))
 }
 
 #[cfg(test)]

@@ -43,6 +43,37 @@ impl CoSimState {
     pub fn time(&self) -> f64 {
         self.t
     }
+
+    /// As numbers: t, the state's length and the state, the inputs' count and five numbers
+    /// each (to serialize a state, as an FMU does).
+    pub fn to_words(&self) -> Vec<f64> {
+        let mut w = vec![self.t, self.y.len() as f64];
+        w.extend_from_slice(&self.y);
+        w.push(self.inputs.len() as f64);
+        for s in &self.inputs {
+            w.extend_from_slice(&s.to_words());
+        }
+        w
+    }
+
+    /// Read back [`CoSimState::to_words`]; `None` when the numbers are not such a state.
+    pub fn from_words(w: &[f64]) -> Option<Self> {
+        let count = |x: f64| (x >= 0.0 && x.fract() == 0.0 && x < 1e9).then_some(x as usize);
+        let (&t, rest) = w.split_first()?;
+        let (&n, rest) = rest.split_first()?;
+        let n = count(n)?;
+        let y = rest.get(..n)?.to_vec();
+        let (&ni, rest) = rest.get(n..)?.split_first()?;
+        let ni = count(ni)?;
+        if rest.len() != 5 * ni {
+            return None;
+        }
+        let inputs = rest
+            .chunks_exact(5)
+            .map(|c| SavedInput::from_words([c[0], c[1], c[2], c[3], c[4]]))
+            .collect::<Option<Vec<_>>>()?;
+        Some(CoSimState { t, y, inputs })
+    }
 }
 
 /// Position tolerance of the projection after an input jumps, m or rad.

@@ -192,6 +192,36 @@ impl InputCell {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SavedInput(Source);
 
+impl SavedInput {
+    /// As five numbers (kind, then the held value or the ramp's t0, v0, t1, v1).
+    pub fn to_words(self) -> [f64; 5] {
+        match self.0 {
+            Source::Default => [0.0; 5],
+            Source::Held(v) => [1.0, v, 0.0, 0.0, 0.0],
+            Source::Ramp { t0, v0, t1, v1 } => [2.0, t0, v0, t1, v1],
+        }
+    }
+    /// Read back [`SavedInput::to_words`]; `None` for an unknown kind.
+    pub fn from_words(w: [f64; 5]) -> Option<Self> {
+        // the kinds are the small integers to_words writes, exact in f64
+        let kind = w[0] as i64;
+        if kind as f64 != w[0] {
+            return None;
+        }
+        Some(SavedInput(match kind {
+            0 => Source::Default,
+            1 => Source::Held(w[1]),
+            2 => Source::Ramp {
+                t0: w[1],
+                v0: w[2],
+                t1: w[3],
+                v1: w[4],
+            },
+            _ => return None,
+        }))
+    }
+}
+
 /// The inputs of a compiled model, in the order of the `[[input]]` sections.
 #[derive(Debug, Clone, Default)]
 pub struct InputBank {
