@@ -174,6 +174,7 @@ fn base_for(section: &str, kind: Option<&str>) -> Option<&'static str> {
         ("clearance", Some("translational")) => "tests/data/slider_in_guide.toml",
         ("clearance", Some("slider_on_beam")) => "models/guide.toml",
         ("metric", _) => "models/examples/four_bar_measures.toml",
+        ("input", _) => "models/examples/slider_crank_fmu.toml",
         _ => return None,
     })
 }

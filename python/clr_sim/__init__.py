@@ -16,7 +16,7 @@ import os
 import warnings as _warnings
 from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
 
-from . import _native, contact, errors, inertia, shapes, spatial
+from . import _native, contact, errors, fmu, inertia, shapes, spatial
 from .contact import FrictionLaw, JournalJoint, NormalLaw, RevoluteJoint
 from .errors import (
     ClrError,
@@ -45,6 +45,7 @@ __all__ = [
     "friction",
     "motion",
     "shapes",
+    "fmu",
     "simulate",
     "sweep",
     "Result",

@@ -150,7 +150,9 @@ def friction(law: str = "none", **params: Any) -> Dict[str, Any]:
 def motion(kind: str, **params: Any) -> Dict[str, Any]:
     """A time function (drivers' ``motion``, actuators' ``force``, torques): ``constant``
     (``value``), ``linear`` (``initial``, ``rate``), ``ramp``, ``sine``, ``polynomial``,
-    ``table``, ``sum``, ``product`` (docs/model-file.md, "Time functions")."""
+    ``table``, ``sum``, ``product``, or ``input`` (``name``: the value of an
+    :meth:`Model.input`, set by a co-simulation master) (docs/model-file.md, "Time
+    functions")."""
     return {"type": _text("motion.type", kind, "the kind (constant, linear, sine, ...)"), **params}
 
 
@@ -894,6 +896,16 @@ class Model:
         twin records."""
         return self._add("measure", "deviation", name, of=list(of))
 
+    def input(
+        self, name: str, *, default: Optional[Table] = None, description: Optional[str] = None
+    ) -> "Model":
+        """``[[input]]``: a named real input that forces, torques, actuators and drivers take
+        as ``motion("input", name=...)``; its value is the time function ``default``
+        (default constant 0, in the unit of what it drives: N, N·m, m or rad) until a
+        co-simulation master sets it (an FMU of the model, :func:`clr_sim.fmu.export`).
+        ``description`` is written into the FMU."""
+        return self._add("input", None, name, default=default, description=description)
+
     def twin(self, *, intervals: Optional[int] = None) -> "Model":
         """``[twin]``: the ideal-joint twin of the deviation measures records at ``intervals``
         equal intervals (default: those of :meth:`output`, 1000 with ``every_step`` only)."""
@@ -1361,6 +1373,7 @@ METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("measure", "deviation"): "measure_deviation",
     ("metric", None): "metric",
     ("twin", None): "twin",
+    ("input", None): "input",
 }
 
 

@@ -22,6 +22,7 @@ use pyo3::types::PyDict;
 
 mod convert;
 mod errors;
+mod fmu;
 mod inertia;
 mod journal;
 mod models;
@@ -559,6 +560,7 @@ fn native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(models::run_study, m)?)?;
     m.add_function(wrap_pyfunction!(models::element_kinds, m)?)?;
     m.add_function(wrap_pyfunction!(models::kind_fields, m)?)?;
+    m.add_function(wrap_pyfunction!(fmu::fmu_export, m)?)?;
     inertia::register(m)?;
     Ok(())
 }

@@ -456,6 +456,9 @@ fn names_an_undefined_item(root: toml::Table, message: &str) -> bool {
                 // a measure or metric naming a column of an item (joint, contact element,
                 // measure) not defined yet
                 || message.starts_with("the model writes no column")
+                // an input referred to before its [[input]], or declared before its user
+                || message.starts_with("no [[input]] is named")
+                || message.contains("is declared but nothing refers to it")
                 || message.starts_with("the run writes no column")
                 || message.ends_with("the run writes no such column")
         }

@@ -239,8 +239,8 @@ def _generic_model_files():
     return [f for f in files if "builtin" not in f.read_text()]
 
 
-_ITEMS = ("body", "point", "beam", "flexible_body", "joint", "driver", "force", "shape",
-          "clearance", "measure", "metric")
+_ITEMS = ("body", "point", "beam", "flexible_body", "input", "joint", "driver", "force",
+          "shape", "clearance", "measure", "metric")
 _TAGGED = ("joint", "driver", "force", "clearance", "measure")
 
 
