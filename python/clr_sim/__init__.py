@@ -102,8 +102,17 @@ def simulate(
     set: Optional[Mapping[str, Any]] = None,
     check: bool = True,
     strict: bool = False,
+    inputs: Optional[Mapping[str, Any]] = None,
 ) -> Result:
     """Run ``model`` as ``clr run`` does (without writing files; the GIL is released).
+
+    ``inputs`` maps the names of load inputs (:meth:`Model.input` driving a force, torque or
+    actuator force) to Python callables ``f(t, measures) -> value`` (N or N·m): a controller or
+    a custom force prototyped in Python, called at every evaluation of the forces with the time
+    (s) and a dict of the model's position- and velocity-level measure columns
+    (``"flap.angle"``, ``"tip.vx"``, ...) at the evaluated state. Each call takes the GIL and
+    costs some microseconds (docs/fmu.md); the FMU is the fast path. An exception inside the
+    callable stops the run and is raised as the cause of the :class:`SimulationError`.
 
     ``t_end`` (s) and ``rtol`` override the model's end time and relative tolerance (``rtol``
     also sets ``atol`` = 1e-3·rtol, reported in ``notes``); ``set`` maps dotted names to values
@@ -121,6 +130,9 @@ def simulate(
     ``result`` is complete.
     """
     job = _job(model, set, t_end, rtol)
+    errors: list = []
+    if inputs:
+        job = _with_inputs(job, inputs, errors)
     try:
         raw = job.run(strict)
     except FieldError as e:
@@ -132,8 +144,36 @@ def simulate(
     for w in result.warnings:
         _warnings.warn(f"{w['field']}: {w['message']}", PlausibilityWarning, stacklevel=2)
     if check and result.error is not None:
+        if errors:
+            raise SimulationError(
+                f"an input function raised {type(errors[0]).__name__}: {errors[0]}", result
+            ) from errors[0]
         raise SimulationError(result.error, result)
     return result
+
+
+def _with_inputs(job, inputs: Mapping[str, Any], errors: list):
+    """``job`` with each load input of ``inputs`` a Python callable f(t, measures)."""
+    try:
+        names = job.feedback_columns()
+    except ValueError as e:
+        raise ModelError(str(e), field="inputs") from None
+    for name, f in inputs.items():
+        if not callable(f):
+            raise ModelError(
+                f"input {name!r}: give a callable f(t, measures) -> value, got "
+                f"{type(f).__name__}",
+                field=f"inputs.{name}",
+            )
+
+        def call(t, values, f=f):
+            return f(t, dict(zip(names, values)))
+
+        try:
+            job = job.with_input_function(str(name), call, errors)
+        except ValueError as e:
+            raise ModelError(str(e), field=f"inputs.{name}") from None
+    return job
 
 
 def sweep(

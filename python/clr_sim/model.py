@@ -48,7 +48,7 @@ Table = Mapping[str, Any]
 # The sections of a model file, in the order `clr export` writes them.
 _LISTS = (
     "body", "point", "beam", "flexible_body", "joint", "driver", "force", "shape", "clearance",
-    "measure", "metric",
+    "input", "measure", "metric",
 )
 _TABLES = ("model", "twin", "solver", "output")
 

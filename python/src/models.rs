@@ -255,6 +255,65 @@ impl JobCore {
         }
     }
 
+    /// The feedback columns a state-dependent input function receives
+    /// (`clr_mbd::Model::feedback_columns`); a generic model file only.
+    fn feedback_columns(&self, py: Python<'_>) -> PyResult<Vec<String>> {
+        let Job::Generic(s) = &self.job else {
+            return Err(pyo3::exceptions::PyValueError::new_err(
+                "inputs given as functions need a planar model file or Model (not a built-in \
+                 name or a spatial model)",
+            ));
+        };
+        let built = s
+            .build()
+            .map_err(|e| run_error(py, &run::RunError::from(e)))?;
+        Ok(built.model.feedback_columns())
+    }
+
+    /// This job with the load input `name` made the Python callable `f(t, values)` (values: a
+    /// tuple in the order of `feedback_columns`), called with the GIL at every evaluation of
+    /// the forces. An
+    /// exception inside is kept in `errors` (a list) and the value becomes NaN, which stops the
+    /// run.
+    fn with_input_function(
+        &self,
+        name: &str,
+        f: Py<PyAny>,
+        errors: Py<pyo3::types::PyList>,
+    ) -> PyResult<JobCore> {
+        let mut job = self.job.clone();
+        let Job::Generic(s) = &mut job else {
+            return Err(pyo3::exceptions::PyValueError::new_err(
+                "inputs given as functions need a planar model file or Model (not a built-in \
+                 name or a spatial model)",
+            ));
+        };
+        let func: clr_sim::mbd::input::InputFn = std::sync::Arc::new(move |t, values| {
+            Python::attach(|py| {
+                let args = (
+                    t,
+                    pyo3::types::PyTuple::new(py, values.iter().copied()).ok(),
+                );
+                match f.call1(py, args).and_then(|v| v.extract::<f64>(py)) {
+                    Ok(v) => v,
+                    Err(e) => {
+                        let errs = errors.bind(py);
+                        if errs.is_empty() {
+                            let _ = errs.append(e.value(py));
+                        }
+                        f64::NAN
+                    }
+                }
+            })
+        });
+        s.set_input_function(name, func);
+        Ok(JobCore {
+            job,
+            t_end: self.t_end,
+            rtol: self.rtol,
+        })
+    }
+
     /// The checked description as model-file text (every default written out), as `clr
     /// export` writes it; a built-in model as its `[model] builtin` form with every parameter.
     fn to_toml(&self, py: Python<'_>) -> PyResult<String> {

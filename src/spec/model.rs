@@ -49,6 +49,19 @@ pub struct ModelSpec {
     /// The model compiled by the check, taken by the first [`ModelSpec::build`] (clones share
     /// it; later builds compile again).
     compiled: Compiled,
+    /// Inputs given as functions of the state, applied by every build
+    /// ([`ModelSpec::set_input_function`]).
+    input_fns: InputFns,
+}
+
+/// Inputs given as functions (not `Debug`: closures).
+#[derive(Clone, Default)]
+struct InputFns(Vec<(String, clr_mbd::input::InputFn)>);
+
+impl std::fmt::Debug for InputFns {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "InputFns({})", self.0.len())
+    }
 }
 
 /// The compiled model kept from the check (not `Debug`, not `Clone`: shared by clones).
@@ -98,6 +111,7 @@ impl ModelSpec {
             notes,
             desc: Box::new(ModelDesc::default()),
             compiled: Compiled::default(),
+            input_fns: InputFns::default(),
         };
         spec.options = desc
             .sim_options()
@@ -231,10 +245,23 @@ impl ModelSpec {
             Some(m) => m,
             None => self.desc.compile().map_err(|e| self.model_error(&e))?,
         };
+        let mut model = model;
+        for (name, f) in &self.input_fns.0 {
+            model
+                .set_input_function(name, f.clone())
+                .map_err(|e| SpecError::plain(&self.file, "input", e.to_string()))?;
+        }
         Ok(Built {
             model,
             options: self.options.clone(),
         })
+    }
+
+    /// Make the load input `name` a function of time and the feedback measures at every build
+    /// ([`clr_mbd::Model::set_input_function`]; checked when built).
+    pub fn set_input_function(&mut self, name: &str, f: clr_mbd::input::InputFn) {
+        self.input_fns.0.retain(|(n, _)| n != name);
+        self.input_fns.0.push((name.to_string(), f));
     }
 
     /// A clr-mbd error as a [`SpecError`], placed at the field or item it names.

@@ -395,3 +395,83 @@ impl PartialEq for BoundInput {
         Arc::ptr_eq(&self.0, &other.0)
     }
 }
+
+/// A load's value as a function of time (s) and the feedback measures' values (in the order of
+/// [`crate::Model::feedback_columns`]): a controller or a custom force written in Rust or
+/// Python ([`crate::Model::set_input_function`]). Called at every evaluation of the forces.
+pub type InputFn = Arc<dyn Fn(f64, &[f64]) -> f64 + Send + Sync>;
+
+/// The inputs given as functions of the state, and the position- and velocity-level measures
+/// they read.
+#[derive(Clone, Default)]
+pub(crate) struct Feedback {
+    fns: Vec<(usize, InputFn)>,
+    measures: Vec<usize>,
+    buf: Vec<f64>,
+    zeros: Vec<f64>,
+}
+
+impl std::fmt::Debug for Feedback {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Feedback({} functions)", self.fns.len())
+    }
+}
+
+/// Whether a measure can be evaluated inside the right-hand side: positions and velocities of
+/// points and angles, distances and their rates (not accelerations, reactions, contact values,
+/// energies or momentum, which need the solved accelerations or a whole row).
+pub(crate) fn is_feedback(m: &crate::measure::runtime::CompiledMeasure) -> bool {
+    use crate::measure::runtime::{MeasureEl as E, Quantity as Q};
+    match &m.el {
+        E::Point { quantity, .. } | E::Angle { quantity, .. } => *quantity != Q::Acceleration,
+        E::Distance { .. } => true,
+        _ => false,
+    }
+}
+
+impl Feedback {
+    pub(crate) fn is_empty(&self) -> bool {
+        self.fns.is_empty()
+    }
+
+    /// The names of the inputs given as functions.
+    pub(crate) fn names(&self, bank: &InputBank) -> Vec<String> {
+        self.fns
+            .iter()
+            .map(|(k, _)| bank.cells[*k].name.clone())
+            .collect()
+    }
+
+    /// Make input `cell` the function `f` of the measures `measures` (indices of the model's
+    /// measures, all [`is_feedback`]).
+    pub(crate) fn set(&mut self, cell: usize, f: InputFn, measures: Vec<usize>) {
+        self.fns.retain(|(k, _)| *k != cell);
+        self.fns.push((cell, f));
+        self.measures = measures;
+    }
+
+    /// Evaluate the feedback measures at (t, q, q̇) and put each function's value into its
+    /// input. Allocation-free after the first call.
+    pub(crate) fn update(
+        &mut self,
+        t: f64,
+        (frames, q, qd): (&[crate::runtime::Frame], &[f64], &[f64]),
+        measures: &[crate::measure::runtime::CompiledMeasure],
+        bank: &InputBank,
+    ) {
+        self.zeros.resize(q.len(), 0.0);
+        self.buf.clear();
+        let row = crate::measure::runtime::Row {
+            frames,
+            q,
+            qd,
+            qdd: &self.zeros,
+        };
+        for &k in &self.measures {
+            measures[k].write(&row, &mut self.buf, 0);
+        }
+        for (k, f) in &self.fns {
+            bank.cells[*k].put(Source::Held(f(t, &self.buf)));
+        }
+    }
+}

@@ -98,9 +98,12 @@ impl NewtonWs {
 
     /// Whether the integrator uses the reduced analytic Newton systems for `model`: not with
     /// [`JacobianMode::FiniteDifference`], nor with LuGre bristle states (their ż rows are not in
-    /// [`Jacobians`]).
+    /// [`Jacobians`]), nor with inputs that are functions of the state (their derivatives are
+    /// not known).
     pub fn is_reduced(&self, model: &Model) -> bool {
-        self.mode == JacobianMode::Analytic && model.bristles.len() == 0
+        self.mode == JacobianMode::Analytic
+            && model.bristles.len() == 0
+            && model.feedback.is_empty()
     }
 }
 

@@ -84,6 +84,17 @@ impl Model {
                 self.n_bristle_states()
             ));
         }
+        if opts.solver == SolverKind::Ndf
+            && opts.jacobian == JacobianMode::Analytic
+            && !self.feedback.is_empty()
+        {
+            notes.push(format!(
+                "NDF differenced the whole right-hand side for its Newton matrix: inputs {} are \
+                 functions of the state (Model::set_input_function), whose derivatives are not \
+                 known",
+                self.feedback.names(&self.inputs).join(", ")
+            ));
+        }
         notes
     }
 

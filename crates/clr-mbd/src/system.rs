@@ -126,6 +126,9 @@ pub struct Model {
     pub(crate) input_warnings: Vec<crate::initial_data::Warning>,
     /// The `[[input]]` cells the elements are bound to ([`Model::inputs`]).
     pub(crate) inputs: crate::input::InputBank,
+    /// Inputs given as functions of time and the feedback measures
+    /// ([`Model::set_input_function`]).
+    pub(crate) feedback: crate::input::Feedback,
     pub(crate) gravity: Vector2<f64>,
     pub(crate) memory: ContactMemory,
     pub(crate) alpha: f64,
@@ -365,6 +368,10 @@ impl Model {
     /// Generalized forces Q at (t, q, q̇) into the workspace; contact reports updated. Uses the
     /// contact memory (tentative onsets for contacts closed in the committed memory).
     pub(crate) fn eval_forces(&mut self, t: f64, q: &[f64], qd: &[f64]) {
+        if !self.feedback.is_empty() {
+            self.feedback
+                .update(t, (&self.frames, q, qd), &self.measures, &self.inputs);
+        }
         self.qf.fill(0.0);
         for (k, b) in self.bodies.iter().enumerate() {
             self.qf[3 * k] += b.mass * self.gravity.x;
@@ -863,5 +870,54 @@ impl OdeSystem for Model {
 
     fn event_terminal(&self, _i: usize) -> bool {
         true
+    }
+}
+
+impl Model {
+    /// The measure columns a state-dependent input function receives, in order: the
+    /// position- and velocity-level `[[measure]]` columns (points, angles, distances and their
+    /// rates).
+    pub fn feedback_columns(&self) -> Vec<String> {
+        self.measures
+            .iter()
+            .filter(|m| crate::input::is_feedback(m))
+            .flat_map(|m| m.columns.iter().map(|(c, _)| c.clone()))
+            .collect()
+    }
+
+    /// Make the load input `name` the function `f(t, feedback)` of time (s) and the values of
+    /// [`Model::feedback_columns`] at the evaluated state, called at every evaluation of the
+    /// forces (a controller or a custom force). NDF then differences the whole right-hand side
+    /// for its Newton matrix (noted in the run's notes): the function's derivatives are not
+    /// known.
+    ///
+    /// # Errors
+    /// [`MbdError::Options`] for an unknown input or a driver's motion (which needs the
+    /// derivatives of its function).
+    pub fn set_input_function(
+        &mut self,
+        name: &str,
+        f: crate::input::InputFn,
+    ) -> Result<(), MbdError> {
+        let cells = self.inputs.cells();
+        let Some(k) = cells.iter().position(|c| c.name() == name) else {
+            let names: Vec<&str> = cells.iter().map(|c| c.name()).collect();
+            return Err(MbdError::Options(format!(
+                "no input `{name}`{}",
+                crate::field::suggestion(name, names.iter().copied())
+            )));
+        };
+        if cells[k].is_motion() {
+            return Err(MbdError::Options(format!(
+                "input `{name}` drives a motion, whose first and second derivatives the \
+                 integrator needs: a function of the state can drive loads only (a force, \
+                 torque or actuator force)"
+            )));
+        }
+        let measures = (0..self.measures.len())
+            .filter(|&i| crate::input::is_feedback(&self.measures[i]))
+            .collect();
+        self.feedback.set(k, f, measures);
+        Ok(())
     }
 }

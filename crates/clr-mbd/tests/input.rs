@@ -150,3 +150,41 @@ fn input_mistakes_are_refused_where_they_are() {
     ));
     assert!(e.contains("N·m") && e.contains("second [[input]]"), "{e}");
 }
+
+/// A torque input given as a Rust function of the measured angle and rate (a PD law):
+/// I θ̈ + c θ̇ + k θ = 0 from θ(0) = 0, ω(0) = ω0, whose closed form is
+/// θ = (ω0/ωd) e^{−ζωn t} sin ωd t (tolerance 1e-6 rad at rtol 1e-10).
+#[test]
+fn torque_input_as_a_function_of_the_state_matches_the_damped_oscillator() {
+    let text = DISC
+        .replace("angular_velocity = 0.0", "angular_velocity = 2.0")
+        .replace(
+            "[solver]",
+            "[[measure]]\ntype = \"angle\"\nname = \"th\"\nbody = \"disc\"\n\n[[measure]]\n\
+             type = \"angular_velocity\"\nname = \"w\"\nbody = \"disc\"\n\n[solver]",
+        )
+        .replace("t_end = 1.0", "t_end = 2.0");
+    let d = desc(&text);
+    let mut m = d.compile().unwrap();
+    assert_eq!(m.feedback_columns(), ["th.angle", "w.omega"]);
+    let (k, c, inertia, w0) = (8.0, 0.6, 0.5, 2.0_f64);
+    m.set_input_function("u", std::sync::Arc::new(move |_t, s| -k * s[0] - c * s[1]))
+        .unwrap();
+    let r = m.simulate(&d.sim_options().unwrap()).unwrap();
+    let (wn, zeta) = ((k / inertia).sqrt(), c / (2.0 * (k * inertia).sqrt()));
+    let wd = wn * (1.0 - zeta * zeta).sqrt();
+    let (t, th) = (r.column("t").unwrap(), r.column("disc.theta").unwrap());
+    for (t, th) in t.iter().zip(&th) {
+        let reference = w0 / wd * (-zeta * wn * t).exp() * (wd * t).sin();
+        assert!(
+            (th - reference).abs() < 1e-6,
+            "θ({t}) = {th} vs {reference}"
+        );
+    }
+    assert!(r.notes.iter().any(|n| n.contains("functions of the state")));
+    let e = m
+        .set_input_function("v", std::sync::Arc::new(|_, _| 0.0))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("no input `v`"), "{e}");
+}

@@ -403,6 +403,7 @@ impl Compiler {
             measures,
             input_warnings: Vec::new(),
             inputs: crate::input::InputBank::default(),
+            feedback: crate::input::Feedback::default(),
             gravity,
             memory,
             alpha: DEFAULT_BAUMGARTE_ALPHA,
