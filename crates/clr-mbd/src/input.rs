@@ -280,13 +280,9 @@ fn bind_fn(
 ) -> Result<(), MbdError> {
     match f {
         TimeFn::Input { name, cell } => {
-            *cell = Some(BoundInput(cell_for(
-                name,
-                path,
-                (unit, motion),
-                descs,
-                bank,
-            )?));
+            let c: Arc<dyn crate::timefn::InputValue> =
+                cell_for(name, path, (unit, motion), descs, bank)?;
+            *cell = Some(crate::timefn::BoundInput(c));
             Ok(())
         }
         TimeFn::Sum { terms: v } | TimeFn::Product { factors: v } => v
@@ -386,13 +382,9 @@ pub(crate) fn finish(descs: &[InputDesc], bank: &mut InputBank) -> Result<(), Mb
     Ok(())
 }
 
-/// A bound input inside a [`TimeFn::Input`]: compares by identity (the same cell).
-#[derive(Debug, Clone)]
-pub struct BoundInput(pub(crate) Arc<InputCell>);
-
-impl PartialEq for BoundInput {
-    fn eq(&self, other: &Self) -> bool {
-        Arc::ptr_eq(&self.0, &other.0)
+impl crate::timefn::InputValue for InputCell {
+    fn value(&self, t: f64) -> [f64; 3] {
+        self.eval(t)
     }
 }
 

@@ -29,6 +29,23 @@ impl fmt::Debug for UserFn {
     }
 }
 
+/// The value of a named input at a time ([`crate::input::InputCell`] is the one kind): what a
+/// bound [`TimeFn::Input`] evaluates.
+pub trait InputValue: fmt::Debug + Send + Sync {
+    /// [u(t), u′(t), u″(t)].
+    fn value(&self, t: f64) -> [f64; 3];
+}
+
+/// A bound input inside a [`TimeFn::Input`]: compares by identity (the same cell).
+#[derive(Debug, Clone)]
+pub struct BoundInput(pub(crate) Arc<dyn InputValue>);
+
+impl PartialEq for BoundInput {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}
+
 /// A function of time f(t) with its first two derivatives, in the unit of what it drives
 /// (rad, m, N or N·m). In a model file: a table with `type` and the fields of the variant, e.g.
 /// `{ type = "linear", initial = 0.0, rate = 10.0 }`.
@@ -118,7 +135,7 @@ pub enum TimeFn {
         name: String,
         /// The compiled model's cell (not part of the file).
         #[serde(skip)]
-        cell: Option<crate::input::BoundInput>,
+        cell: Option<BoundInput>,
     },
     /// A Rust closure (opt-in; cannot be written to a model file).
     #[serde(skip)]
@@ -240,7 +257,7 @@ impl TimeFn {
                     a[2] * b[0] + 2.0 * a[1] * b[1] + a[0] * b[2],
                 ]
             }),
-            TimeFn::Input { cell: Some(c), .. } => c.0.eval(t),
+            TimeFn::Input { cell: Some(c), .. } => c.0.value(t),
             TimeFn::Input { cell: None, .. } => [f64::NAN; 3],
             TimeFn::Custom(f) => (f.0)(t),
         }
