@@ -1,4 +1,4 @@
-//! Co-simulation FMUs (FMI 3.0) of planar model files: what `clr fmu` and `clr.fmu.export`
+//! Co-simulation FMUs (FMI 3.0, or 2.0 on request) of planar model files: what `clr fmu` and `clr.fmu.export`
 //! write, and the configuration the FMU's runtime (the `clr-fmu` crate) reads back.
 //!
 //! An FMU is a zip archive holding `modelDescription.xml`, the runtime library
@@ -50,9 +50,22 @@ pub enum FmuError {
     },
 }
 
+/// The FMI version of an FMU: 3.0 (the default) or 2.0, for masters that read only 2.0. The
+/// runtime library is the same (it has both sets of functions).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum FmiVersion {
+    /// FMI 2.0 co-simulation.
+    V2,
+    /// FMI 3.0 co-simulation.
+    #[default]
+    V3,
+}
+
 /// What the FMU exposes besides the inputs.
 #[derive(Debug, Clone, Default)]
 pub struct FmuRequest {
+    /// FMI version (default 3.0).
+    pub fmi_version: FmiVersion,
     /// Output columns; `None`: the `[[measure]]` columns, or every column but `t` in a model
     /// without measures.
     pub outputs: Option<Vec<String>>,
@@ -178,7 +191,10 @@ pub fn plan(file: &str, src: &str, req: &FmuRequest) -> Result<(FmuConfig, Strin
         experiment: [t0, opts.t_end, step, opts.rtol],
     };
     config.token = token(src, &config);
-    let xml = model_description(&config, &spec.description);
+    let xml = match req.fmi_version {
+        FmiVersion::V3 => model_description(&config, &spec.description),
+        FmiVersion::V2 => model_description_v2(&config, &spec.description),
+    };
     Ok((config, xml))
 }
 
@@ -276,8 +292,9 @@ fn xml_escape(s: &str) -> String {
         .replace('"', "&quot;")
 }
 
-/// `modelDescription.xml` (FMI 3.0, co-simulation) of `c`.
-pub fn model_description(c: &FmuConfig, description: &str) -> String {
+/// The `UnitDefinitions` (every unit of a variable, and s) and `LogCategories` elements, the
+/// same in FMI 2.0 and 3.0.
+fn units_and_log_categories(c: &FmuConfig) -> String {
     let mut units: Vec<&str> = (c.inputs.iter().chain(&c.outputs))
         .map(|v| v.unit.as_str())
         .filter(|u| !u.is_empty())
@@ -285,6 +302,20 @@ pub fn model_description(c: &FmuConfig, description: &str) -> String {
         .collect();
     units.sort_unstable();
     units.dedup();
+    let mut x = String::from("  <UnitDefinitions>\n");
+    for u in units {
+        x.push_str(&format!("    <Unit name=\"{}\"/>\n", xml_escape(u)));
+    }
+    x.push_str(
+        "  </UnitDefinitions>\n  <LogCategories>\n    <Category name=\"logStatusError\"/>\n    \
+         <Category name=\"logStatusWarning\"/>\n    <Category name=\"logInfo\"/>\n  \
+         </LogCategories>\n",
+    );
+    x
+}
+
+/// `modelDescription.xml` (FMI 3.0, co-simulation) of `c`.
+pub fn model_description(c: &FmuConfig, description: &str) -> String {
     let mut x = String::new();
     x.push_str("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
     x.push_str(&format!(
@@ -301,15 +332,7 @@ pub fn model_description(c: &FmuConfig, description: &str) -> String {
          canSerializeFMUState=\"true\" hasEventMode=\"false\" \
          providesIntermediateUpdate=\"false\" canReturnEarlyAfterIntermediateUpdate=\"false\"/>\n"
     ));
-    x.push_str("  <UnitDefinitions>\n");
-    for u in units {
-        x.push_str(&format!("    <Unit name=\"{}\"/>\n", xml_escape(u)));
-    }
-    x.push_str("  </UnitDefinitions>\n");
-    x.push_str(
-        "  <LogCategories>\n    <Category name=\"logStatusError\"/>\n    <Category \
-         name=\"logStatusWarning\"/>\n    <Category name=\"logInfo\"/>\n  </LogCategories>\n",
-    );
+    x.push_str(&units_and_log_categories(c));
     let [t0, t1, h, tol] = c.experiment;
     x.push_str(&format!(
         "  <DefaultExperiment startTime=\"{t0:e}\" stopTime=\"{t1:e}\" stepSize=\"{h:e}\" \
@@ -374,6 +397,102 @@ pub fn model_description(c: &FmuConfig, description: &str) -> String {
     x
 }
 
+/// `modelDescription.xml` (FMI 2.0, co-simulation) of `c`: the same variables and value
+/// references as [`model_description`], as `ScalarVariable`s.
+pub fn model_description_v2(c: &FmuConfig, description: &str) -> String {
+    let mut x = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    x.push_str(&format!(
+        "<fmiModelDescription fmiVersion=\"2.0\" modelName=\"{}\" description=\"{}\" \
+         guid=\"{}\" generationTool=\"clr {}\" variableNamingConvention=\"flat\" \
+         numberOfEventIndicators=\"0\">\n",
+        xml_escape(&c.model_name),
+        xml_escape(description),
+        c.token,
+        env!("CARGO_PKG_VERSION"),
+    ));
+    x.push_str(&format!(
+        "  <CoSimulation modelIdentifier=\"{MODEL_IDENTIFIER}\" \
+         canHandleVariableCommunicationStepSize=\"true\" canGetAndSetFMUstate=\"true\" \
+         canSerializeFMUstate=\"true\"/>\n"
+    ));
+    x.push_str(&units_and_log_categories(c));
+    let [t0, t1, h, tol] = c.experiment;
+    x.push_str(&format!(
+        "  <DefaultExperiment startTime=\"{t0:e}\" stopTime=\"{t1:e}\" stepSize=\"{h:e}\" \
+         tolerance=\"{tol:e}\"/>\n  <ModelVariables>\n"
+    ));
+    let var = |x: &mut String, name: &str, vr: u32, attrs: &str, real: String| {
+        x.push_str(&format!(
+            "    <ScalarVariable name=\"{}\" valueReference=\"{vr}\" {attrs}>\n      \
+             <Real{real}/>\n    </ScalarVariable>\n",
+            xml_escape(name)
+        ));
+    };
+    let unit = |u: &str| {
+        if u.is_empty() {
+            String::new()
+        } else {
+            format!(" unit=\"{}\"", xml_escape(u))
+        }
+    };
+    var(
+        &mut x,
+        "time",
+        0,
+        "causality=\"independent\" variability=\"continuous\"",
+        " unit=\"s\"".into(),
+    );
+    for (k, v) in c.inputs.iter().enumerate() {
+        let attrs = format!(
+            "causality=\"input\" variability=\"continuous\" description=\"{}\"",
+            xml_escape(&v.description)
+        );
+        var(
+            &mut x,
+            &v.name,
+            c.input_vr(k),
+            &attrs,
+            format!("{} start=\"{:e}\"", unit(&v.unit), v.start),
+        );
+    }
+    for (k, v) in c.outputs.iter().enumerate() {
+        let attrs = "causality=\"output\" variability=\"continuous\" initial=\"calculated\"";
+        var(&mut x, &v.name, c.output_vr(k), attrs, unit(&v.unit));
+    }
+    for (k, p) in c.parameters.iter().enumerate() {
+        let attrs = format!(
+            "causality=\"parameter\" variability=\"fixed\" initial=\"exact\" \
+             description=\"model-file field {}\"",
+            xml_escape(&p.path)
+        );
+        var(
+            &mut x,
+            &p.path,
+            c.parameter_vr(k),
+            &attrs,
+            format!(" start=\"{:e}\"", p.start),
+        );
+    }
+    // 1-based indices in ModelVariables: time, the inputs, then the outputs
+    let first_output = 2 + c.inputs.len();
+    x.push_str("  </ModelVariables>\n  <ModelStructure>\n    <Outputs>\n");
+    for k in 0..c.outputs.len() {
+        x.push_str(&format!(
+            "      <Unknown index=\"{}\"/>\n",
+            first_output + k
+        ));
+    }
+    x.push_str("    </Outputs>\n    <InitialUnknowns>\n");
+    for k in 0..c.outputs.len() {
+        x.push_str(&format!(
+            "      <Unknown index=\"{}\"/>\n",
+            first_output + k
+        ));
+    }
+    x.push_str("    </InitialUnknowns>\n  </ModelStructure>\n</fmiModelDescription>\n");
+    x
+}
+
 /// The runtime library: `CLR_FMU_LIBRARY`, else `libclr_fmu.so` next to the running program.
 ///
 /// # Errors
@@ -413,6 +532,10 @@ pub fn write(
     library: &Path,
 ) -> Result<FmuConfig, FmuError> {
     let (config, xml) = plan(file, src, req)?;
+    let platform = match req.fmi_version {
+        FmiVersion::V3 => "x86_64-linux",
+        FmiVersion::V2 => "linux64",
+    };
     let io = |e: std::io::Error| FmuError::Io {
         path: out.display().to_string(),
         message: e.to_string(),
@@ -422,7 +545,7 @@ pub fn write(
     let entries: [(String, &[u8]); 4] = [
         ("modelDescription.xml".into(), xml.as_bytes()),
         (
-            format!("binaries/x86_64-linux/{MODEL_IDENTIFIER}.so"),
+            format!("binaries/{platform}/{MODEL_IDENTIFIER}.so"),
             lib.as_slice(),
         ),
         (format!("resources/{MODEL_RESOURCE}"), src.as_bytes()),

@@ -177,4 +177,5 @@ def fmu_export(
     outputs: Optional[List[str]] = None,
     parameters: List[str] = ...,
     step_size: Optional[float] = None,
+    fmi_version: int = 3,
 ) -> str: ...

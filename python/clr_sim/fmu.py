@@ -1,4 +1,4 @@
-"""Co-simulation FMUs (FMI 3.0) of planar models: :func:`export` writes what ``clr fmu`` writes
+"""Co-simulation FMUs (FMI 3.0, or 2.0 on request) of planar models: :func:`export` writes what ``clr fmu`` writes
 (docs/fmu.md).
 
 The FMU embeds the clr runtime library (``libclr_fmu.so``, built by ``cargo build --release -p
@@ -63,6 +63,7 @@ def export(
     parameters: Sequence[str] = (),
     step_size: Optional[float] = None,
     library: Optional[Union[str, "os.PathLike[str]"]] = None,
+    fmi_version: int = 3,
 ) -> Dict[str, Any]:
     """Write the co-simulation FMU (FMI 3.0) of ``model`` (a :class:`~clr_sim.Model` or the
     path of a planar model file) to ``path``.
@@ -71,7 +72,8 @@ def export(
     without measures); ``parameters``: model-file fields as ``--set`` paths
     (``"clearance.J4.journal_radius"``); ``step_size``: the default experiment's
     communication step, s (default the model's output interval); ``library``: the runtime
-    library (:func:`find_library`).
+    library (:func:`find_library`); ``fmi_version``: 3 (default) or 2 for masters that read only
+    FMI 2.0 (the same runtime and numbers).
 
     Returns the FMU's configuration (inputs, outputs, parameters with value references in that
     order after ``time`` = 0, the default experiment). Raises :class:`~clr_sim.ModelError`
@@ -94,6 +96,7 @@ def export(
             None if outputs is None else list(outputs),
             list(parameters),
             step_size,
+            fmi_version,
         )
     except ValueError as e:
         raise ModelError(str(e)) from None

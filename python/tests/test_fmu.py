@@ -77,6 +77,49 @@ def test_fmpy_validates_the_fmus(tmp_path, model, extra):
     assert md.fmiVersion == "3.0" and md.coSimulation is not None
 
 
+def test_fmi2_fmu_validates_and_steps_as_the_fmi3_one(tmp_path):
+    from fmpy.validation import validate_fmu
+
+    model = EXAMPLES / "flap_fmu.toml"
+    v2 = tmp_path / "v2"
+    v2.mkdir()
+    f2 = _fmu(v2, model, "--fmi-version", "2")
+    f3 = _fmu(tmp_path, model)
+    assert validate_fmu(str(f2)) == []
+    assert fmpy.read_model_description(str(f2)).fmiVersion == "2.0"
+    runs = [
+        fmpy.simulate_fmu(str(f), stop_time=0.05, output_interval=1e-3,
+                          start_values={"actuator_position": 0.251})
+        for f in (f2, f3)
+    ]
+    # the same runtime and instance behind both: equal numbers
+    assert np.array_equal(runs[0]["flap.angle"], runs[1]["flap.angle"])
+    # a NaN input is an fmi2Error with a message
+    from fmpy.fmi1 import FMICallException
+    from fmpy import fmi2
+
+    md = fmpy.read_model_description(str(f2))
+    s = fmi2.FMU2Slave(guid=md.guid, unzipDirectory=fmpy.extract(str(f2)),
+                       modelIdentifier=md.coSimulation.modelIdentifier, instanceName="v2")
+    messages = []
+    callbacks = fmi2.fmi2CallbackFunctions()
+    callbacks.logger = fmi2.fmi2CallbackLoggerTYPE(lambda *a: messages.append(a))
+    callbacks.allocateMemory = fmi2.defaultCallbacks.allocateMemory
+    callbacks.freeMemory = fmi2.defaultCallbacks.freeMemory
+    s.instantiate(callbacks=callbacks, loggingOn=True)
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    with pytest.raises(FMICallException) as e:
+        s.setReal([vr["actuator_position"]], [float("nan")])
+    assert e.value.status == 3
+    assert any(b"must be finite" in m[-1] for m in messages), messages
+    s.doStep(0.0, 1e-3)
+    s.terminate()
+    s.freeInstance()
+
+
 def test_python_export_writes_the_same_fmu_as_the_command(tmp_path):
     _clr()  # skips without the library
     os.environ.setdefault("CLR_BIN", _clr())

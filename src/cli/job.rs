@@ -171,8 +171,27 @@ pub(crate) fn export_command(
 pub(crate) fn fmu_command(
     model: &str,
     out: &Path,
-    req: &clr_sim::fmu::FmuRequest,
+    outputs: Option<Vec<String>>,
+    parameters: Vec<String>,
+    step_size: Option<f64>,
+    fmi_version: u8,
 ) -> Result<(), CliError> {
+    use clr_sim::fmu::FmiVersion;
+    let fmi_version = match fmi_version {
+        2 => FmiVersion::V2,
+        3 => FmiVersion::V3,
+        v => {
+            return Err(CliError::Input(format!(
+                "--fmi-version {v}: give 3 (FMI 3.0, the default) or 2 (FMI 2.0)"
+            )))
+        }
+    };
+    let req = &clr_sim::fmu::FmuRequest {
+        fmi_version,
+        outputs,
+        parameters,
+        step_size,
+    };
     let (file, src) = if is_file(model) {
         let src = std::fs::read_to_string(model)
             .map_err(|e| CliError::Input(format!("cannot read {model}: {e}")))?;
@@ -204,9 +223,14 @@ pub(crate) fn fmu_command(
             .join(", ")
     };
     eprintln!(
-        "clr: wrote {} (FMI 3.0 co-simulation, model `{}`)\n  inputs ({}): {}\n  outputs ({}): \
+        "clr: wrote {} (FMI {} co-simulation, model `{}`)\n  inputs ({}): {}\n  outputs ({}): \
          {}\n  parameters ({}): {}\n  default experiment: {} s to {} s, step {} s, tolerance {}",
         out.display(),
+        if fmi_version == FmiVersion::V2 {
+            "2.0"
+        } else {
+            "3.0"
+        },
         c.model_name,
         c.inputs.len(),
         names(&c.inputs),

@@ -245,6 +245,9 @@ enum Command {
         /// interval).
         #[arg(long, value_name = "S")]
         step_size: Option<f64>,
+        /// FMI version: 3 (default) or 2 (for masters that read only FMI 2.0).
+        #[arg(long, value_name = "2|3", default_value = "3")]
+        fmi_version: u8,
     },
 }
 
@@ -348,15 +351,8 @@ pub(crate) fn main() -> ExitCode {
             outputs,
             parameters,
             step_size,
-        } => job::fmu_command(
-            &model,
-            &out,
-            &clr_sim::fmu::FmuRequest {
-                outputs,
-                parameters,
-                step_size,
-            },
-        ),
+            fmi_version,
+        } => job::fmu_command(&model, &out, outputs, parameters, step_size, fmi_version),
     };
     match r {
         Ok(()) => ExitCode::SUCCESS,

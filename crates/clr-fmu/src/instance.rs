@@ -101,6 +101,11 @@ impl Instance {
         self.phase
     }
 
+    /// The default experiment's start time, s.
+    pub fn start_time(&self) -> f64 {
+        self.config.experiment[0]
+    }
+
     /// fmi3EnterInitializationMode.
     ///
     /// # Errors

@@ -1,5 +1,6 @@
 //! The runtime of clr's co-simulation FMUs: the FMI 3.0 C functions over one
-//! [`instance::Instance`] per `fmi3InstantiateCoSimulation`.
+//! [`instance::Instance`] per `fmi3InstantiateCoSimulation`, and the FMI 2.0 ones ([`fmi2`])
+//! over the same instance.
 //!
 //! The archive (`clr fmu`, [`clr_sim::fmu`]) carries this library as
 //! `binaries/x86_64-linux/clr_fmu.so` and the model file with its configuration under
@@ -11,6 +12,7 @@
 
 #![allow(clippy::missing_safety_doc)]
 
+pub mod fmi2;
 pub mod instance;
 
 use std::ffi::{c_char, c_int, c_void, CStr, CString};
@@ -18,7 +20,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::Path;
 
 use clr_sim::fmu::{FmuConfig, CONFIG_RESOURCE, MODEL_RESOURCE};
-use instance::{Instance, Refusal, Saved};
+use instance::{Instance, Refusal};
 
 const OK: c_int = 0;
 const WARNING: c_int = 1;
@@ -91,7 +93,7 @@ fn with(ptr: *mut c_void, f: impl FnOnce(&mut Fmu) -> c_int) -> c_int {
     }
 }
 
-unsafe fn str_arg<'a>(p: *const c_char) -> Option<&'a str> {
+pub(crate) unsafe fn str_arg<'a>(p: *const c_char) -> Option<&'a str> {
     if p.is_null() {
         None
     } else {
@@ -119,7 +121,7 @@ pub unsafe extern "C" fn fmi3SetDebugLogging(
     })
 }
 
-fn load(resource_path: &str, token: &str) -> Result<Instance, String> {
+pub(crate) fn load(resource_path: &str, token: &str) -> Result<Instance, String> {
     let dir = Path::new(resource_path);
     let read = |name: &str| {
         std::fs::read_to_string(dir.join(name))
@@ -241,20 +243,61 @@ pub unsafe extern "C" fn fmi3Reset(instance: *mut c_void) -> c_int {
     })
 }
 
-/// Check the array arguments of a get or set call.
-fn arrays_ok(f: &Fmu, vr: *const u32, nvr: usize, values: *const c_void, n: usize) -> bool {
-    if nvr > 0 && (vr.is_null() || values.is_null()) {
-        f.log(ERROR, "null value-reference or value array");
-        return false;
+/// Get and set arrays of Float64 (FMI 3.0) or Real (FMI 2.0) values.
+pub(crate) mod values {
+    use crate::instance::{Instance, Refusal};
+
+    fn null() -> Refusal {
+        Refusal {
+            error: true,
+            message: "a null value-reference or value array".into(),
+        }
     }
+
+    /// The values of `nvr` references into `out`.
+    pub(crate) unsafe fn get(
+        inst: &mut Instance,
+        vr: *const u32,
+        nvr: usize,
+        out: *mut f64,
+    ) -> Result<(), Refusal> {
+        if nvr > 0 && (vr.is_null() || out.is_null()) {
+            return Err(null());
+        }
+        for k in 0..nvr {
+            // SAFETY: arrays of nvr entries, checked non-null above
+            unsafe { *out.add(k) = inst.get(*vr.add(k))? };
+        }
+        Ok(())
+    }
+
+    /// Set `nvr` references to `values`, stopping at the first refused.
+    pub(crate) unsafe fn set(
+        inst: &mut Instance,
+        vr: *const u32,
+        nvr: usize,
+        values: *const f64,
+    ) -> Result<(), Refusal> {
+        if nvr > 0 && (vr.is_null() || values.is_null()) {
+            return Err(null());
+        }
+        for k in 0..nvr {
+            // SAFETY: arrays of nvr entries, checked non-null above
+            unsafe { inst.set(*vr.add(k), *values.add(k))? };
+        }
+        Ok(())
+    }
+}
+
+/// FMI 3.0 passes the number of values as well: one per reference (every variable a scalar).
+fn scalars(f: &Fmu, nvr: usize, n: usize) -> bool {
     if n != nvr {
         f.log(
             ERROR,
             &format!("{n} values for {nvr} value references: every variable is a scalar"),
         );
-        return false;
     }
-    true
+    n == nvr
 }
 
 #[no_mangle]
@@ -266,18 +309,12 @@ pub unsafe extern "C" fn fmi3GetFloat64(
     n: usize,
 ) -> c_int {
     with(instance, |f| {
-        if !arrays_ok(f, vr, nvr, values.cast(), n) {
+        if !scalars(f, nvr, n) {
             return ERROR;
         }
-        for k in 0..nvr {
-            // SAFETY: arrays of nvr entries, checked non-null above
-            let r = unsafe { *vr.add(k) };
-            match f.inst.get(r) {
-                Ok(v) => unsafe { *values.add(k) = v },
-                Err(e) => return f.status::<()>(Err(e)),
-            }
-        }
-        OK
+        // SAFETY: the master's arrays, checked inside
+        let r = unsafe { values::get(&mut f.inst, vr, nvr, values) };
+        f.status(r)
     })
 }
 
@@ -290,19 +327,12 @@ pub unsafe extern "C" fn fmi3SetFloat64(
     n: usize,
 ) -> c_int {
     with(instance, |f| {
-        if !arrays_ok(f, vr, nvr, values.cast(), n) {
+        if !scalars(f, nvr, n) {
             return ERROR;
         }
-        for k in 0..nvr {
-            // SAFETY: arrays of nvr entries, checked non-null above
-            let (r, v) = unsafe { (*vr.add(k), *values.add(k)) };
-            let r = f.inst.set(r, v);
-            let s = f.status(r);
-            if s != OK {
-                return s;
-            }
-        }
-        OK
+        // SAFETY: the master's arrays, checked inside
+        let r = unsafe { values::set(&mut f.inst, vr, nvr, values) };
+        f.status(r)
     })
 }
 
@@ -348,57 +378,130 @@ pub unsafe extern "C" fn fmi3EnterStepMode(instance: *mut c_void) -> c_int {
     })
 }
 
+/// The FMU-state functions of both FMI versions, over the instance and raw pointers; each
+/// refusal says which call and what was wrong.
+pub(crate) mod state {
+    use std::ffi::c_void;
+
+    use crate::instance::{Instance, Refusal, Saved};
+
+    fn null(call: &str) -> Refusal {
+        Refusal {
+            error: true,
+            message: format!("{call}: a null pointer argument"),
+        }
+    }
+
+    /// Save the instance into `*state` (a state already there is freed: FMI lets the FMU
+    /// reuse it).
+    pub(crate) unsafe fn get(inst: &Instance, state: *mut *mut c_void) -> Result<(), Refusal> {
+        if state.is_null() {
+            return Err(null("get FMU state"));
+        }
+        let s = inst.save()?;
+        // SAFETY: the master's output argument, holding null or a state this FMU made
+        unsafe {
+            free(state);
+            *state = Box::into_raw(Box::new(s)).cast();
+        }
+        Ok(())
+    }
+
+    /// Restore the instance from a state this FMU made.
+    pub(crate) unsafe fn set(inst: &mut Instance, state: *mut c_void) -> Result<(), Refusal> {
+        if state.is_null() {
+            return Err(null("set FMU state"));
+        }
+        // SAFETY: a state fmi*GetFMUState or fmi*DeserializeFMUState returned
+        inst.restore(unsafe { &*state.cast::<Saved>() })
+    }
+
+    /// Free `*state` and null it.
+    pub(crate) unsafe fn free(state: *mut *mut c_void) {
+        if state.is_null() {
+            return;
+        }
+        // SAFETY: the master's pointer to null or a state this FMU made
+        unsafe {
+            if !(*state).is_null() {
+                drop(Box::from_raw((*state).cast::<Saved>()));
+            }
+            *state = std::ptr::null_mut();
+        }
+    }
+
+    /// The serialized size of a state.
+    pub(crate) unsafe fn size(state: *mut c_void, size: *mut usize) -> Result<(), Refusal> {
+        if state.is_null() || size.is_null() {
+            return Err(null("serialized FMU state size"));
+        }
+        // SAFETY: a state this FMU made; the master's output argument
+        unsafe { *size = (*state.cast::<Saved>()).to_bytes().len() };
+        Ok(())
+    }
+
+    /// Write a state into the master's buffer of `size` bytes.
+    pub(crate) unsafe fn serialize(
+        state: *mut c_void,
+        bytes: *mut u8,
+        size: usize,
+    ) -> Result<(), Refusal> {
+        if state.is_null() || bytes.is_null() {
+            return Err(null("serialize FMU state"));
+        }
+        // SAFETY: a state this FMU made
+        let b = unsafe { (*state.cast::<Saved>()).to_bytes() };
+        if b.len() != size {
+            return Err(Refusal {
+                error: true,
+                message: format!("the buffer holds {size} bytes; the state needs {}", b.len()),
+            });
+        }
+        // SAFETY: the master's buffer of `size` bytes
+        unsafe { std::ptr::copy_nonoverlapping(b.as_ptr(), bytes, size) };
+        Ok(())
+    }
+
+    /// Read a state from `size` bytes into `*state`.
+    pub(crate) unsafe fn deserialize(
+        bytes: *const u8,
+        size: usize,
+        state: *mut *mut c_void,
+    ) -> Result<(), Refusal> {
+        if bytes.is_null() || state.is_null() {
+            return Err(null("deserialize FMU state"));
+        }
+        // SAFETY: the master's buffer of `size` bytes
+        let s = Saved::from_bytes(unsafe { std::slice::from_raw_parts(bytes, size) })?;
+        // SAFETY: the master's output argument
+        unsafe { *state = Box::into_raw(Box::new(s)).cast() };
+        Ok(())
+    }
+}
+
 #[no_mangle]
 pub unsafe extern "C" fn fmi3GetFMUState(instance: *mut c_void, state: *mut *mut c_void) -> c_int {
     with(instance, |f| {
-        if state.is_null() {
-            f.log(ERROR, "fmi3GetFMUState: null state pointer");
-            return ERROR;
-        }
-        match f.inst.save() {
-            Ok(s) => {
-                // SAFETY: the master's output argument; a previous state there is replaced
-                // (FMI: the FMU may reuse it), so free it first
-                unsafe {
-                    let old = *state;
-                    if !old.is_null() {
-                        drop(Box::from_raw(old.cast::<Saved>()));
-                    }
-                    *state = Box::into_raw(Box::new(s)).cast();
-                }
-                OK
-            }
-            Err(e) => f.status::<()>(Err(e)),
-        }
+        // SAFETY: the master's arguments, checked inside
+        let r = unsafe { state::get(&f.inst, state) };
+        f.status(r)
     })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3SetFMUState(instance: *mut c_void, state: *mut c_void) -> c_int {
     with(instance, |f| {
-        if state.is_null() {
-            f.log(ERROR, "fmi3SetFMUState: null state");
-            return ERROR;
-        }
-        // SAFETY: a state fmi3GetFMUState or fmi3DeserializeFMUState returned
-        let s = unsafe { &*state.cast::<Saved>() };
-        let r = f.inst.restore(s);
+        // SAFETY: the master's arguments, checked inside
+        let r = unsafe { state::set(&mut f.inst, state) };
         f.status(r)
     })
 }
 
 #[no_mangle]
 pub unsafe extern "C" fn fmi3FreeFMUState(instance: *mut c_void, state: *mut *mut c_void) -> c_int {
-    with(instance, |_| {
-        if !state.is_null() {
-            // SAFETY: the master's pointer to a state this FMU made; set to null after
-            unsafe {
-                if !(*state).is_null() {
-                    drop(Box::from_raw((*state).cast::<Saved>()));
-                }
-                *state = std::ptr::null_mut();
-            }
-        }
+    // SAFETY: the master's arguments, checked inside
+    with(instance, |_| unsafe {
+        state::free(state);
         OK
     })
 }
@@ -410,13 +513,9 @@ pub unsafe extern "C" fn fmi3SerializedFMUStateSize(
     size: *mut usize,
 ) -> c_int {
     with(instance, |f| {
-        if state.is_null() || size.is_null() {
-            f.log(ERROR, "fmi3SerializedFMUStateSize: null argument");
-            return ERROR;
-        }
-        // SAFETY: a state this FMU made; the master's output argument
-        unsafe { *size = (*state.cast::<Saved>()).to_bytes().len() };
-        OK
+        // SAFETY: the master's arguments, checked inside
+        let r = unsafe { state::size(state, size) };
+        f.status(r)
     })
 }
 
@@ -428,22 +527,9 @@ pub unsafe extern "C" fn fmi3SerializeFMUState(
     size: usize,
 ) -> c_int {
     with(instance, |f| {
-        if state.is_null() || bytes.is_null() {
-            f.log(ERROR, "fmi3SerializeFMUState: null argument");
-            return ERROR;
-        }
-        // SAFETY: a state this FMU made
-        let b = unsafe { (*state.cast::<Saved>()).to_bytes() };
-        if b.len() != size {
-            f.log(
-                ERROR,
-                &format!("the buffer holds {size} bytes; the state needs {}", b.len()),
-            );
-            return ERROR;
-        }
-        // SAFETY: the master's buffer of `size` bytes
-        unsafe { std::ptr::copy_nonoverlapping(b.as_ptr(), bytes, size) };
-        OK
+        // SAFETY: the master's arguments, checked inside
+        let r = unsafe { state::serialize(state, bytes, size) };
+        f.status(r)
     })
 }
 
@@ -455,20 +541,9 @@ pub unsafe extern "C" fn fmi3DeserializeFMUState(
     state: *mut *mut c_void,
 ) -> c_int {
     with(instance, |f| {
-        if bytes.is_null() || state.is_null() {
-            f.log(ERROR, "fmi3DeserializeFMUState: null argument");
-            return ERROR;
-        }
-        // SAFETY: the master's buffer of `size` bytes
-        let b = unsafe { std::slice::from_raw_parts(bytes, size) };
-        match Saved::from_bytes(b) {
-            Ok(s) => {
-                // SAFETY: the master's output argument
-                unsafe { *state = Box::into_raw(Box::new(s)).cast() };
-                OK
-            }
-            Err(e) => f.status::<()>(Err(e)),
-        }
+        // SAFETY: the master's arguments, checked inside
+        let r = unsafe { state::deserialize(bytes, size, state) };
+        f.status(r)
     })
 }
 

@@ -214,16 +214,27 @@ impl CoSim {
     }
 
     /// Put the pending input values into their cells for the advance [now, t]; true when one
-    /// jumps (a load's value or a motion's rate changes at `now`).
+    /// jumps at `now`: a load's value changes, or a motion's rate (a new ramp, or the end of
+    /// the last one: a motion without a new value holds where its ramp ended).
     fn apply_inputs(&mut self, now: f64, t: f64) -> Result<bool, MbdError> {
         let mut jumped = false;
         for (k, p) in self.pending.iter_mut().enumerate() {
-            let Some(v) = p.take() else { continue };
             let cell = &self.model.inputs().cells()[k];
-            let before = cell.eval(now);
-            cell.ramp_to(now, t, v)?;
-            let after = cell.eval(now);
-            jumped |= before[0] != after[0] || before[1] != after[1];
+            let pending = p.take();
+            if cell.is_motion() {
+                let target = match pending {
+                    Some(v) => v,
+                    None if cell.is_default() => continue,
+                    None => cell.eval(now)[0],
+                };
+                let before = cell.rate_before(now);
+                cell.ramp_to(now, t, target)?;
+                jumped |= cell.eval(now)[1] != before;
+            } else if let Some(v) = pending {
+                let before = cell.eval(now)[0];
+                cell.ramp_to(now, t, v)?;
+                jumped |= cell.eval(now)[0] != before;
+            }
         }
         Ok(jumped)
     }

@@ -124,6 +124,27 @@ impl InputCell {
         }
     }
 
+    /// The rate u′ just before `t` (the left limit: a ramp ending at t still has its slope
+    /// there), in the input's unit per second.
+    pub fn rate_before(&self, t: f64) -> f64 {
+        match self.source() {
+            Source::Default => self.default.eval(t)[1],
+            Source::Held(_) => 0.0,
+            Source::Ramp { t0, v0, t1, v1 } => {
+                if t > t0 && t <= t1 && t1 > t0 {
+                    (v1 - v0) / (t1 - t0)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+
+    /// True while the input follows its default function (no value set).
+    pub fn is_default(&self) -> bool {
+        self.source() == Source::Default
+    }
+
     /// Hold `value` from now on (a load), or for a motion jump to it.
     ///
     /// # Errors
