@@ -2,8 +2,10 @@
 //! multibody model with the run settings (a `clr_mbd::ModelDesc` as TOML), and running that
 //! file the way `clr run FILE` does gives the state of `clr run <name>` bit for bit (f64 bits
 //! of every clr-mbd column both runs record: time, coordinates, velocities, and also
-//! accelerations, contact and reaction forces; the final state; the step count). The shipped
-//! files `models/<name>.toml` are the current exports.
+//! accelerations, contact and reaction forces; the final state; the step count). The
+//! built-ins whose derived columns and metrics are measures and metrics of their descriptions
+//! (all but [`PENDING`]) reproduce every column (with its unit) and every metric too. The
+//! shipped files `models/<name>.toml` are the current exports.
 
 mod common;
 
@@ -24,7 +26,8 @@ fn scratch(name: &str) -> PathBuf {
 fn short(name: &str) -> Vec<&'static str> {
     match name {
         "slider_crank" => vec!["duration=2e-2"],
-        "wan_slider_crank" => vec!["duration=2e-2"],
+        // its transient (one revolution at 600 rpm, 0.1 s) shortened into the 0.02 s run
+        "wan_slider_crank" => vec!["duration=2e-2", "transient_revolutions=0.1"],
         "flap" => vec!["duration=2e-2"],
         "guide" => vec!["end=0.62"],
         "dual_guide" => vec!["duration=2e-2"],
@@ -133,6 +136,57 @@ fn check(name: &str, label: &str, sets: &[&str]) {
     }
     assert_eq!(a.stats.accepted, b.stats.accepted, "{label}: steps");
     assert_eq!(a.onsets, b.onsets, "{label}: contact onsets");
+    let lost = derived_lost(&builtin, &from_file);
+    if PENDING.contains(&name) {
+        // kept honest: a built-in leaves this list as soon as its file reproduces everything
+        assert!(
+            !lost.is_empty(),
+            "{label}: the file reproduces every column and metric now; remove `{name}` from PENDING"
+        );
+        eprintln!("{label}: not reproduced yet: {}", lost.join(", "));
+    } else {
+        assert!(lost.is_empty(), "{label}: {}", lost.join("; "));
+    }
+}
+
+/// Built-ins whose derived columns or metrics are not yet measures and metrics of their
+/// descriptions (issue 33, point 2).
+const PENDING: [&str; 4] = ["flap", "guide", "dual_guide", "manipulator"];
+
+/// What the file's run does not reproduce of the built-in's: every column of the built-in (its
+/// unit and f64 bits in every row) and every metric (value bits and unit), in words.
+fn derived_lost(builtin: &Outcome, file: &Outcome) -> Vec<String> {
+    let (a, b) = (&builtin.results, &file.results);
+    let mut lost = Vec::new();
+    for (k, c) in a.columns.iter().enumerate() {
+        let Some(j) = b.columns.iter().position(|x| x == c) else {
+            lost.push(format!("column {c} missing"));
+            continue;
+        };
+        if builtin.units[k] != file.units[j] {
+            lost.push(format!(
+                "column {c}: unit {} vs {}",
+                builtin.units[k], file.units[j]
+            ));
+        }
+        let (x, y) = (a.column(c).unwrap(), b.column(c).unwrap());
+        if let Some(r) = (0..x.len()).find(|&r| x[r].to_bits() != y[r].to_bits()) {
+            lost.push(format!("column {c} row {r}: {:e} vs {:e}", x[r], y[r]));
+        }
+    }
+    for m in &builtin.metrics {
+        match file.metrics.iter().find(|f| f.name == m.name) {
+            None => lost.push(format!("metric {} missing", m.name)),
+            Some(f) if f.value.to_bits() != m.value.to_bits() || f.unit != m.unit => {
+                lost.push(format!(
+                    "metric {}: {:e} {} vs {:e} {}",
+                    m.name, m.value, m.unit, f.value, f.unit
+                ))
+            }
+            Some(_) => {}
+        }
+    }
+    lost
 }
 
 /// Every built-in (and the flap with its three flexible parts, the guide with its lateral

@@ -848,6 +848,16 @@ fn generic_metrics(r: &clr_mbd::Results, s: Meta<'_>) -> Vec<Metric> {
         }
     }
     m.extend(clr_models::output::energy_metrics(r));
+    // as every built-in reports it, so an exported built-in's file reports it too
+    m.push(
+        Metric::new(
+            "steps",
+            r.stats.accepted as f64,
+            "-",
+            "accepted integrator steps",
+        )
+        .over(WHOLE_RUN),
+    );
     m.push(
         Metric::new(
             "contact_onsets",

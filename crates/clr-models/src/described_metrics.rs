@@ -40,17 +40,14 @@ fn one(d: &MetricDesc, res: &Results) -> Metric {
         (None, Some(b)) => format!("t ≤ {b} s"),
         (Some(a), Some(b)) => format!("{a} s ≤ t ≤ {b} s"),
     };
-    Metric::new(
-        &d.name,
-        value,
-        unit,
-        &format!(
+    let words = d.description.clone().unwrap_or_else(|| {
+        format!(
             "{} of `{}` ([[metric]] of the model)",
             d.statistic.words(),
             d.of
-        ),
-    )
-    .over(&window)
+        )
+    });
+    Metric::new(&d.name, value, unit, &words).over(&window)
 }
 
 /// The statistic of the window's rows (t, v), not empty.
@@ -112,6 +109,7 @@ mod tests {
             statistic: stat,
             t_start: from,
             t_end: None,
+            description: None,
         };
         evaluate(&[d], r)[0].value
     }

@@ -10,8 +10,8 @@
 use clr_mbd::{Model, ModelBuilder, ModelDesc, RevoluteClearanceSpec, RigidBody, TimeFn};
 use serde::{Deserialize, Serialize};
 
-use crate::common::{self, col, non_negative, positive, FrictionParams, Record, Solver};
-use crate::{Metric, ModelsError, RunOutput, RunSettings};
+use crate::common::{self, non_negative, positive, FrictionParams, Record, Solver};
+use crate::{ModelsError, RunOutput, RunSettings};
 
 /// Parameters of a clearance slider–crank (SI units).
 ///
@@ -289,8 +289,14 @@ pub fn ideal_slider_position(r: f64, l: f64, theta: f64) -> f64 {
     r * theta.cos() + (l * l - r * r * s * s).sqrt()
 }
 
+/// Rows per crank revolution of the ideal twin behind `slider.error`: its linear interpolation
+/// error h²/8·|ẍ| with |ẍ| ≤ rω²(1 + r/l) is (2π/2000)²/8·r(1 + r/l) = 7e-8 m at r = 0.05 m,
+/// l = 0.3 m, against a clearance of 1e-4 to 5e-4 m.
+const TWIN_ROWS_PER_REVOLUTION: f64 = 2000.0;
+
 /// The model and run settings that [`run`] simulates: [`SliderCrankParams::desc`] with the end
-/// time and tolerance of `settings` (when given) written into `solver` and `output`.
+/// time and tolerance of `settings` (when given) written into `solver` and `output`, and the
+/// derived column and metrics as data ([`derived`]).
 ///
 /// # Errors
 /// Invalid parameters or run settings.
@@ -299,12 +305,83 @@ pub fn run_desc(
     p: &SliderCrankParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
+    let mut d = common::run_desc(model, settings, Record::EveryStep, || p.desc(model))?;
+    derived(&mut d, p);
+    Ok(d)
 }
 
-/// Simulate and compute the metrics: peak contact force, peak slider acceleration,
-/// contact-time fraction and largest penetration after the transient, plus the largest
-/// deviation of the slider from the ideal (closed-form) position.
+/// The slider–crank's derived column and metrics as `[[measure]]`, `[twin]` and `[[metric]]`
+/// of its description, so that `clr run <name>` and its exported file compute them the same
+/// way: `slider.error` (m), the slider's deviation from the ideal-joint twin (the same
+/// mechanism with joint B ideal, whose slider follows x(θ) = r cos θ + √(l² − r² sin² θ)),
+/// recorded at [`TWIN_ROWS_PER_REVOLUTION`]; peak contact force, peak slider acceleration,
+/// contact-time fraction and largest penetration after `transient_revolutions`, and the
+/// largest |slider.error| over the run.
+fn derived(d: &mut ModelDesc, p: &SliderCrankParams) {
+    use clr_mbd::desc::metric::{MetricDesc, Statistic};
+    use clr_mbd::measure::deviation::{Deviation, TwinSettings};
+    let t_end = d.output.t_end.unwrap_or(p.duration);
+    let revolutions = t_end * p.crank_speed_rpm / 60.0;
+    d.measures.push(clr_mbd::Measure::Deviation(Deviation {
+        name: "slider".into(),
+        of: vec!["slider.x".into()],
+    }));
+    d.twin = Some(TwinSettings {
+        intervals: Some(((revolutions * TWIN_ROWS_PER_REVOLUTION).ceil() as usize).max(1000)),
+    });
+    let t_from = p.transient_revolutions * 60.0 / p.crank_speed_rpm;
+    let metric = |name: &str, of: &str, statistic, after_transient: bool, words: &str| MetricDesc {
+        name: name.into(),
+        of: of.into(),
+        statistic,
+        t_start: after_transient.then_some(t_from),
+        t_end: None,
+        description: Some(words.into()),
+    };
+    d.metrics = vec![
+        metric(
+            "peak_contact_force",
+            "B.normal_force",
+            Statistic::Peak,
+            true,
+            "largest normal force in the clearance joint after the transient, located on the \
+             dense output",
+        ),
+        metric(
+            "peak_slider_acceleration",
+            "slider.ax",
+            Statistic::Peak,
+            true,
+            "largest |slider acceleration| after the transient (every accepted step)",
+        ),
+        metric(
+            "contact_time_fraction",
+            "B.contact",
+            Statistic::Mean,
+            true,
+            "fraction of the time after the transient with journal and bearing in contact",
+        ),
+        metric(
+            "max_penetration",
+            "B.penetration",
+            Statistic::Max,
+            true,
+            "largest penetration after the transient, located on the dense output",
+        ),
+        metric(
+            "max_slider_deviation",
+            "slider.error",
+            Statistic::Peak,
+            false,
+            "largest |x − x_ideal| of the slider over the run, x_ideal from the ideal-joint \
+             twin (bounded by clearance + penetration)",
+        ),
+    ];
+}
+
+/// Simulate and compute the derived column and the metrics of [`derived`] from the
+/// description, as a run of its exported file does (`clr_mbd::measure::deviation` and
+/// [`crate::described_metrics`]).
 ///
 /// # Errors
 /// Invalid parameters, build or simulation errors.
@@ -313,74 +390,15 @@ pub fn run(
     p: &SliderCrankParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    let (mut m, opts) = common::compile_run(model, &run_desc(model, p, settings)?)?;
+    let desc = run_desc(model, p, settings)?;
+    let (mut m, opts) = common::compile_run(model, &desc)?;
     let mut res = common::simulate(&mut m, &opts, settings, model)?;
     if let Some(cb) = &settings.progress {
         cb(opts.t_end);
     }
-    let t = col(&res, "t");
-    let t_from = p.transient_revolutions * 60.0 / p.crank_speed_rpm;
-    let fnn = col(&res, "B.normal_force");
-    let contact = col(&res, "B.contact");
-    let x = col(&res, "slider.x");
-    let dev: Vec<f64> = t
-        .iter()
-        .zip(&x)
-        .map(|(&ti, &xi)| xi - ideal_slider_position(p.crank_length, p.rod_length, p.omega() * ti))
-        .collect();
-    let (peak_f, peak_pen) = common::located_peaks(
-        &res,
-        "B",
-        t_from,
-        (
-            common::peak_abs(&t, &fnn, t_from),
-            common::peak_max(&t, &col(&res, "B.penetration"), t_from),
-        ),
-    );
-    let revolutions = match p.transient_revolutions {
-        1.0 => "the first crank revolution".to_string(),
-        r => format!("the first {r} crank revolutions"),
-    };
-    let window = crate::output::window_after(t_from, &revolutions);
-    let mut metrics = vec![
-        Metric::new(
-            "peak_contact_force",
-            peak_f,
-            "N",
-            "largest normal force in the clearance joint after the transient, located on the \
-             dense output",
-        ),
-        Metric::new(
-            "peak_slider_acceleration",
-            common::peak_abs(&t, &col(&res, "slider.ax"), t_from),
-            "m/s^2",
-            "largest |slider acceleration| after the transient (every accepted step)",
-        ),
-        Metric::new(
-            "contact_time_fraction",
-            common::time_mean(&t, &contact, t_from),
-            "-",
-            "fraction of the time after the transient with journal and bearing in contact",
-        ),
-        Metric::new(
-            "max_penetration",
-            peak_pen,
-            "m",
-            "largest penetration after the transient, located on the dense output",
-        ),
-        Metric::new(
-            "max_slider_deviation",
-            common::peak_abs(&t, &dev, 0.0),
-            "m",
-            "largest |x − x_ideal| of the slider over the run (bounded by clearance + penetration)",
-        )
-        .over(crate::output::WHOLE_RUN),
-    ];
-    // the first four skip the transient
-    for m in &mut metrics[..4] {
-        m.window = Some(window.clone());
-    }
-    common::append_columns(&mut res, vec![("slider.error".into(), dev)]);
+    clr_mbd::measure::deviation::append_deviations(&desc, &opts, &mut res)
+        .map_err(|e| common::sim_error(model, e))?;
+    let metrics = crate::described_metrics::evaluate(&desc.metrics, &res);
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }

@@ -39,7 +39,8 @@ fn slider_crank_cases(filter: &Filter, out: &mut Vec<Case>) {
             "m",
             "closed form: the ideal crank and rod put the slider at x = r cos θ + √(l² − r² \
              sin² θ); the clearance joint lets it move by at most the radial play c plus the \
-             penetration δ_max (rod-angle effect < c·(r/l)², inside the 1 % margin)",
+             penetration δ_max (rod-angle effect < c·(r/l)², inside the 1 % margin); x_ideal \
+             from the ideal-joint twin, which follows the closed form to 8.1e-8 m",
         );
         match slider_crank::run("slider_crank", &p, &RunSettings::default()) {
             Ok(o) => {

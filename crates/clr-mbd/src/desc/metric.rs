@@ -73,6 +73,10 @@ pub struct MetricDesc {
     /// End of the window, s (default: the run's end).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub t_end: Option<f64>,
+    /// What the metric means, in words, reported with its value (default: the statistic and
+    /// the column, e.g. "largest |value| of `B.normal_force`").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub description: Option<String>,
 }
 
 /// Check the metrics of a description against the columns its runs write (`columns`, with the
