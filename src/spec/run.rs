@@ -639,11 +639,7 @@ pub fn execute(
             let run = model
                 .simulate_with(&built.options, &hook)
                 .and_then(|mut r| {
-                    clr_mbd::measure::deviation::append_deviations(
-                        s.desc(),
-                        &built.options,
-                        &mut r,
-                    )?;
+                    clr_mbd::desc::twin::append_deviations(s.desc(), &built.options, &mut r)?;
                     Ok(r)
                 })
                 .map_err(|e| match e {
@@ -654,7 +650,7 @@ pub fn execute(
                     } => {
                         // the rows of a failed run get the deviation columns too (every column
                         // of a complete run); a twin that cannot run leaves them NaN
-                        if let Err(e) = clr_mbd::measure::deviation::append_deviations(
+                        if let Err(e) = clr_mbd::desc::twin::append_deviations(
                             s.desc(),
                             &built.options,
                             &mut partial,

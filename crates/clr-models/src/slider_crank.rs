@@ -396,7 +396,7 @@ pub fn run(
     if let Some(cb) = &settings.progress {
         cb(opts.t_end);
     }
-    clr_mbd::measure::deviation::append_deviations(&desc, &opts, &mut res)
+    clr_mbd::desc::twin::append_deviations(&desc, &opts, &mut res)
         .map_err(|e| common::sim_error(model, e))?;
     let metrics = crate::described_metrics::evaluate(&desc.metrics, &res);
     let params = serde_json::to_value(p).unwrap_or_default();

@@ -92,7 +92,7 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     let own = model.own_columns();
     crate::measure::runtime::resolve(&mut model.measures, &own)?;
     let mut columns = model.columns();
-    crate::measure::deviation::check_sources(desc, &columns)?;
+    super::twin::check_sources(desc, &columns)?;
     columns.extend(
         desc.deviations()
             .iter()

@@ -15,6 +15,7 @@ pub mod laws;
 pub mod metric;
 pub mod parts;
 mod settings;
+pub mod twin;
 
 use serde::{Deserialize, Serialize};
 

@@ -25,7 +25,7 @@
 //! - `energy`: one energy term ([`copy`]);
 //! - `momentum`: linear and angular momentum of rigid bodies about a world point ([`momentum`]);
 //! - `deviation` of columns from the ideal-joint twin ([`deviation`]), written after the twin
-//!   has run by whoever runs it ([`deviation::deviation_columns`]; `clr run` does).
+//!   has run by whoever runs it ([`crate::desc::twin::deviation_columns`]; `clr run` does).
 
 pub mod angle;
 pub mod copy;

@@ -1,0 +1,196 @@
+//! The ideal-joint twin of a description and the `deviation` columns it gives
+//! ([`crate::measure::deviation`] defines the measure and the interpolation): the twin
+//! description, the check of the deviation sources before a run, and the columns appended
+//! after it. It lives with the description because it builds one.
+
+use crate::element::Clearance;
+use crate::error::MbdError;
+use crate::measure::deviation::{interp, Deviation};
+use crate::measure::Measure;
+use crate::results::{unit_of, Results};
+
+use super::ModelDesc;
+
+impl ModelDesc {
+    /// The `deviation` measures of this description.
+    pub fn deviations(&self) -> Vec<&Deviation> {
+        (self.measures.iter())
+            .filter_map(|m| match m {
+                Measure::Deviation(d) => Some(d),
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// The ideal-joint twin of this description (module docs), with what it left as it was, in
+    /// words: every revolute and translational clearance joint at clearance 0 (film, wear and
+    /// initial offset dropped), the deviation and contact measures and the metrics left out,
+    /// recorded at the
+    /// `[twin]` intervals.
+    pub fn ideal_twin(&self) -> (ModelDesc, Vec<String>) {
+        let mut twin = self.clone();
+        let mut notes = Vec::new();
+        for c in &mut twin.clearances {
+            match c {
+                Clearance::Revolute(r) => {
+                    r.journal_radius = r.bearing_radius;
+                    (r.lubrication, r.bearing_wear, r.initial_eccentricity) = (None, None, None);
+                }
+                Clearance::Translational(t) => {
+                    t.slider_height = t.guide_width;
+                    t.initial_offset = None;
+                }
+                other => notes.push(format!(
+                    "the ideal twin keeps `{}` ({}): it has no ideal counterpart",
+                    other.name(),
+                    other.kind()
+                )),
+            }
+        }
+        // the twin's metrics are not asked for (they would name the deviation columns)
+        twin.metrics.clear();
+        twin.measures
+            .retain(|m| !matches!(m, Measure::Deviation(_) | Measure::Contact(_)));
+        let o = &mut twin.output;
+        let intervals = self.twin.as_ref().and_then(|t| t.intervals);
+        o.intervals = intervals.unwrap_or(if o.intervals == 0 { 1000 } else { o.intervals });
+        o.every_step = false;
+        (twin, notes)
+    }
+}
+
+/// Refuse, before any run, a deviation of a column the run does not write or the twin cannot
+/// (a contact quantity, or a column of a deviation).
+pub(crate) fn check_sources(desc: &ModelDesc, columns: &[String]) -> Result<(), MbdError> {
+    let contact: Vec<String> = (desc.measures.iter())
+        .filter_map(|m| match m {
+            Measure::Contact(c) => Some(format!("{}.{}", c.name, c.quantity)),
+            _ => None,
+        })
+        .collect();
+    for d in desc.deviations() {
+        for c in &d.of {
+            let clearance = (desc.clearances.iter()).any(|cl| {
+                !cl.is_ideal()
+                    && c.strip_prefix(cl.name())
+                        .is_some_and(|r| r.starts_with('.'))
+            });
+            let why = if !columns.contains(c) {
+                "the run writes no such column"
+            } else if clearance || contact.contains(c) {
+                "a contact quantity, which the ideal twin (no clearance) does not have; compare \
+                 the motion it causes instead"
+            } else {
+                continue;
+            };
+            return Err(MbdError::Invalid {
+                path: format!("{}.of", d.name),
+                message: format!("`{c}`: {why}"),
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Run the ideal twin of `desc` over the span of `options` (at its `[twin]` intervals) and
+/// append the deviation columns to `results`, saying in their notes what the twin was. A twin
+/// that fails leaves the columns NaN and says why in the notes (the run itself stands).
+///
+/// # Errors
+/// A twin that cannot be built (an error of the description itself), or a deviation of a column
+/// that neither the run nor the twin writes.
+pub fn append_deviations(
+    desc: &ModelDesc,
+    options: &crate::SimOptions,
+    results: &mut Results,
+) -> Result<(), MbdError> {
+    if desc.deviations().is_empty() {
+        return Ok(());
+    }
+    let (twin_desc, notes) = desc.ideal_twin();
+    let mut twin_model = twin_desc.compile()?;
+    let mut o = options.clone();
+    let k = twin_desc.output.intervals;
+    o.times = (0..=k)
+        .map(|i| o.t0 + (o.t_end - o.t0) * i as f64 / k as f64)
+        .collect();
+    o.every_step = false;
+    results.notes.extend(notes);
+    let n = results.len();
+    let columns = match twin_model.simulate(&o) {
+        Ok(twin) => {
+            results.notes.push(format!(
+                "deviation measures: the ideal twin (every revolute and translational clearance \
+                 joint at clearance 0) ran over the same span, recorded at {k} equal intervals \
+                 and interpolated linearly ({} steps)",
+                twin.stats.accepted
+            ));
+            deviation_columns(desc, results, &twin)?
+        }
+        Err(e) => {
+            results.notes.push(format!(
+                "deviation measures: the ideal twin failed ({e}); their columns are NaN"
+            ));
+            (desc.deviations().iter())
+                .map(|d| {
+                    (
+                        format!("{}.error", d.name),
+                        unit_of(&d.of[0]),
+                        vec![f64::NAN; n],
+                    )
+                })
+                .collect()
+        }
+    };
+    for (c, u, _) in &columns {
+        results.units.push((c.clone(), u));
+    }
+    results.append_columns(columns.into_iter().map(|(c, _, v)| (c, v)).collect());
+    Ok(())
+}
+
+/// One deviation column: its name, unit and values.
+pub type DeviationColumn = (String, &'static str, Vec<f64>);
+
+/// The `<name>.error` columns of the deviation measures of `desc` (name, unit, values at the
+/// rows of `run`) from the run and its ideal twin's results (the twin interpolated linearly at
+/// the run's times).
+///
+/// # Errors
+/// [`MbdError::Invalid`] at `<name>.of` for a column that the run or the twin does not write.
+pub fn deviation_columns(
+    desc: &ModelDesc,
+    run: &Results,
+    twin: &Results,
+) -> Result<Vec<DeviationColumn>, MbdError> {
+    let t = run.column("t").unwrap_or_default();
+    let tw = twin.column("t").unwrap_or_default();
+    let mut out = Vec::new();
+    for d in desc.deviations() {
+        let mut sq = vec![0.0; t.len()];
+        let mut signed = vec![0.0; t.len()];
+        for c in &d.of {
+            let missing = |who: &str| MbdError::Invalid {
+                path: format!("{}.of", d.name),
+                message: format!(
+                    "the {who} writes no column `{c}` (a contact quantity has none in the ideal \
+                     twin; compare the motion it causes instead)"
+                ),
+            };
+            let x = run.column(c).ok_or_else(|| missing("run"))?;
+            let xi = twin.column(c).ok_or_else(|| missing("ideal twin"))?;
+            for (k, &tk) in t.iter().enumerate() {
+                let e = x[k] - interp(&tw, &xi, tk);
+                signed[k] = e;
+                sq[k] += e * e;
+            }
+        }
+        let values = if d.of.len() == 1 {
+            signed
+        } else {
+            sq.into_iter().map(f64::sqrt).collect()
+        };
+        out.push((format!("{}.error", d.name), unit_of(&d.of[0]), values));
+    }
+    Ok(out)
+}
