@@ -919,12 +919,21 @@ class Model:
         statistic: str,
         t_start: Optional[float] = None,
         t_end: Optional[float] = None,
+        description: Optional[str] = None,
     ) -> "Model":
         """``[[metric]]``: ``statistic`` (``peak``, ``max``, ``min``, ``mean``, ``rms``,
         ``final``, ``time_of_peak``, ``time_of_max``, ``time_of_min``) of column ``of`` over
-        [``t_start``, ``t_end``] (s; default the whole run), in ``Result.metrics``."""
+        [``t_start``, ``t_end``] (s; default the whole run), in ``Result.metrics``;
+        ``description`` replaces the generated one in summary.json and the report."""
         return self._add(
-            "metric", None, name, of=of, statistic=statistic, t_start=t_start, t_end=t_end
+            "metric",
+            None,
+            name,
+            of=of,
+            statistic=statistic,
+            t_start=t_start,
+            t_end=t_end,
+            description=description,
         )
 
 

@@ -63,8 +63,11 @@ def test_slider_crank_follows_the_ideal_kinematics_within_the_clearance():
     # while the journal flies freely (δ < 0) it is inside the bearing: |x − x_ideal| ≤ 1.2 c
     free = r["B.penetration"] < 0
     assert free.any() and dev[free].max() <= 1.2 * CLEARANCE
-    # the model's own slider.error column is the same deviation
-    np.testing.assert_allclose(r["slider.error"], r["slider.x"] - x_ideal, rtol=0, atol=1e-12)
+    # the model's own slider.error column is the same deviation, taken from the ideal-joint twin
+    # (a run at clearance 0, 2000 rows per revolution, interpolated linearly): within 2e-7 m of
+    # the closed form (the interpolation error of 2000 rows per revolution is ~7e-8 m; measured
+    # 8.1e-8 m on the default run)
+    np.testing.assert_allclose(r["slider.error"], r["slider.x"] - x_ideal, rtol=0, atol=2e-7)
 
 
 def _clr_binary():
