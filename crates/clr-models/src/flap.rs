@@ -783,6 +783,9 @@ fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
             ("flap.alpha_error".into(), aerr),
         ],
     );
+    // their names' suffixes do not fix their units (the suffix rule read "error" as m)
+    res.units.push(("flap.error".into(), "rad"));
+    res.units.push(("flap.alpha_error".into(), "rad/s^2"));
     m
 }
 
