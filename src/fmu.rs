@@ -246,8 +246,8 @@ fn parameter(
 ) -> Result<ParameterConfig, FmuError> {
     let v = spec::overrides::get_toml(root, path).map_err(FmuError::Request)?;
     let start = match v {
-        toml::Value::Float(f) => *f,
-        toml::Value::Integer(i) => *i as f64,
+        toml::Value::Float(f) => f,
+        toml::Value::Integer(i) => i as f64,
         other => {
             return Err(FmuError::Request(format!(
                 "`{path}` is `{other}` in the file; a parameter must be a number"

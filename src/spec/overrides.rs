@@ -186,37 +186,12 @@ pub(crate) fn set_toml(root: &mut toml::Table, a: &Assignment) -> Result<(), Spe
 ///
 /// # Errors
 /// A message naming the missing part.
-pub(crate) fn get_toml<'a>(root: &'a toml::Table, path: &str) -> Result<&'a toml::Value, String> {
+pub(crate) fn get_toml(root: &toml::Table, path: &str) -> Result<toml::Value, String> {
+    // the same walk as `--set`, on a copy (the walk creates missing tables; the copy keeps the
+    // file's table as it is)
     let mut copy = root.clone();
-    let (_, last) = walk_mut(&mut copy, path).map_err(|e| e.to_string())?;
-    // the walk succeeded on the copy: follow the same parts on the original
-    let mut v: Option<&toml::Value> = None;
-    let mut table = root;
-    let parts: Vec<&str> = path.split('.').collect();
-    let mut k = 0;
-    while k + 1 < parts.len() {
-        match table.get(parts[k]) {
-            Some(toml::Value::Table(t)) => table = t,
-            Some(toml::Value::Array(items)) => {
-                k += 1;
-                let sel = parts[k];
-                let item = items
-                    .iter()
-                    .find(|i| i.get("name").and_then(|n| n.as_str()) == Some(sel))
-                    .or_else(|| sel.parse::<usize>().ok().and_then(|i| items.get(i)));
-                match item {
-                    Some(toml::Value::Table(t)) => table = t,
-                    _ => break,
-                }
-            }
-            _ => break,
-        }
-        k += 1;
-    }
-    if k + 1 == parts.len() {
-        v = table.get(last);
-    }
-    v.ok_or_else(|| {
+    let (table, last) = walk_mut(&mut copy, path).map_err(|e| e.to_string())?;
+    table.get(last).cloned().ok_or_else(|| {
         format!(
             "`{path}` is not written in the model file; write its value there to make it a \
              parameter"

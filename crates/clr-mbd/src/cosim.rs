@@ -141,9 +141,8 @@ impl CoSim {
     /// the state, as a recorded row of a run).
     pub fn outputs(&mut self) -> &[f64] {
         let (t, y) = self.stepping.state();
-        let y = y.to_vec();
         self.row.clear();
-        self.model.record(t, &y, &mut self.row);
+        self.model.record(t, y, &mut self.row);
         &self.row
     }
 
