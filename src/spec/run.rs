@@ -636,10 +636,11 @@ pub fn execute(
                     p(t);
                 }
             };
+            let mut twin = None;
             let run = model
                 .simulate_with(&built.options, &hook)
                 .and_then(|mut r| {
-                    clr_mbd::desc::twin::append_deviations(s.desc(), &built.options, &mut r)?;
+                    twin = clr_mbd::desc::twin::run_twin(s.desc(), &built.options, &mut r)?;
                     Ok(r)
                 })
                 .map_err(|e| match e {
@@ -650,14 +651,12 @@ pub fn execute(
                     } => {
                         // the rows of a failed run get the deviation columns too (every column
                         // of a complete run); a twin that cannot run leaves them NaN
-                        if let Err(e) = clr_mbd::desc::twin::append_deviations(
-                            s.desc(),
-                            &built.options,
-                            &mut partial,
-                        ) {
-                            partial
+                        match clr_mbd::desc::twin::run_twin(s.desc(), &built.options, &mut partial)
+                        {
+                            Ok(t) => twin = t,
+                            Err(e) => partial
                                 .notes
-                                .push(format!("deviation measures: not written ({e})"));
+                                .push(format!("deviation measures: not written ({e})")),
                         }
                         clr_mbd::MbdError::Failed {
                             source,
@@ -669,7 +668,7 @@ pub fn execute(
                 });
             match run {
                 Ok(res) => {
-                    let metrics = file_metrics(&res, s);
+                    let metrics = file_metrics(&res, twin.as_ref(), s);
                     Ok(Outcome::from_results(s.as_ref().into(), res, metrics, None)
                         .with_flexible(flexible))
                 }
@@ -682,7 +681,7 @@ pub fn execute(
                         "{source} (in the model file these are [solver] max_steps, rtol, atol, \
                          method){cause}"
                     );
-                    let metrics = file_metrics(&partial, s);
+                    let metrics = file_metrics(&partial, twin.as_ref(), s);
                     Ok(
                         Outcome::from_results(s.as_ref().into(), *partial, metrics, Some(msg))
                             .with_flexible(flexible),
@@ -696,7 +695,7 @@ pub fn execute(
                 ) => {
                     let msg = e.to_string();
                     let partial = e.into_partial().unwrap_or_default();
-                    let metrics = file_metrics(&partial, s);
+                    let metrics = file_metrics(&partial, twin.as_ref(), s);
                     Ok(
                         Outcome::from_results(s.as_ref().into(), partial, metrics, Some(msg))
                             .with_flexible(flexible),
@@ -769,8 +768,12 @@ fn max_abs(v: &[f64]) -> f64 {
 /// The metrics of a planar model file's run: its `[[metric]]` items, then the generic ones
 /// ([`generic_metrics`]) whose names the file does not take: a `[[metric]]` may redefine one
 /// (docs/model-file.md).
-fn file_metrics(r: &clr_mbd::Results, s: &super::ModelSpec) -> Vec<Metric> {
-    let mut out = clr_models::described_metrics::evaluate(&s.desc().metrics, r);
+fn file_metrics(
+    r: &clr_mbd::Results,
+    twin: Option<&clr_mbd::Results>,
+    s: &super::ModelSpec,
+) -> Vec<Metric> {
+    let mut out = clr_models::described_metrics::evaluate(&s.desc().metrics, r, twin);
     for m in generic_metrics(r, s.into()) {
         if !out.iter().any(|o| o.name == m.name) {
             out.push(m);

@@ -125,6 +125,10 @@ pub(crate) trait Engine: ContactProbe + Sized {
     fn record(&mut self, t: f64, y: &[f64], out: &mut Vec<f64>);
     /// The output column names.
     fn columns(&self) -> Vec<String>;
+    /// The units of the columns whose suffix does not say them ([`Results::units`]).
+    fn units(&self) -> Vec<(String, &'static str)> {
+        Vec::new()
+    }
     /// The largest position constraint violation at (t, y), m or rad.
     fn violation(&mut self, t: f64, y: &[f64]) -> f64;
     /// Watch an accepted step right after the commit; an error stops the run.
@@ -208,7 +212,7 @@ impl<W> Run<W> {
             impacts: std::mem::replace(&mut self.impacts, ImpactTracker::empty()).into_impacts(),
             initial_conditions: None,
             warnings: Vec::new(),
-            units: Vec::new(),
+            units: model.units(),
         }
     }
 }

@@ -27,6 +27,20 @@ pub(crate) const CONTACT_COLUMNS: [&str; 5] = [
     "contact",
 ];
 
+/// The units a user may give a column or a metric (`unit = "N"`), in clr's spelling: SI, `*`
+/// for products, `^` for powers, `-` for dimensionless.
+pub const UNITS: [&str; 26] = [
+    "-", "s", "1/s", "Hz", "m", "m/s", "m/s^2", "m^2", "rad", "rad/s", "rad/s^2", "kg", "kg*m^2",
+    "N", "N/m", "N*s/m", "N*s", "N*m", "N*m/rad", "N*m*s", "Pa", "J", "W", "kg*m/s", "kg*m^2/s",
+    "m*N",
+];
+
+/// The spelling in [`UNITS`] of the unit `u`, or `None` for a unit clr does not know (a
+/// misspelling, or a unit in mm or degrees, which clr does not use).
+pub fn known_unit(u: &str) -> Option<&'static str> {
+    UNITS.iter().find(|k| **k == u.trim()).copied()
+}
+
 /// Unit of a result column from its name (the columns of [`Results`], planar and spatial, the
 /// `[[measure]]` suffixes of [`crate::measure`] and the derived columns of the built-in models):
 /// `s`, `m`, `rad`, `N`, … or `-` (modal amplitudes, flags, unknown names).

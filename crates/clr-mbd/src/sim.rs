@@ -322,6 +322,12 @@ impl Engine for Model {
     fn columns(&self) -> Vec<String> {
         Model::columns(self)
     }
+    /// The measures' units that their columns' suffixes do not say (`<name>.value`).
+    fn units(&self) -> Vec<(String, &'static str)> {
+        (self.measure_columns().into_iter())
+            .filter(|(c, u)| crate::results::unit_of(c) != *u)
+            .collect()
+    }
     fn violation(&mut self, t: f64, y: &[f64]) -> f64 {
         Model::violation(self, t, y).0
     }

@@ -485,7 +485,7 @@ fn deviation_from_the_ideal_twin_equals_the_closed_form_slider_error() {
     let desc = ModelDesc::from_toml_table(doc).unwrap();
     let opts = desc.sim_options().unwrap();
     let mut r = desc.compile().unwrap().simulate(&opts).unwrap();
-    clr_mbd::desc::twin::append_deviations(&desc, &opts, &mut r).unwrap();
+    clr_mbd::desc::twin::run_twin(&desc, &opts, &mut r).unwrap();
     let (t, x, e) = (col(&r, "t"), col(&r, "slider.x"), col(&r, "slider.error"));
     let (rc, l, w) = (0.05, 0.3, 5000.0 * std::f64::consts::PI / 30.0);
     let mut worst = 0.0f64;

@@ -1,21 +1,138 @@
 //! The `[[metric]]` items of a description (`clr_mbd::desc::metric`), evaluated on a run's
 //! results with the same helpers the built-in models use for theirs.
 
-use clr_mbd::desc::metric::{MetricDesc, Statistic};
+use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic};
 use clr_mbd::Results;
 
-use crate::common::{located_extreme, time_mean, time_rms};
+use crate::common::{interp, located_extreme, time_mean};
 use crate::Metric;
 
-/// The metrics `descs` of `res`, in order. A window with no row gives NaN (a failed run's
+/// The metrics `descs` of `res` (and of the ideal twin's results `twin`, for those with
+/// `twin = true`; NaN without them), in order. A window with no row gives NaN (a failed run's
 /// partial rows may end before it).
-pub fn evaluate(descs: &[MetricDesc], res: &Results) -> Vec<Metric> {
-    descs.iter().map(|d| one(d, res)).collect()
+pub fn evaluate(descs: &[MetricDesc], res: &Results, twin: Option<&Results>) -> Vec<Metric> {
+    let mut out: Vec<Metric> = Vec::with_capacity(descs.len());
+    for d in descs {
+        let source = if d.twin { twin } else { Some(res) };
+        let (value, unit) = if d.metrics.is_empty() {
+            match source {
+                Some(r) => of_columns(d, r),
+                None => (f64::NAN, unit_of_statistic(d, res)),
+            }
+        } else {
+            of_metrics(d, &out)
+        };
+        let (value, unit) = divided(d, value, unit, &out);
+        let unit = d.unit.clone().unwrap_or(unit);
+        let window = match (d.t_start, d.t_end) {
+            (None, None) => crate::output::WHOLE_RUN.to_string(),
+            (Some(a), None) => format!("t ≥ {a} s"),
+            (None, Some(b)) => format!("t ≤ {b} s"),
+            (Some(a), Some(b)) => format!("{a} s ≤ t ≤ {b} s"),
+        };
+        let words = d.description.clone().unwrap_or_else(|| default_words(d));
+        out.push(Metric::new(&d.name, value, &unit, &words).over(&window));
+    }
+    out
 }
 
-fn one(d: &MetricDesc, res: &Results) -> Metric {
+fn default_words(d: &MetricDesc) -> String {
+    let what = if d.metrics.is_empty() {
+        d.columns()
+            .iter()
+            .map(|c| format!("`{c}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    } else {
+        format!("the metrics {}", d.metrics.join(", "))
+    };
+    let twin = if d.twin { " of the ideal twin" } else { "" };
+    format!(
+        "{} of {what}{twin} ([[metric]] of the model)",
+        d.statistic.words()
+    )
+}
+
+/// The unit of the statistic of `d`'s first column (before `per` and `unit`).
+fn unit_of_statistic(d: &MetricDesc, res: &Results) -> String {
+    let column = d.columns().first().map_or("-", |c| res.unit(c));
+    match d.statistic {
+        s if s.is_time() => "s".into(),
+        Statistic::Onsets | Statistic::Spread => "-".into(),
+        Statistic::Integral => integrated(column),
+        _ => column.into(),
+    }
+}
+
+/// The unit of ∫ v dt for v in `unit`.
+fn integrated(unit: &str) -> String {
+    match unit {
+        "-" => "s",
+        "N" => "N*s",
+        "N*m" => "N*m*s",
+        "W" => "J",
+        "m/s" => "m",
+        "m/s^2" => "m/s",
+        "rad/s" => "rad",
+        "rad/s^2" => "rad/s",
+        other => return format!("{other}*s"),
+    }
+    .into()
+}
+
+/// The value and unit after `per` (0/0 gives 0).
+fn divided(d: &MetricDesc, value: f64, unit: String, done: &[Metric]) -> (f64, String) {
+    let (by, by_unit) = match &d.per {
+        None => return (value, unit),
+        Some(Divisor::Number(x)) => (*x, "-".to_string()),
+        Some(Divisor::Metric(m)) => done
+            .iter()
+            .find(|o| &o.name == m)
+            .map_or((f64::NAN, "-".into()), |o| (o.value, o.unit.clone())),
+    };
+    let v = if value == 0.0 && by == 0.0 {
+        0.0
+    } else {
+        value / by
+    };
+    let u = if by_unit == unit {
+        "-".to_string()
+    } else if by_unit == "-" {
+        unit
+    } else {
+        format!("{unit}/({by_unit})")
+    };
+    (v, u)
+}
+
+/// The statistic of the earlier metrics' values.
+fn of_metrics(d: &MetricDesc, done: &[Metric]) -> (f64, String) {
+    let found: Vec<&Metric> = (d.metrics.iter())
+        .filter_map(|n| done.iter().find(|m| &m.name == n))
+        .collect();
+    let v: Vec<f64> = found.iter().map(|m| m.value).collect();
+    let unit = found.first().map_or("-".to_string(), |m| m.unit.clone());
+    if v.is_empty() {
+        return (f64::NAN, unit);
+    }
+    let n = v.len() as f64;
+    let value = match d.statistic {
+        Statistic::Max => v.iter().cloned().fold(f64::NEG_INFINITY, f64::max),
+        Statistic::Min => v.iter().cloned().fold(f64::INFINITY, f64::min),
+        Statistic::Peak => v.iter().fold(0.0, |a: f64, x| a.max(x.abs())),
+        Statistic::Sum => v.iter().sum(),
+        Statistic::Mean => v.iter().sum::<f64>() / n,
+        Statistic::Rms => (v.iter().map(|x| x * x).sum::<f64>() / n).sqrt(),
+        // refused when the description is checked
+        _ => f64::NAN,
+    };
+    (value, unit)
+}
+
+/// The statistic of `d`'s columns of `res` over its window.
+fn of_columns(d: &MetricDesc, res: &Results) -> (f64, String) {
+    let unit = unit_of_statistic(d, res);
     let t = res.column("t").unwrap_or_default();
-    let v = res.column(&d.of).unwrap_or_else(|| vec![f64::NAN; t.len()]);
     let (from, to) = (
         d.t_start.unwrap_or(f64::NEG_INFINITY),
         d.t_end.unwrap_or(f64::INFINITY),
@@ -23,66 +140,166 @@ fn one(d: &MetricDesc, res: &Results) -> Metric {
     let rows: Vec<usize> = (0..t.len())
         .filter(|&k| t[k] >= from && t[k] <= to)
         .collect();
-    let (tw, vw): (Vec<f64>, Vec<f64>) = rows.iter().map(|&k| (t[k], v[k])).unzip();
-    let value = if rows.is_empty() {
-        f64::NAN
-    } else {
-        statistic(d, res, &tw, &vw)
+    if rows.is_empty() {
+        return (f64::NAN, unit);
+    }
+    let tw: Vec<f64> = rows.iter().map(|&k| t[k]).collect();
+    let columns: Vec<Vec<f64>> = (d.columns().iter())
+        .map(|c| {
+            let v = res.column(c).unwrap_or_else(|| vec![f64::NAN; t.len()]);
+            rows.iter().map(|&k| v[k]).collect()
+        })
+        .collect();
+    let value = match d.statistic {
+        Statistic::Spread => spread(d, &t, res, &tw),
+        _ => pooled(d, res, &tw, &columns),
     };
-    let unit = if d.statistic.is_time() {
-        "s"
-    } else {
-        res.unit(&d.of)
-    };
-    let window = match (d.t_start, d.t_end) {
-        (None, None) => crate::output::WHOLE_RUN.to_string(),
-        (Some(a), None) => format!("t ≥ {a} s"),
-        (None, Some(b)) => format!("t ≤ {b} s"),
-        (Some(a), Some(b)) => format!("{a} s ≤ t ≤ {b} s"),
-    };
-    let words = d.description.clone().unwrap_or_else(|| {
-        format!(
-            "{} of `{}` ([[metric]] of the model)",
-            d.statistic.words(),
-            d.of
-        )
-    });
-    Metric::new(&d.name, value, unit, &words).over(&window)
+    (value, unit)
 }
 
-/// The statistic of the window's rows (t, v), not empty.
-fn statistic(d: &MetricDesc, res: &Results, t: &[f64], v: &[f64]) -> f64 {
-    let arg = |better: &dyn Fn(f64, f64) -> bool| {
-        (0..v.len()).fold(0, |b, k| if better(v[k], v[b]) { k } else { b })
+/// The statistic over several columns taken together (`Statistic` docs).
+fn pooled(d: &MetricDesc, res: &Results, t: &[f64], columns: &[Vec<f64>]) -> f64 {
+    let each = |f: &dyn Fn(&str, &[f64]) -> f64| -> Vec<f64> {
+        (d.columns().iter().zip(columns))
+            .map(|(c, v)| f(c, v))
+            .collect()
     };
-    let (peak, max, min) = (
-        arg(&|a, b| a.abs() > b.abs()),
-        arg(&|a, b| a > b),
-        arg(&|a, b| a < b),
-    );
+    let max = |v: Vec<f64>| v.into_iter().fold(f64::NEG_INFINITY, f64::max);
+    let n = columns.len() as f64;
     match d.statistic {
-        Statistic::Peak | Statistic::Max => {
-            let rows = if d.statistic == Statistic::Peak {
-                v[peak].abs()
-            } else {
-                v[max]
-            };
-            located(d, res, t, rows)
+        Statistic::Peak => max(each(&|c, v| located(c, res, t, row_peak(v)))),
+        Statistic::Max => max(each(&|c, v| {
+            let m = v.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
+            located(c, res, t, m)
+        })),
+        Statistic::Min => (each(&|_, v| v.iter().cloned().fold(f64::INFINITY, f64::min)))
+            .into_iter()
+            .fold(f64::INFINITY, f64::min),
+        Statistic::Mean => each(&|_, v| time_mean(t, v, t[0])).iter().sum::<f64>() / n,
+        Statistic::Rms => {
+            let sq = each(&|_, v| {
+                let s: Vec<f64> = v.iter().map(|x| x * x).collect();
+                time_mean(t, &s, t[0])
+            });
+            (sq.iter().sum::<f64>() / n).sqrt()
         }
-        Statistic::Min => v[min],
-        Statistic::Mean => time_mean(t, v, t[0]),
-        Statistic::Rms => time_rms(t, v, t[0]),
-        Statistic::Final => v[v.len() - 1],
-        Statistic::TimeOfPeak => t[peak],
-        Statistic::TimeOfMax => t[max],
-        Statistic::TimeOfMin => t[min],
+        Statistic::Final => columns[0][t.len() - 1],
+        Statistic::Change => columns[0][t.len() - 1] - columns[0][0],
+        Statistic::Drift => max(each(&|_, v| {
+            v.iter().fold(0.0, |a: f64, x| a.max((x - v[0]).abs()))
+        })),
+        Statistic::Integral => each(&|_, v| integral(t, v)).iter().sum(),
+        Statistic::Onsets => each(&|_, v| onsets(v) as f64).iter().sum(),
+        Statistic::Oscillation => {
+            let w = d.window.unwrap_or(f64::NAN);
+            max(each(&|_, v| oscillation(t, v, w)))
+        }
+        Statistic::TimeOfPeak | Statistic::TimeOfMax | Statistic::TimeOfMin => {
+            time_of_extreme(d.statistic, t, columns)
+        }
+        // refused when the description is checked
+        Statistic::Sum | Statistic::Spread => f64::NAN,
     }
+}
+
+/// Largest |v|.
+fn row_peak(v: &[f64]) -> f64 {
+    v.iter().fold(0.0, |a: f64, x| a.max(x.abs()))
+}
+
+/// The time of the extreme over all columns (the first row that reaches it).
+fn time_of_extreme(s: Statistic, t: &[f64], columns: &[Vec<f64>]) -> f64 {
+    let key = |x: f64| match s {
+        Statistic::TimeOfPeak => x.abs(),
+        Statistic::TimeOfMax => x,
+        _ => -x,
+    };
+    let mut best = (f64::NEG_INFINITY, f64::NAN);
+    for v in columns {
+        for (k, &x) in v.iter().enumerate() {
+            if key(x) > best.0 {
+                best = (key(x), t[k]);
+            }
+        }
+    }
+    best.1
+}
+
+/// ∫ v dt by the trapezoidal rule over the rows.
+fn integral(t: &[f64], v: &[f64]) -> f64 {
+    (1..t.len())
+        .map(|k| 0.5 * (v[k] + v[k - 1]) * (t[k] - t[k - 1]))
+        .sum()
+}
+
+/// Rows where v reaches 0.5 after a row below it.
+fn onsets(v: &[f64]) -> usize {
+    v.windows(2).filter(|w| w[0] < 0.5 && w[1] >= 0.5).count()
+}
+
+/// Largest |v − the running mean of v over `window` s| ([`Statistic::Oscillation`]).
+pub fn oscillation(t: &[f64], v: &[f64], window: f64) -> f64 {
+    let n = t.len();
+    let mut out = 0.0f64;
+    let (mut lo, mut hi) = (0usize, 0usize);
+    for k in 0..n {
+        let (a, b) = (t[k] - 0.5 * window, t[k] + 0.5 * window);
+        if a < t[0] || b > t[n - 1] {
+            continue;
+        }
+        while t[lo] < a {
+            lo += 1;
+        }
+        while hi + 1 < n && t[hi + 1] <= b {
+            hi += 1;
+        }
+        let mean = time_mean(&t[lo..=hi], &v[lo..=hi], f64::NEG_INFINITY);
+        out = out.max((v[k] - mean).abs());
+    }
+    out
+}
+
+/// [`Statistic::Spread`] of the point whose coordinates are `d`'s columns, sampled from the
+/// whole rows (`t`, all of them) from the window's first time `tw[0]` to its last.
+fn spread(d: &MetricDesc, t: &[f64], res: &Results, tw: &[f64]) -> f64 {
+    let (period, phases) = (d.period.unwrap_or(f64::NAN), d.phases.unwrap_or(8));
+    let coords: Vec<Vec<f64>> = (d.columns().iter())
+        .map(|c| res.column(c).unwrap_or_default())
+        .collect();
+    let (t0, t_end) = (tw[0], tw[tw.len() - 1]);
+    let periods = ((t_end - t0) / period + 1e-9).floor() as usize;
+    if periods < 2 {
+        return f64::NAN;
+    }
+    let mut total = 0.0;
+    for i in 0..phases {
+        let points: Vec<Vec<f64>> = (0..periods)
+            .map(|k| {
+                let at = t0 + (k as f64 + i as f64 / phases as f64) * period;
+                coords.iter().map(|x| interp(t, x, at)).collect()
+            })
+            .collect();
+        let n = points.len() as f64;
+        let mean: Vec<f64> = (0..coords.len())
+            .map(|j| points.iter().map(|p| p[j]).sum::<f64>() / n)
+            .collect();
+        let var = (points.iter())
+            .map(|p| {
+                (p.iter().zip(&mean))
+                    .map(|(x, m)| (x - m).powi(2))
+                    .sum::<f64>()
+            })
+            .sum::<f64>()
+            / n;
+        total += var.sqrt();
+    }
+    total / phases as f64
 }
 
 /// The row extreme `rows` raised to the located extrema of a contact element's impacts inside
 /// the window, for `<C>.normal_force` and `<C>.penetration` (both ≥ 0, so peak and max agree).
-fn located(d: &MetricDesc, res: &Results, t: &[f64], rows: f64) -> f64 {
-    match d.of.rsplit_once('.') {
+fn located(column: &str, res: &Results, t: &[f64], rows: f64) -> f64 {
+    match column.rsplit_once('.') {
         Some((joint, quantity)) => {
             located_extreme(res, joint, quantity, (t[0], t[t.len() - 1]), rows)
         }
@@ -104,14 +321,10 @@ mod tests {
 
     fn metric(stat: Statistic, from: Option<f64>, r: &Results) -> f64 {
         let d = MetricDesc {
-            name: "m".into(),
-            of: "a.x".into(),
-            statistic: stat,
             t_start: from,
-            t_end: None,
-            description: None,
+            ..MetricDesc::new("m", "a.x", stat)
         };
-        evaluate(&[d], r)[0].value
+        evaluate(&[d], r, None)[0].value
     }
 
     #[test]

@@ -325,18 +325,15 @@ fn derived(d: &mut ModelDesc, p: &SliderCrankParams) {
     d.measures.push(clr_mbd::Measure::Deviation(Deviation {
         name: "slider".into(),
         of: vec!["slider.x".into()],
+        suffix: None,
     }));
     d.twin = Some(TwinSettings {
         intervals: Some(((revolutions * TWIN_ROWS_PER_REVOLUTION).ceil() as usize).max(1000)),
     });
     let t_from = p.transient_revolutions * 60.0 / p.crank_speed_rpm;
     let metric = |name: &str, of: &str, statistic, after_transient: bool, words: &str| MetricDesc {
-        name: name.into(),
-        of: of.into(),
-        statistic,
         t_start: after_transient.then_some(t_from),
-        t_end: None,
-        description: Some(words.into()),
+        ..MetricDesc::new(name, of, statistic).described(words)
     };
     d.metrics = vec![
         metric(
@@ -391,14 +388,7 @@ pub fn run(
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
     let desc = run_desc(model, p, settings)?;
-    let (mut m, opts) = common::compile_run(model, &desc)?;
-    let mut res = common::simulate(&mut m, &opts, settings, model)?;
-    if let Some(cb) = &settings.progress {
-        cb(opts.t_end);
-    }
-    clr_mbd::desc::twin::append_deviations(&desc, &opts, &mut res)
-        .map_err(|e| common::sim_error(model, e))?;
-    let metrics = crate::described_metrics::evaluate(&desc.metrics, &res);
+    let (res, metrics) = common::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }

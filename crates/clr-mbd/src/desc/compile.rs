@@ -93,12 +93,9 @@ pub(crate) fn compile(desc: &ModelDesc) -> Result<Model, MbdError> {
     crate::measure::runtime::resolve(&mut model.measures, &own)?;
     let mut columns = model.columns();
     super::twin::check_sources(desc, &columns)?;
-    columns.extend(
-        desc.deviations()
-            .iter()
-            .map(|d| format!("{}.error", d.name)),
-    );
-    super::metric::check(&desc.metrics, &columns)?;
+    columns.extend(desc.deviations().iter().map(|d| d.column()));
+    let twin = super::twin::twin_columns(desc, &columns);
+    super::metric::check(&desc.metrics, &columns, &twin)?;
     Ok(model)
 }
 

@@ -59,6 +59,41 @@ impl ModelDesc {
     }
 }
 
+impl ModelDesc {
+    /// True when a run of this description needs its ideal twin: a `deviation` measure or a
+    /// `[[metric]]` with `twin = true`.
+    pub fn needs_twin(&self) -> bool {
+        !self.deviations().is_empty() || self.metrics.iter().any(|m| m.twin)
+    }
+}
+
+/// The columns of `columns` (a run's, with its deviation columns) that the ideal twin writes
+/// too: all but the deviations', the contact measures' and those of the clearance elements it
+/// makes ideal.
+pub(crate) fn twin_columns(desc: &ModelDesc, columns: &[String]) -> Vec<String> {
+    let (twin, _) = desc.ideal_twin();
+    let kept: Vec<String> = (twin.measures.iter())
+        .map(|m| format!("{}.", m.name()))
+        .collect();
+    let dropped: Vec<String> = (desc.measures.iter())
+        .filter(|m| matches!(m, Measure::Deviation(_) | Measure::Contact(_)))
+        .map(|m| format!("{}.", m.name()))
+        .chain(
+            (desc.clearances.iter())
+                .filter(|c| !c.is_ideal())
+                .map(|c| format!("{}.", c.name())),
+        )
+        .collect();
+    let deviation: Vec<String> = desc.deviations().iter().map(|d| d.column()).collect();
+    (columns.iter())
+        .filter(|c| !deviation.contains(c))
+        .filter(|c| {
+            kept.iter().any(|k| c.starts_with(k)) || !dropped.iter().any(|d| c.starts_with(d))
+        })
+        .cloned()
+        .collect()
+}
+
 /// Refuse, before any run, a deviation of a column the run does not write or the twin cannot
 /// (a contact quantity, or a column of a deviation).
 pub(crate) fn check_sources(desc: &ModelDesc, columns: &[String]) -> Result<(), MbdError> {
@@ -92,20 +127,22 @@ pub(crate) fn check_sources(desc: &ModelDesc, columns: &[String]) -> Result<(), 
     Ok(())
 }
 
-/// Run the ideal twin of `desc` over the span of `options` (at its `[twin]` intervals) and
-/// append the deviation columns to `results`, saying in their notes what the twin was. A twin
-/// that fails leaves the columns NaN and says why in the notes (the run itself stands).
+/// Run the ideal twin of `desc` over the span of `options` (at its `[twin]` intervals) when
+/// the description needs it ([`ModelDesc::needs_twin`]), append the deviation columns to
+/// `results`, saying in their notes what the twin was, and return the twin's results (for the
+/// metrics with `twin = true`). A twin that fails leaves the columns NaN, says why in the notes
+/// (the run itself stands) and returns `None`.
 ///
 /// # Errors
 /// A twin that cannot be built (an error of the description itself), or a deviation of a column
 /// that neither the run nor the twin writes.
-pub fn append_deviations(
+pub fn run_twin(
     desc: &ModelDesc,
     options: &crate::SimOptions,
     results: &mut Results,
-) -> Result<(), MbdError> {
-    if desc.deviations().is_empty() {
-        return Ok(());
+) -> Result<Option<Results>, MbdError> {
+    if !desc.needs_twin() {
+        return Ok(None);
     }
     let (twin_desc, notes) = desc.ideal_twin();
     let mut twin_model = twin_desc.compile()?;
@@ -117,36 +154,31 @@ pub fn append_deviations(
     o.every_step = false;
     results.notes.extend(notes);
     let n = results.len();
-    let columns = match twin_model.simulate(&o) {
+    let (columns, twin) = match twin_model.simulate(&o) {
         Ok(twin) => {
             results.notes.push(format!(
-                "deviation measures: the ideal twin (every revolute and translational clearance \
-                 joint at clearance 0) ran over the same span, recorded at {k} equal intervals \
-                 and interpolated linearly ({} steps)",
+                "ideal twin (every revolute and translational clearance joint at clearance 0): \
+                 ran over the same span, recorded at {k} equal intervals, interpolated linearly \
+                 for the deviation measures ({} steps)",
                 twin.stats.accepted
             ));
-            deviation_columns(desc, results, &twin)?
+            (deviation_columns(desc, results, &twin)?, Some(twin))
         }
         Err(e) => {
             results.notes.push(format!(
-                "deviation measures: the ideal twin failed ({e}); their columns are NaN"
+                "ideal twin failed ({e}): the deviation columns are NaN, the twin's metrics too"
             ));
-            (desc.deviations().iter())
-                .map(|d| {
-                    (
-                        format!("{}.error", d.name),
-                        unit_of(&d.of[0]),
-                        vec![f64::NAN; n],
-                    )
-                })
-                .collect()
+            let columns = (desc.deviations().iter())
+                .map(|d| (d.column(), unit_of(&d.of[0]), vec![f64::NAN; n]))
+                .collect();
+            (columns, None)
         }
     };
     for (c, u, _) in &columns {
         results.units.push((c.clone(), u));
     }
     results.append_columns(columns.into_iter().map(|(c, _, v)| (c, v)).collect());
-    Ok(())
+    Ok(twin)
 }
 
 /// One deviation column: its name, unit and values.
@@ -190,7 +222,7 @@ pub fn deviation_columns(
         } else {
             sq.into_iter().map(f64::sqrt).collect()
         };
-        out.push((format!("{}.error", d.name), unit_of(&d.of[0]), values));
+        out.push((d.column(), unit_of(&d.of[0]), values));
     }
     Ok(out)
 }

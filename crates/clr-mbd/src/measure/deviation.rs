@@ -21,7 +21,7 @@ use crate::element::{Compiler, Element};
 use crate::error::MbdError;
 use crate::results::unit_of;
 
-/// Deviation of columns from the ideal-joint twin: column `<name>.error`.
+/// Deviation of columns from the ideal-joint twin: column `<name>.error` (or `<name>.<suffix>`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Deviation {
@@ -30,12 +30,38 @@ pub struct Deviation {
     /// The columns compared: a column of the run or of an earlier measure (`slider.x`,
     /// `ee1.x`); one gives a signed difference, several a distance.
     pub of: Vec<String>,
+    /// The column's suffix (default `error`): `<name>.<suffix>`, so that one name can carry the
+    /// deviations of several quantities (`flap.error`, `flap.alpha_error`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub suffix: Option<String>,
+}
+
+impl Deviation {
+    /// The column it writes, `<name>.<suffix>`.
+    pub fn column(&self) -> String {
+        format!(
+            "{}.{}",
+            self.name,
+            self.suffix.as_deref().unwrap_or("error")
+        )
+    }
 }
 
 impl Element for Deviation {
     /// Nothing to evaluate per row: the columns are written after the twin has run
     /// ([`deviation_columns`]).
     fn compile(&self, _c: &mut Compiler) -> Result<(), MbdError> {
+        if let Some(s) = &self.suffix {
+            if s.is_empty() || s.contains(|c: char| c == '.' || c.is_whitespace()) {
+                return Err(MbdError::Invalid {
+                    path: format!("{}.suffix", self.name),
+                    message: format!(
+                        "`{s}`: the suffix ends the column name `<name>.<suffix>`; give one \
+                         word without dots or spaces"
+                    ),
+                });
+            }
+        }
         if self.of.is_empty() {
             return Err(MbdError::Invalid {
                 path: format!("{}.of", self.name),

@@ -23,11 +23,15 @@
 //! - `reaction` of a joint or driver, in the world frame or a body's ([`copy`]);
 //! - `contact`: one quantity of a contact element ([`copy`]);
 //! - `energy`: one energy term ([`copy`]);
-//! - `momentum`: linear and angular momentum of rigid bodies about a world point ([`momentum`]);
+//! - `momentum`: linear and angular momentum of rigid bodies about a world point ([`momentum`]),
+//!   optionally with the magnitudes they are made of;
+//! - `combination`: a sum of factors times columns or products of columns, of the run and of
+//!   earlier measures ([`combination`]);
 //! - `deviation` of columns from the ideal-joint twin ([`deviation`]), written after the twin
 //!   has run by whoever runs it ([`crate::desc::twin::deviation_columns`]; `clr run` does).
 
 pub mod angle;
+pub mod combination;
 pub mod copy;
 pub mod deviation;
 pub mod distance;
@@ -65,6 +69,8 @@ section! {
         Energy(copy::Energy) = "energy",
         /// Linear and angular momentum of rigid bodies.
         Momentum(momentum::Momentum) = "momentum",
+        /// A sum of factors times columns or products of columns.
+        Combination(combination::Combination) = "combination",
         /// Deviation of columns from the ideal-joint twin.
         Deviation(deviation::Deviation) = "deviation",
     }

@@ -3,6 +3,11 @@
 //! Greenwood, *Principles of Dynamics*, 1988, §4.1). Flexible bodies and beams carry momentum in
 //! their elastic coordinates, which this measure does not add: a model with them must list the
 //! rigid bodies it means.
+//!
+//! With `scales = true` it also writes the magnitudes the momenta are made of, Σ m_k |ṙ_k|
+//! (`<name>.p_scale`, kg·m/s) and Σ (|I_k ω_k| + m_k |(r_k − r_O) × ṙ_k|) (`<name>.L_scale`,
+//! kg·m²/s): the sizes a drift of p and L is judged against (a `[[metric]]` with `per`), since
+//! p and L themselves may be zero (a free-floating system starting at rest).
 
 use nalgebra::Vector2;
 use serde::{Deserialize, Serialize};
@@ -24,6 +29,9 @@ pub struct Momentum {
     /// The world point O the angular momentum is taken about, m (default the origin).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub about: Option<[f64; 2]>,
+    /// Also write `<name>.p_scale` and `<name>.L_scale` (module docs; default false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub scales: bool,
 }
 
 impl Element for Momentum {
@@ -64,16 +72,19 @@ impl Element for Momentum {
             .into_iter()
             .map(|k| (k, c.bodies[k].1.mass, c.bodies[k].1.inertia))
             .collect();
+        let quantities = if self.scales { 5 } else { 3 };
         c.measures.push(CompiledMeasure {
             name: self.name.clone(),
-            columns: ["px", "py", "L"]
+            columns: ["px", "py", "L", "p_scale", "L_scale"]
                 .iter()
-                .zip(["kg*m/s", "kg*m/s", "kg*m^2/s"])
+                .zip(["kg*m/s", "kg*m/s", "kg*m^2/s", "kg*m/s", "kg*m^2/s"])
+                .take(quantities)
                 .map(|(s, u)| (format!("{}.{s}", self.name), u))
                 .collect(),
             el: MeasureEl::Momentum {
                 bodies,
                 about: Vector2::new(about[0], about[1]),
+                scales: self.scales,
             },
         });
         Ok(())

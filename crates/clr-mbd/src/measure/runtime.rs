@@ -39,10 +39,11 @@ pub(crate) enum MeasureEl {
         b: (usize, Vector2<f64>),
     },
     /// Σ m v and Σ (I ω + m (r − about) × v) over the listed rigid bodies (indices, mass,
-    /// inertia about the centre of mass).
+    /// inertia about the centre of mass), and with `scales` the sums of the magnitudes.
     Momentum {
         bodies: Vec<(usize, f64, f64)>,
         about: Vector2<f64>,
+        scales: bool,
     },
     /// Values copied from columns the run writes anyway (source names; their indices in the
     /// row are resolved by [`Measures::resolve`]), the first two rotated into a body frame
@@ -52,6 +53,14 @@ pub(crate) enum MeasureEl {
         sources: Vec<String>,
         index: Vec<usize>,
         rotate: Option<usize>,
+    },
+    /// Σ_k c_k · (|Π x| or Π x) over the terms (sources of each term, their indices in the row
+    /// resolved by [`resolve`] among the run's columns and the earlier measures'; factor c_k
+    /// and whether to take the absolute value).
+    Combination {
+        sources: Vec<Vec<String>>,
+        index: Vec<Vec<usize>>,
+        factors: Vec<(f64, bool)>,
     },
 }
 
@@ -181,15 +190,26 @@ impl CompiledMeasure {
                 let l = d.norm();
                 out.extend_from_slice(&[l, if l > 0.0 { d.dot(&dv) / l } else { 0.0 }]);
             }
-            MeasureEl::Momentum { bodies, about } => {
+            MeasureEl::Momentum {
+                bodies,
+                about,
+                scales,
+            } => {
                 let (mut p, mut l) = (Vector2::zeros(), 0.0);
+                let (mut sp, mut sl) = (0.0, 0.0);
                 for &(k, m, inertia) in bodies {
                     let f = row.frame(k);
                     p += m * f.v;
                     let r = f.r - about;
-                    l += inertia * f.w + m * (r.x * f.v.y - r.y * f.v.x);
+                    let (spin, orbit) = (inertia * f.w, m * (r.x * f.v.y - r.y * f.v.x));
+                    l += spin + orbit;
+                    sp += m * f.v.norm();
+                    sl += spin.abs() + orbit.abs();
                 }
                 out.extend_from_slice(&[p.x, p.y, l]);
+                if *scales {
+                    out.extend_from_slice(&[sp, sl]);
+                }
             }
             MeasureEl::Copy { index, rotate, .. } => {
                 let start = out.len();
@@ -201,6 +221,15 @@ impl CompiledMeasure {
                     out[start] = f.x;
                     out[start + 1] = f.y;
                 }
+            }
+            MeasureEl::Combination { index, factors, .. } => {
+                let term = |k: usize| {
+                    let x = (index[k].iter()).fold(1.0, |p, &i| p * out[row_start + i]);
+                    let (c, abs) = factors[k];
+                    c * if abs { x.abs() } else { x }
+                };
+                let sum = (1..index.len()).fold(term(0), |s, k| s + term(k));
+                out.push(sum);
             }
         }
     }
@@ -226,8 +255,27 @@ pub(crate) fn resolve(
             }
         }
     }
+    let mut known = columns.to_vec();
     for m in measures.iter_mut() {
         let name = &m.name;
+        if let MeasureEl::Combination { sources, index, .. } = &mut m.el {
+            *index = (sources.iter().enumerate())
+                .map(|(k, s)| {
+                    (s.iter())
+                        .map(|c| {
+                            known.iter().position(|x| x == c).ok_or_else(|| MbdError::Invalid {
+                                path: format!("{name}.terms[{k}].of"),
+                                message: format!(
+                                    "the model and the measures before this one write no column                                      `{c}` (a `deviation` column is written after the run and                                      cannot be combined){}",
+                                    near(&known, c)
+                                ),
+                            })
+                        })
+                        .collect::<Result<Vec<_>, _>>()
+                })
+                .collect::<Result<_, _>>()?;
+        }
+        known.extend(m.columns.iter().map(|(c, _)| c.clone()));
         if let MeasureEl::Copy {
             field,
             sources,
@@ -257,6 +305,22 @@ pub(crate) fn resolve(
         }
     }
     Ok(())
+}
+
+/// `; similar: …` with up to 8 columns sharing the name's first or last part.
+pub(crate) fn near(columns: &[String], of: &str) -> String {
+    let head = of.split('.').next().unwrap_or(of);
+    let tail = of.rsplit('.').next().unwrap_or(of);
+    let near: Vec<&str> = (columns.iter())
+        .filter(|c| c.starts_with(&format!("{head}.")) || c.ends_with(&format!(".{tail}")))
+        .map(String::as_str)
+        .take(8)
+        .collect();
+    if near.is_empty() {
+        String::new()
+    } else {
+        format!("; similar: {}", near.join(", "))
+    }
 }
 
 /// The items whose columns end like `source` does (`J.Fx` → `crank_pin, B`), for the error.

@@ -1,0 +1,139 @@
+//! `combination`: a sum of terms, each a factor times a column or a product of columns,
+//! optionally its absolute value: `<name>.value` = Σ_k c_k · (|x_k,1 · x_k,2 · …| or
+//! x_k,1 · x_k,2 · …). It reads columns the run writes at the same row (its own and those of
+//! earlier measures), so it costs a few multiplications per row and needs nothing evaluated
+//! twice: the total normal force of several contact pads, the friction magnitude summed over
+//! them, a generalized coordinate mapped to a displacement (a modal tip deflection Σ T_k q_k), a
+//! power F·v, or the moment δ·F_T of a friction pair applied at points δ apart.
+//!
+//! The column's unit is `unit` when given (one of [`crate::results::UNITS`]), else the common
+//! unit of the terms, which must then be single columns of one unit.
+
+use serde::{Deserialize, Serialize};
+
+use super::runtime::{CompiledMeasure, MeasureEl};
+use crate::element::{Compiler, Element};
+use crate::error::MbdError;
+use crate::results::{known_unit, unit_of, UNITS};
+
+/// One column name or several (a product).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(untagged)]
+pub enum Columns {
+    /// One column.
+    One(String),
+    /// Several columns, multiplied.
+    Many(Vec<String>),
+}
+
+impl Columns {
+    /// The column names.
+    pub fn names(&self) -> &[String] {
+        match self {
+            Columns::One(c) => std::slice::from_ref(c),
+            Columns::Many(v) => v,
+        }
+    }
+}
+
+/// One term c · x (or c · |x|), x a column or a product of columns.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Term {
+    /// The column, or the columns multiplied.
+    pub of: Columns,
+    /// The factor c (default 1), in the unit of the measure over that of the columns.
+    #[serde(default = "one", skip_serializing_if = "is_one")]
+    pub factor: f64,
+    /// Take the absolute value of the column (or product) before the factor (default false).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub abs: bool,
+}
+
+fn one() -> f64 {
+    1.0
+}
+
+fn is_one(x: &f64) -> bool {
+    *x == 1.0
+}
+
+/// A sum of terms: `<name>.value`, in `unit` or the terms' common unit.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Combination {
+    /// Unique measure name.
+    pub name: String,
+    /// The terms, summed in order (at least one).
+    pub terms: Vec<Term>,
+    /// The unit of the column (default: the common unit of single-column terms).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unit: Option<String>,
+}
+
+impl Combination {
+    fn invalid(&self, field: &str, message: String) -> MbdError {
+        MbdError::Invalid {
+            path: format!("{}.{field}", self.name),
+            message,
+        }
+    }
+
+    /// The column's unit (module docs).
+    fn unit(&self) -> Result<&'static str, MbdError> {
+        if let Some(u) = &self.unit {
+            return known_unit(u).ok_or_else(|| {
+                self.invalid(
+                    "unit",
+                    format!("`{u}` is not a unit clr knows; one of {}", UNITS.join(", ")),
+                )
+            });
+        }
+        let units: Vec<&str> = (self.terms.iter())
+            .flat_map(|t| t.of.names().iter().map(|c| unit_of(c)))
+            .collect();
+        let single = self.terms.iter().all(|t| t.of.names().len() == 1);
+        if single && units.iter().all(|u| *u == units[0]) {
+            return Ok(units[0]);
+        }
+        Err(self.invalid(
+            "unit",
+            format!(
+                "the terms' columns have the units {}{}: say the unit of the sum (`unit = \"N\"`, \
+                 say)",
+                units.join(", "),
+                if single { "" } else { " and some are products" }
+            ),
+        ))
+    }
+}
+
+impl Element for Combination {
+    fn compile(&self, c: &mut Compiler) -> Result<(), MbdError> {
+        if self.terms.is_empty() {
+            return Err(self.invalid("terms", "give at least one term".into()));
+        }
+        for (k, t) in self.terms.iter().enumerate() {
+            if t.of.names().is_empty() {
+                return Err(self.invalid(&format!("terms[{k}].of"), "name a column".into()));
+            }
+            if !t.factor.is_finite() {
+                return Err(self.invalid(
+                    &format!("terms[{k}].factor"),
+                    format!("{}: the factor must be finite", t.factor),
+                ));
+            }
+        }
+        let unit = self.unit()?;
+        c.measures.push(CompiledMeasure {
+            name: self.name.clone(),
+            columns: vec![(format!("{}.value", self.name), unit)],
+            el: MeasureEl::Combination {
+                sources: (self.terms.iter()).map(|t| t.of.names().to_vec()).collect(),
+                index: Vec::new(),
+                factors: self.terms.iter().map(|t| (t.factor, t.abs)).collect(),
+            },
+        });
+        Ok(())
+    }
+}
