@@ -322,9 +322,14 @@ impl Engine for Model {
     fn columns(&self) -> Vec<String> {
         Model::columns(self)
     }
-    /// The measures' units that their columns' suffixes do not say (`<name>.value`).
+    /// The units that the columns' suffixes do not say: the measures' (`<name>.value`) and
+    /// the flexible parts' elastic coordinates (`F.q<k>`, m, rad or - by what each is).
     fn units(&self) -> Vec<(String, &'static str)> {
+        let elastic = (self.flexible_coordinates().into_iter())
+            .flat_map(|f| f.coordinates)
+            .map(|c| (c.column, c.unit));
         (self.measure_columns().into_iter())
+            .chain(elastic)
             .filter(|(c, u)| crate::results::unit_of(c) != *u)
             .collect()
     }

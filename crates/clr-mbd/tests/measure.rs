@@ -540,3 +540,131 @@ fn an_angle_offset_in_degrees_and_a_point_in_millimetres_are_flagged() {
         "{fields:?}"
     );
 }
+
+/// [`FREE_PAIR`] with the momentum scales and combinations: the kinetic energy as a sum of
+/// products of the velocity columns, the summed |v_x| of both bodies, and a combination of an
+/// earlier measure's column.
+fn free_pair_combined() -> String {
+    let (head, tail) = FREE_PAIR.split_once("[solver]").unwrap();
+    let head = head.replace("about = [0.1, -0.2]", "about = [0.1, -0.2]\nscales = true");
+    format!(
+        r#"{head}
+[[measure]]
+name = "kinetic"
+type = "combination"
+unit = "J"
+terms = [
+  {{ of = ["a.vx", "a.vx"], factor = 0.75 }}, {{ of = ["a.vy", "a.vy"], factor = 0.75 }},
+  {{ of = ["a.omega", "a.omega"], factor = 0.01 }},
+  {{ of = ["b.vx", "b.vx"], factor = 0.35 }}, {{ of = ["b.vy", "b.vy"], factor = 0.35 }},
+  {{ of = ["b.omega", "b.omega"], factor = 0.005 }},
+]
+
+[[measure]]
+name = "speed_x"
+type = "combination"
+terms = [{{ of = "a.vx", abs = true }}, {{ of = "b.vx", abs = true, factor = 2.0 }}]
+
+[[measure]]
+name = "half_px"
+type = "combination"
+terms = [{{ of = "momentum.px", factor = 0.5 }}]
+
+[solver]{tail}"#
+    )
+}
+
+#[test]
+fn combinations_and_momentum_scales_equal_their_sums_of_the_body_columns() {
+    let r = run(&free_pair_combined());
+    let c = |n: &str| col(&r, n);
+    // independent formulation: the engine's own kinetic energy column (½ m v² + ½ I ω² per
+    // body, computed from the mass matrix) against the sum of products of the velocity columns;
+    // rounding only (measured 4.4e-16 relative)
+    let (kin, e) = (c("kinetic.value"), c("energy.kinetic"));
+    for k in 0..kin.len() {
+        assert!(
+            (kin[k] - e[k]).abs() <= 1e-13 * e[k].abs(),
+            "row {k}: {} vs {}",
+            kin[k],
+            e[k]
+        );
+    }
+    assert_eq!(r.unit("kinetic.value"), "J");
+    assert_eq!(r.unit("speed_x.value"), "m/s");
+    assert_eq!(r.unit("momentum.L_scale"), "kg*m^2/s");
+    let (ps, ls, sx, half, px) = (
+        c("momentum.p_scale"),
+        c("momentum.L_scale"),
+        c("speed_x.value"),
+        c("half_px.value"),
+        c("momentum.px"),
+    );
+    for k in [0, 41, ps.len() - 1] {
+        let (mut p, mut l) = (0.0, 0.0);
+        for (b, m, i) in [("a", 1.5, 0.02), ("b", 0.7, 0.01)] {
+            let at = |s: &str| c(&format!("{b}.{s}"))[k];
+            let (x, y, vx, vy) = (at("x") - 0.1, at("y") + 0.2, at("vx"), at("vy"));
+            p += m * vx.hypot(vy);
+            l += (i * at("omega")).abs() + (m * (x * vy - y * vx)).abs();
+        }
+        assert!(
+            (ps[k] - p).abs() < 1e-14 && (ls[k] - l).abs() < 1e-14,
+            "row {k}"
+        );
+        let want = c("a.vx")[k].abs() + 2.0 * c("b.vx")[k].abs();
+        assert!((sx[k] - want).abs() < 1e-15, "row {k}");
+        assert_eq!(half[k], 0.5 * px[k]);
+    }
+}
+
+#[test]
+fn combinations_are_refused_with_what_to_change() {
+    let text = free_pair_combined();
+    // a product needs its unit; a unit in millimetres is not one clr knows
+    let e = compile_err(&text.replace("unit = \"J\"\n", ""));
+    assert!(e.contains("kinetic.unit") && e.contains("products"), "{e}");
+    // terms of different units without the sum's unit
+    let e = compile_err(&text.replace("of = \"b.vx\", abs", "of = \"b.omega\", abs"));
+    assert!(
+        e.contains("speed_x.unit") && e.contains("b.omega (rad/s)"),
+        "{e}"
+    );
+    let e = compile_err(&text.replace("unit = \"J\"", "unit = \"mJ\""));
+    assert!(e.contains("`mJ`") && e.contains("kg*m^2/s"), "{e}");
+    // a column of a later measure, or a misspelt one, is not there yet
+    let e = compile_err(&text.replace("of = [\"a.vx\", \"a.vx\"]", "of = \"speed_x.value\""));
+    assert!(
+        e.contains("kinetic.terms[0].of") && e.contains("before this one"),
+        "{e}"
+    );
+    let e = compile_err(&text.replace("of = \"a.vx\", abs", "of = \"a.vxx\", abs"));
+    assert!(e.contains("`a.vxx`") && e.contains("a.vx"), "{e}");
+    let e = compile_err(&text.replace("factor = 2.0", "factor = nan"));
+    assert!(e.contains("terms[1].factor"), "{e}");
+}
+
+#[test]
+fn metrics_are_refused_with_what_to_change() {
+    let with = |m: &str| format!("{FREE_PAIR}\n[[metric]]\nname = \"m\"\n{m}\n");
+    let cases = [
+        // an oscillation without its window, a window it does not use
+        ("of = \"a.x\"\nstatistic = \"oscillation\"", "metric[0].window"),
+        ("of = \"a.x\"\nstatistic = \"peak\"\nwindow = 0.1", "only `oscillation`"),
+        ("of = \"a.x\"\nstatistic = \"spread\"", "metric[0].period"),
+        // both sources, or a metric not defined before
+        ("of = \"a.x\"\nmetrics = [\"q\"]\nstatistic = \"max\"", "not both"),
+        ("metrics = [\"q\"]\nstatistic = \"max\"", "no metric `q`"),
+        ("metrics = [\"q\"]\nstatistic = \"drift\"", "cannot combine metrics"),
+        ("of = \"a.x\"\nstatistic = \"peak\"\nper = \"q\"", "metric[0].per"),
+        ("of = [\"a.x\", \"b.x\"]\nstatistic = \"final\"", "takes one column"),
+        ("of = \"a.x\"\nstatistic = \"peak\"\nunit = \"mm\"", "`mm`"),
+        // the twin of a model without a clearance joint writes the same columns; a misspelt
+        // column is named with the similar ones
+        ("of = \"a.xx\"\nstatistic = \"peak\"\ntwin = true", "ideal twin writes no column"),
+    ];
+    for (m, want) in cases {
+        let e = compile_err(&with(m));
+        assert!(e.contains(want), "{m}: {e}");
+    }
+}

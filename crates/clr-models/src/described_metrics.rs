@@ -259,14 +259,17 @@ pub fn oscillation(t: &[f64], v: &[f64], window: f64) -> f64 {
     out
 }
 
-/// [`Statistic::Spread`] of the point whose coordinates are `d`'s columns, sampled from the
-/// whole rows (`t`, all of them) from the window's first time `tw[0]` to its last.
+/// [`Statistic::Spread`] of the point whose coordinates are `d`'s columns, interpolated in
+/// the whole rows (`t`, all of them) from the window's start to its last row `tw`.
 fn spread(d: &MetricDesc, t: &[f64], res: &Results, tw: &[f64]) -> f64 {
     let (period, phases) = (d.period.unwrap_or(f64::NAN), d.phases.unwrap_or(8));
     let coords: Vec<Vec<f64>> = (d.columns().iter())
         .map(|c| res.column(c).unwrap_or_default())
         .collect();
-    let (t0, t_end) = (tw[0], tw[tw.len() - 1]);
+    // sampled from the window's start itself (not its first row), so that the phases are those
+    // of the forcing whatever the rows
+    let t0 = d.t_start.map_or(tw[0], |s| s.max(t[0]));
+    let t_end = tw[tw.len() - 1];
     let periods = ((t_end - t0) / period + 1e-9).floor() as usize;
     if periods < 2 {
         return f64::NAN;
@@ -352,5 +355,122 @@ mod tests {
         assert!((m + 2.0 / std::f64::consts::PI).abs() < 3e-8, "{m}");
         // a window after the last row has no value
         assert!(metric(Statistic::Max, Some(2.0), &r).is_nan());
+    }
+
+    /// Results with columns `t` and `c<k>` from the closures.
+    fn table(t: &[f64], cols: &[&dyn Fn(f64) -> f64]) -> Results {
+        let mut columns = vec!["t".to_string()];
+        columns.extend((0..cols.len()).map(|k| format!("c{k}.x")));
+        let data = (t.iter())
+            .flat_map(|&x| std::iter::once(x).chain(cols.iter().map(move |f| f(x))))
+            .collect();
+        Results {
+            columns,
+            data,
+            ..Default::default()
+        }
+    }
+
+    fn value(d: MetricDesc, r: &Results) -> f64 {
+        evaluate(&[d], r, None)[0].value
+    }
+
+    #[test]
+    fn drift_change_integral_and_onsets_equal_their_closed_forms() {
+        use std::f64::consts::PI;
+        let t: Vec<f64> = (0..=10_000).map(|k| k as f64 / 10_000.0).collect();
+        // v = 1 + t²: change v(1) − v(0) = 1, drift max |v − v(0)| = 1, ∫₀¹ v dt = 4/3 with
+        // the trapezoid error h²/12·(v'(1) − v'(0)) = 1e-8/6
+        let r = table(&t, &[&|x| 1.0 + x * x, &|x| (2.0 * PI * 5.0 * x).sin()]);
+        let of = |s| MetricDesc::new("m", "c0.x", s);
+        assert!((value(of(Statistic::Change), &r) - 1.0).abs() < 1e-15);
+        assert!((value(of(Statistic::Drift), &r) - 1.0).abs() < 1e-15);
+        let i = value(of(Statistic::Integral), &r);
+        assert!((i - 4.0 / 3.0 - 1e-8 / 6.0).abs() < 1e-14, "{i}");
+        assert_eq!(
+            evaluate(&[of(Statistic::Integral)], &r, None)[0].unit,
+            "m*s"
+        );
+        // onsets of a square wave from sign(sin 10πt): it rises to 1 at t = 0.2 k (k = 1..4)
+        // and at t = 0+ (the first row is 0, the second positive): 5 onsets; two columns of it
+        // count 10
+        let square = |x: f64| f64::from((2.0 * PI * 5.0 * x).sin() > 1e-9);
+        let r2 = table(&t, &[&square, &square]);
+        let on = |c: &[&str]| value(MetricDesc::of_columns("m", c, Statistic::Onsets), &r2);
+        assert_eq!(on(&["c0.x"]), 5.0);
+        assert_eq!(on(&["c0.x", "c1.x"]), 10.0);
+    }
+
+    #[test]
+    fn columns_taken_together_and_metrics_of_metrics() {
+        use std::f64::consts::PI;
+        let t: Vec<f64> = (0..=10_000).map(|k| k as f64 / 10_000.0).collect();
+        // a sin 2πt and b cos 2πt (a = 2, b = −3): peak 3 at t = 0 (|b|), RMS over both
+        // √((a²/2 + b²/2)/2) = √(13/4) (trapezoid exact on a whole period)
+        let r = table(
+            &t,
+            &[&|x| 2.0 * (2.0 * PI * x).sin(), &|x| {
+                -3.0 * (2.0 * PI * x).cos()
+            }],
+        );
+        let both = |s| MetricDesc::of_columns("m", &["c0.x", "c1.x"], s);
+        assert!((value(both(Statistic::Peak), &r) - 3.0).abs() < 1e-15);
+        assert!((value(both(Statistic::Rms), &r) - 3.25f64.sqrt()).abs() < 1e-12);
+        assert_eq!(value(both(Statistic::TimeOfPeak), &r), 0.0);
+        // largest value: −3 cos 2πt = 3 at t = 0.5
+        assert_eq!(value(both(Statistic::TimeOfMax), &r), 0.5);
+        // metrics of metrics, and `per`: 2/3 of the larger peak; 0/0 gives 0
+        let descs = [
+            MetricDesc::new("a", "c0.x", Statistic::Peak),
+            MetricDesc::new("b", "c1.x", Statistic::Peak),
+            MetricDesc::of_metrics("largest", &["a", "b"], Statistic::Max),
+            MetricDesc::of_metrics("total", &["a", "b"], Statistic::Sum),
+            MetricDesc::new("ratio", "c0.x", Statistic::Peak)
+                .per(Divisor::Metric("largest".into())),
+            MetricDesc::new("zero", "c0.x", Statistic::Final).per(Divisor::Number(0.0)),
+        ];
+        let m = evaluate(&descs, &r, None);
+        let v = |k: usize| m[k].value;
+        assert!(
+            (v(2) - 3.0).abs() < 1e-15 && (v(3) - 5.0).abs() < 1e-9,
+            "{m:?}"
+        );
+        assert!((v(4) - 2.0 / 3.0).abs() < 1e-9 && m[4].unit == "-", "{m:?}");
+        // sin 2π·1 is 2.4e-16, not 0: x/0 is then infinite, not hidden
+        assert!(v(5).is_infinite() || v(5) == 0.0, "{m:?}");
+    }
+
+    #[test]
+    fn stroboscopic_spread_is_zero_for_a_periodic_orbit_and_the_half_distance_for_period_two() {
+        use std::f64::consts::PI;
+        let t: Vec<f64> = (0..=40_000).map(|k| k as f64 * 1e-4).collect();
+        // a circle of period T = 0.5 s sampled every T: every phase sees one point, spread 0
+        let spread = |r: &Results| {
+            value(
+                MetricDesc {
+                    period: Some(0.5),
+                    phases: Some(10),
+                    ..MetricDesc::of_columns("s", &["c0.x", "c1.x"], Statistic::Spread).after(1.0)
+                },
+                r,
+            )
+        };
+        let r = table(&t, &[&|x| (4.0 * PI * x).cos(), &|x| (4.0 * PI * x).sin()]);
+        assert!(spread(&r) < 1e-9, "{}", spread(&r));
+        // a period-2 orbit: x jumps between +d and −d on alternate periods (x = d·cos(2πt/T')
+        // with T' = 2T sampled at T-multiples alternates ±d·cos φ); with the RMS distance of
+        // the two points from their mean |d cos φ|, the mean over phases φ_i = π i/10 of
+        // |cos φ_i| (6 whole periods: 3 samples each side, equal weights)
+        let d = 0.3;
+        let r2 = table(&t, &[&move |x| d * (2.0 * PI * x).cos(), &|_| 0.0]);
+        let want = (0..10)
+            .map(|i| (d * (PI * i as f64 / 10.0).cos()).abs())
+            .sum::<f64>()
+            / 10.0;
+        assert!(
+            (spread(&r2) - want).abs() < 1e-6,
+            "{} vs {want}",
+            spread(&r2)
+        );
     }
 }

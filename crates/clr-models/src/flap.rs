@@ -522,10 +522,9 @@ impl FlapParams {
     }
 }
 
-/// The model and run settings of the clearance run of [`run`] (the run it returns; [`run`]
-/// also simulates the same linkage with ideal joints as its reference): [`FlapParams::desc`]
-/// with the end time and tolerance of `settings` (when given) written into `solver` and
-/// `output`.
+/// The model and run settings of [`run`]: [`FlapParams::desc`] with the end time and
+/// tolerance of `settings` (when given) written into `solver` and `output`, and the flap's
+/// derived columns and metrics as its measures, `[twin]` and metrics ([`derived`]).
 ///
 /// # Errors
 /// Invalid parameters or run settings.
@@ -534,11 +533,170 @@ pub fn run_desc(
     p: &FlapParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
+    let mut d = common::run_desc(model, settings, Record::EveryStep, || p.desc(model))?;
+    derived(&mut d, p);
+    Ok(d)
 }
 
-/// Simulate one configuration; appends `flap.angle` (rad, from the initial position) and
-/// `flap.alpha` (rad/s²). `uniform` records every `reference_interval` instead of every step.
+/// The flap angle measures: `flap.angle` (rad, from the initial position: the rigid auxiliary
+/// lever arm's angle − π/2, or the flap body's when that arm is flexible, the flap then being a
+/// rigid body fixed to the arm's pivot node and starting at 0) and `flap.alpha` (rad/s², the
+/// flap body's own column when the arm is flexible).
+fn angle_measures(d: &mut ModelDesc, p: &FlapParams) {
+    use clr_mbd::measure::angle::{Angle, AngularAcceleration};
+    use clr_mbd::Measure;
+    let (body, offset) = if p.flexible[2] {
+        ("flap", 0.0)
+    } else {
+        ("aux_lever_arm", FRAC_PI_2)
+    };
+    d.measures.push(Measure::Angle(Angle {
+        name: "flap".into(),
+        body: body.into(),
+        relative_to: None,
+        offset,
+    }));
+    if !p.flexible[2] {
+        d.measures
+            .push(Measure::AngularAcceleration(AngularAcceleration {
+                name: "flap".into(),
+                body: body.into(),
+                relative_to: None,
+            }));
+    }
+}
+
+/// The flap's derived columns and metrics as measures, `[twin]` and metrics of its
+/// description, so that `clr run flap` and its exported file compute them the same way:
+/// `flap.angle`, `flap.alpha` ([`angle_measures`]); `flap.error` (rad) and `flap.alpha_error`
+/// (rad/s²), their deviations from the ideal-joint twin (every clearance joint ideal),
+/// recorded every `reference_interval`; after the transient, the error and acceleration
+/// oscillation (largest, RMS), the ideal twin's amplitudes, and per clearance joint the peak
+/// contact force (located on the dense output), the contact-time fraction and, with two whole
+/// periods after the transient, the Poincaré-section spread of its journal centre / clearance;
+/// the largest contact force and spread over the joints.
+fn derived(d: &mut ModelDesc, p: &FlapParams) {
+    use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic as S};
+    use clr_mbd::measure::deviation::{Deviation, TwinSettings};
+    angle_measures(d, p);
+    for (of, suffix) in [("flap.angle", None), ("flap.alpha", Some("alpha_error"))] {
+        d.measures.push(clr_mbd::Measure::Deviation(Deviation {
+            name: "flap".into(),
+            of: vec![of.into()],
+            suffix: suffix.map(str::to_string),
+        }));
+    }
+    let t_end = d.output.t_end.unwrap_or(p.duration);
+    d.twin = Some(TwinSettings {
+        intervals: Some(((t_end / p.reference_interval).round() as usize).max(1)),
+    });
+    let t0 = p.transient;
+    let m = |name: &str, of: &str, stat, words: &str| {
+        MetricDesc::new(name, of, stat).after(t0).described(words)
+    };
+    let ideal = |name: &str, of: &str, words: &str| MetricDesc {
+        twin: true,
+        ..m(name, of, S::Peak, words)
+    };
+    let mut v = vec![
+        m(
+            "flap_angle_error_max",
+            "flap.error",
+            S::Peak,
+            "largest |flap angle − ideal flap angle| after the transient",
+        ),
+        m(
+            "flap_angle_error_rms",
+            "flap.error",
+            S::Rms,
+            "time RMS of the flap angle error after the transient",
+        ),
+        m(
+            "flap_acceleration_oscillation_peak",
+            "flap.alpha_error",
+            S::Peak,
+            "largest |flap angular acceleration − ideal| after the transient",
+        ),
+        m(
+            "flap_acceleration_oscillation_rms",
+            "flap.alpha_error",
+            S::Rms,
+            "time RMS of the flap angular acceleration − ideal after the transient",
+        ),
+        ideal(
+            "flap_angle_amplitude_ideal",
+            "flap.angle",
+            "largest |flap angle| of the ideal mechanism after the transient",
+        ),
+        ideal(
+            "flap_acceleration_peak_ideal",
+            "flap.alpha",
+            "largest |flap angular acceleration| of the ideal mechanism after the transient",
+        ),
+    ];
+    let periods = (t_end - t0) / p.period() + 1e-9;
+    let (mut forces, mut spreads) = (Vec::new(), Vec::new());
+    for (k, j) in JOINTS.iter().enumerate() {
+        let c = p.clearances[k];
+        if c <= 0.0 {
+            continue;
+        }
+        forces.push(format!("{j}.normal_force"));
+        v.push(m(
+            &format!("{j}_peak_contact_force"),
+            &format!("{j}.normal_force"),
+            S::Peak,
+            &format!(
+                "largest normal force in clearance joint {j} after the transient, located on \
+                 the dense output"
+            ),
+        ));
+        v.push(m(
+            &format!("{j}_contact_time_fraction"),
+            &format!("{j}.contact"),
+            S::Mean,
+            &format!("fraction of the time after the transient with contact in {j}"),
+        ));
+        if periods >= 2.0 {
+            let name = format!("{j}_poincare_spread");
+            let (ex, ey) = (format!("{j}.ex"), format!("{j}.ey"));
+            v.push(MetricDesc {
+                period: Some(p.period()),
+                phases: Some(p.poincare_phases),
+                ..MetricDesc::of_columns(&name, &[&ex, &ey], S::Spread)
+                    .after(t0)
+                    .per(Divisor::Number(c))
+                    .in_unit("-")
+                    .described(&format!(
+                        "stroboscopic spread of the {j} journal centre over the periods after \
+                         the transient, mean over the phases, / clearance"
+                    ))
+            });
+            spreads.push(name);
+        }
+    }
+    if !forces.is_empty() {
+        let f: Vec<&str> = forces.iter().map(String::as_str).collect();
+        v.push(
+            MetricDesc::of_columns("peak_contact_force", &f, S::Peak)
+                .after(t0)
+                .described("largest normal force over the clearance joints after the transient"),
+        );
+    }
+    if !spreads.is_empty() {
+        let s: Vec<&str> = spreads.iter().map(String::as_str).collect();
+        v.push(
+            MetricDesc::of_metrics("poincare_spread", &s, S::Max).described(
+                "largest Poincaré-section spread over the clearance joints (irregularity)",
+            ),
+        );
+    }
+    d.metrics = v;
+}
+
+/// Simulate one configuration with the flap angle measures `flap.angle` (rad, from the initial
+/// position) and `flap.alpha` (rad/s²) and no twin or metric. `uniform` records every
+/// `reference_interval` instead of every step.
 pub(crate) fn simulate(
     model: &str,
     p: &FlapParams,
@@ -551,32 +709,15 @@ pub(crate) fn simulate(
     } else {
         Record::EveryStep
     };
-    let desc = common::run_desc(model, settings, record, || p.desc(model))?;
+    let mut desc = common::run_desc(model, settings, record, || p.desc(model))?;
+    angle_measures(&mut desc, p);
     let (mut m, opts) = common::compile_run(model, &desc)?;
-    let mut res = common::simulate(&mut m, &opts, settings, model)?;
-    // the flap angle: the rigid auxiliary lever arm's, or the flap body's when that arm is
-    // flexible (the flap is then a rigid body fixed to the arm's pivot node, starting at 0)
-    let (body, th0) = if p.flexible[2] {
-        ("flap", 0.0)
-    } else {
-        ("aux_lever_arm", FRAC_PI_2)
-    };
-    let angle: Vec<f64> = col(&res, &format!("{body}.theta"))
-        .iter()
-        .map(|th| th - th0)
-        .collect();
-    let alpha = col(&res, &format!("{body}.alpha"));
-    common::append_columns(
-        &mut res,
-        vec![("flap.angle".into(), angle), ("flap.alpha".into(), alpha)],
-    );
-    Ok(res)
+    common::simulate(&mut m, &opts, settings, model)
 }
 
 /// The ideal-joint reference of `p` (every clearance set to 0), recorded every
-/// `reference_interval` s with `flap.angle` and `flap.alpha`: what [`run`] compares a clearance
-/// run with, for models that simulate the same linkage another way (the spatial flap,
-/// [`crate::flap_spatial`]).
+/// `reference_interval` s with `flap.angle` and `flap.alpha`: what the flap's twin is, for
+/// models that simulate the same linkage another way (the spatial flap, [`crate::flap_spatial`]).
 ///
 /// # Errors
 /// Invalid parameters or settings, build or simulation errors.
@@ -590,51 +731,6 @@ pub fn run_ideal_reference(
         ..p.clone()
     };
     simulate(model, &ideal, settings, true)
-}
-
-/// Stroboscopic (Poincaré-section) spread of the journal-centre position of joint `j`: the
-/// eccentricity is sampled at t = t0 + (k + i/N)·T for every whole period k after `t0` and each
-/// of the N phases i; per phase the RMS distance of the samples from their mean is taken, and
-/// the mean over phases is divided by the clearance. 0 for a periodic (period-T) response,
-/// of order 1 when the journal wanders over the whole clearance circle from period to period.
-/// `None` with fewer than two whole periods.
-pub fn poincare_spread(
-    res: &Results,
-    joint: &str,
-    clearance: f64,
-    t0: f64,
-    period: f64,
-    phases: usize,
-) -> Option<f64> {
-    let t = col(res, "t");
-    let (ex, ey) = (
-        col(res, &format!("{joint}.ex")),
-        col(res, &format!("{joint}.ey")),
-    );
-    let t_end = *t.last()?;
-    let periods = ((t_end - t0) / period + 1e-9).floor() as usize;
-    if periods < 2 || ex.is_empty() {
-        return None;
-    }
-    let mut total = 0.0;
-    for i in 0..phases {
-        let pts: Vec<[f64; 2]> = (0..periods)
-            .map(|k| {
-                let ts = t0 + (k as f64 + i as f64 / phases as f64) * period;
-                [common::interp(&t, &ex, ts), common::interp(&t, &ey, ts)]
-            })
-            .collect();
-        let n = pts.len() as f64;
-        let mx = pts.iter().map(|p| p[0]).sum::<f64>() / n;
-        let my = pts.iter().map(|p| p[1]).sum::<f64>() / n;
-        let var = pts
-            .iter()
-            .map(|p| (p[0] - mx).powi(2) + (p[1] - my).powi(2))
-            .sum::<f64>()
-            / n;
-        total += var.sqrt();
-    }
-    Some(total / phases as f64 / clearance)
 }
 
 /// The flap angle error and angular-acceleration error (rad, rad/s²) of a run at its output
@@ -685,129 +781,17 @@ pub(crate) fn error_metrics(t: &[f64], err: &[f64], aerr: &[f64], t0: f64) -> Ve
     ]
 }
 
-/// Metrics against the ideal run; appends `flap.error` and `flap.alpha_error`.
-fn compare(p: &FlapParams, res: &mut Results, ideal: &Results) -> Vec<Metric> {
-    let t = col(res, "t");
-    let ti = col(ideal, "t");
-    let (a, ai) = (col(res, "flap.angle"), col(ideal, "flap.angle"));
-    let (al, ali) = (col(res, "flap.alpha"), col(ideal, "flap.alpha"));
-    let (err, aerr) = errors_against_ideal(&t, (&a, &al), &ti, (&ai, &ali));
-    let t0 = p.transient;
-    let mut m = error_metrics(&t, &err, &aerr, t0);
-    m.extend([
-        Metric::new(
-            "flap_angle_amplitude_ideal",
-            common::peak_abs(&ti, &ai, t0),
-            "rad",
-            "largest |flap angle| of the ideal mechanism after the transient",
-        ),
-        Metric::new(
-            "flap_acceleration_peak_ideal",
-            common::peak_abs(&ti, &ali, t0),
-            "rad/s^2",
-            "largest |flap angular acceleration| of the ideal mechanism after the transient",
-        ),
-    ]);
-    let mut spreads = Vec::new();
-    for (k, j) in JOINTS.iter().enumerate() {
-        let c = p.clearances[k];
-        if c <= 0.0 {
-            continue;
-        }
-        let rows = (
-            common::peak_abs(&t, &col(res, &format!("{j}.normal_force")), t0),
-            0.0,
-        );
-        m.push(Metric::new(
-            &format!("{j}_peak_contact_force"),
-            common::located_peaks(res, j, t0, rows).0,
-            "N",
-            &format!(
-                "largest normal force in clearance joint {j} after the transient, located on \
-                 the dense output"
-            ),
-        ));
-        m.push(Metric::new(
-            &format!("{j}_contact_time_fraction"),
-            common::time_mean(&t, &col(res, &format!("{j}.contact")), t0),
-            "-",
-            &format!("fraction of the time after the transient with contact in {j}"),
-        ));
-        if let Some(s) = poincare_spread(res, j, c, t0, p.period(), p.poincare_phases) {
-            m.push(Metric::new(
-                &format!("{j}_poincare_spread"),
-                s,
-                "-",
-                &format!(
-                    "stroboscopic spread of the {j} journal centre over the periods after the \
-                     transient, mean over the phases, / clearance"
-                ),
-            ));
-            spreads.push(s);
-        }
-    }
-    // every metric of the comparison skips the transient
-    let window = crate::output::window_after(t0, "the transient");
-    for x in &mut m {
-        x.window = Some(window.clone());
-    }
-    let peak_f = m
-        .iter()
-        .filter(|x| x.name.ends_with("_peak_contact_force"))
-        .map(|x| x.value)
-        .fold(0.0, f64::max);
-    m.push(
-        Metric::new(
-            "peak_contact_force",
-            peak_f,
-            "N",
-            "largest normal force over the clearance joints after the transient",
-        )
-        .over(window.clone()),
-    );
-    if !spreads.is_empty() {
-        m.push(
-            Metric::new(
-                "poincare_spread",
-                spreads.iter().cloned().fold(0.0, f64::max),
-                "-",
-                "largest Poincaré-section spread over the clearance joints (irregularity)",
-            )
-            .over(window.clone()),
-        );
-    }
-    common::append_columns(
-        res,
-        vec![
-            ("flap.error".into(), err),
-            ("flap.alpha_error".into(), aerr),
-        ],
-    );
-    // their names' suffixes do not fix their units (the suffix rule read "error" as m)
-    res.units.push(("flap.error".into(), "rad"));
-    res.units.push(("flap.alpha_error".into(), "rad/s^2"));
-    m
-}
-
-/// Simulate the linkage and its ideal counterpart (same parameters, all joints ideal) and
+/// Simulate the linkage and its ideal-joint twin (same parameters, all joints ideal) and
 /// return the clearance run with the flap-angle error, acceleration oscillation, contact and
-/// irregularity metrics.
+/// irregularity metrics of its description ([`run_desc`]).
 ///
 /// # Errors
 /// Invalid parameters, build or simulation errors.
 pub fn run(model: &str, p: &FlapParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
     common::check_settings(model, settings)?;
     p.validate().map_err(|m| common::invalid(model, m))?;
-    let ideal_p = FlapParams {
-        clearances: [0.0; 4],
-        ..p.clone()
-    };
-    let ideal = simulate(model, &ideal_p, settings, true)?;
-    let mut res = simulate(model, p, settings, false)?;
-    if let Some(cb) = &settings.progress {
-        cb(settings.t_end.unwrap_or(p.duration));
-    }
-    let metrics = compare(p, &mut res, &ideal);
+    let desc = run_desc(model, p, settings)?;
+    let (res, metrics) = common::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }

@@ -23,7 +23,7 @@
 //! | `most_irregular_divergence` | — (the Lyapunov measure) | (λ(A4) − max λ(R4, F4))·T |
 //!
 //! RMS is the time RMS of the clearance-induced flap acceleration oscillation and S the largest
-//! Poincaré-section spread over the clearance joints ([`flap::poincare_spread`]).
+//! Poincaré-section spread over the clearance joints (the `spread` statistic of [`crate::described_metrics`]).
 //!
 //! λ is the finite-time divergence rate of twin runs ([`lyapunov::twin_divergence_rate`]). Each
 //! four-joint configuration is run a second time with every clearance larger by

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use super::runtime::{CompiledMeasure, MeasureEl};
 use crate::element::{Compiler, Element};
 use crate::error::MbdError;
-use crate::results::{known_unit, unit_of, UNITS};
+use crate::results::{known_unit, UNITS};
 
 /// One column name or several (a product).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -79,32 +79,26 @@ impl Combination {
         }
     }
 
-    /// The column's unit (module docs).
-    fn unit(&self) -> Result<&'static str, MbdError> {
+    /// The column's unit when given (module docs), else `None` (the common unit of the terms'
+    /// columns, found when the columns are: [`super::runtime::resolve`]).
+    fn unit(&self) -> Result<Option<&'static str>, MbdError> {
         if let Some(u) = &self.unit {
-            return known_unit(u).ok_or_else(|| {
+            return known_unit(u).map(Some).ok_or_else(|| {
                 self.invalid(
                     "unit",
                     format!("`{u}` is not a unit clr knows; one of {}", UNITS.join(", ")),
                 )
             });
         }
-        let units: Vec<&str> = (self.terms.iter())
-            .flat_map(|t| t.of.names().iter().map(|c| unit_of(c)))
-            .collect();
-        let single = self.terms.iter().all(|t| t.of.names().len() == 1);
-        if single && units.iter().all(|u| *u == units[0]) {
-            return Ok(units[0]);
+        if self.terms.iter().any(|t| t.of.names().len() > 1) {
+            return Err(self.invalid(
+                "unit",
+                "some terms are products of columns: say the unit of the sum (`unit = \"W\"`, \
+                 say)"
+                    .into(),
+            ));
         }
-        Err(self.invalid(
-            "unit",
-            format!(
-                "the terms' columns have the units {}{}: say the unit of the sum (`unit = \"N\"`, \
-                 say)",
-                units.join(", "),
-                if single { "" } else { " and some are products" }
-            ),
-        ))
+        Ok(None)
     }
 }
 
@@ -127,11 +121,12 @@ impl Element for Combination {
         let unit = self.unit()?;
         c.measures.push(CompiledMeasure {
             name: self.name.clone(),
-            columns: vec![(format!("{}.value", self.name), unit)],
+            columns: vec![(format!("{}.value", self.name), unit.unwrap_or("-"))],
             el: MeasureEl::Combination {
                 sources: (self.terms.iter()).map(|t| t.of.names().to_vec()).collect(),
                 index: Vec::new(),
                 factors: self.terms.iter().map(|t| (t.factor, t.abs)).collect(),
+                infer_unit: unit.is_none(),
             },
         });
         Ok(())

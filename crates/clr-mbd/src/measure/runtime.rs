@@ -5,6 +5,7 @@ use std::collections::HashSet;
 use nalgebra::Vector2;
 
 use crate::error::MbdError;
+use crate::results::unit_of;
 
 use crate::runtime::{body_state, frame_rates, perp, rot, Frame, GROUND_ID};
 
@@ -61,6 +62,8 @@ pub(crate) enum MeasureEl {
         sources: Vec<Vec<String>>,
         index: Vec<Vec<usize>>,
         factors: Vec<(f64, bool)>,
+        /// The column's unit is the common unit of the sources ([`resolve`] sets it).
+        infer_unit: bool,
     },
 }
 
@@ -256,9 +259,16 @@ pub(crate) fn resolve(
         }
     }
     let mut known = columns.to_vec();
+    let mut units: Vec<&'static str> = columns.iter().map(|c| unit_of(c)).collect();
     for m in measures.iter_mut() {
         let name = &m.name;
-        if let MeasureEl::Combination { sources, index, .. } = &mut m.el {
+        if let MeasureEl::Combination {
+            sources,
+            index,
+            infer_unit,
+            ..
+        } = &mut m.el
+        {
             *index = (sources.iter().enumerate())
                 .map(|(k, s)| {
                     (s.iter())
@@ -274,8 +284,12 @@ pub(crate) fn resolve(
                         .collect::<Result<Vec<_>, _>>()
                 })
                 .collect::<Result<_, _>>()?;
+            if *infer_unit {
+                m.columns[0].1 = common_unit(name, sources, index, &units)?;
+            }
         }
         known.extend(m.columns.iter().map(|(c, _)| c.clone()));
+        units.extend(m.columns.iter().map(|(_, u)| *u));
         if let MeasureEl::Copy {
             field,
             sources,
@@ -305,6 +319,30 @@ pub(crate) fn resolve(
         }
     }
     Ok(())
+}
+
+/// The unit shared by the single-column terms of a combination (their columns at `index` in
+/// the columns known, whose units are `units`), or the refusal saying to give one.
+fn common_unit(
+    name: &str,
+    sources: &[Vec<String>],
+    index: &[Vec<usize>],
+    units: &[&'static str],
+) -> Result<&'static str, MbdError> {
+    let of: Vec<&'static str> = index.iter().flatten().map(|&i| units[i]).collect();
+    if of.iter().all(|u| *u == of[0]) {
+        return Ok(of[0]);
+    }
+    let listed: Vec<String> = (sources.iter().flatten().zip(&of))
+        .map(|(c, u)| format!("{c} ({u})"))
+        .collect();
+    Err(MbdError::Invalid {
+        path: format!("{name}.unit"),
+        message: format!(
+            "the terms' columns {} differ in unit: say the unit of the sum (`unit = \"N\"`, say)",
+            listed.join(", ")
+        ),
+    })
 }
 
 /// `; similar: …` with up to 8 columns sharing the name's first or last part.
