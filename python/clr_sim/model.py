@@ -881,20 +881,39 @@ class Model:
         return self._add("measure", "energy", name, term=term)
 
     def measure_momentum(
-        self, name: str, *, bodies: Optional[Sequence[str]] = None, about: Optional[Vec2] = None
+        self,
+        name: str,
+        *,
+        bodies: Optional[Sequence[str]] = None,
+        about: Optional[Vec2] = None,
+        scales: Optional[bool] = None,
     ) -> "Model":
         """Columns ``<name>.px``, ``<name>.py`` (kg·m/s) and ``<name>.L`` (kg·m²/s, about the
         world point ``about``, m) of the rigid ``bodies`` (default all, in a model without
-        flexible parts)."""
+        flexible parts); with ``scales=True`` also ``<name>.p_scale`` = Σ m|v| (kg·m/s) and
+        ``<name>.L_scale`` = Σ (|Iω| + m|r × v|) (kg·m²/s), the sizes a drift is judged
+        against."""
         bodies = None if bodies is None else list(bodies)
-        return self._add("measure", "momentum", name, bodies=bodies, about=about)
+        return self._add("measure", "momentum", name, bodies=bodies, about=about, scales=scales)
 
-    def measure_deviation(self, name: str, *, of: Sequence[str]) -> "Model":
-        """Column ``<name>.error``: the columns ``of`` minus those of the ideal-joint twin (every
-        clearance joint made ideal, run alongside): a signed difference for one column, the
-        distance for several (an end-effector's ``.x`` and ``.y``); :meth:`twin` sets how the
-        twin records."""
-        return self._add("measure", "deviation", name, of=list(of))
+    def measure_combination(
+        self, name: str, *, terms: Sequence[Dict[str, Any]], unit: Optional[str] = None
+    ) -> "Model":
+        """Column ``<name>.value`` = Σ factor · x over the ``terms``, each a dict
+        ``{"of": column or [columns multiplied], "factor": 1.0, "abs": False}`` reading the
+        run's columns and those of earlier measures (the total normal force of several pads,
+        |friction| summed, a power F·v); ``unit`` (``"N"``, ``"W"``, ...) is needed when the
+        terms' units differ or a term is a product."""
+        return self._add("measure", "combination", name, terms=[dict(t) for t in terms], unit=unit)
+
+    def measure_deviation(
+        self, name: str, *, of: Sequence[str], suffix: Optional[str] = None
+    ) -> "Model":
+        """Column ``<name>.error`` (or ``<name>.<suffix>``): the columns ``of`` minus those of
+        the ideal-joint twin (every clearance joint made ideal, run alongside): a signed
+        difference for one column, the distance for several (an end-effector's ``.x`` and
+        ``.y``); :meth:`twin` sets how the twin records."""
+        return self._add("measure", "deviation", name, of=list(of), suffix=suffix)
 
     def input(
         self, name: str, *, default: Optional[Table] = None, description: Optional[str] = None
@@ -915,24 +934,43 @@ class Model:
         self,
         name: str,
         *,
-        of: str,
         statistic: str,
+        of: Optional[Union[str, Sequence[str]]] = None,
+        metrics: Optional[Sequence[str]] = None,
         t_start: Optional[float] = None,
         t_end: Optional[float] = None,
+        window: Optional[float] = None,
+        period: Optional[float] = None,
+        phases: Optional[int] = None,
+        per: Optional[Union[float, str]] = None,
+        twin: Optional[bool] = None,
+        unit: Optional[str] = None,
         description: Optional[str] = None,
     ) -> "Model":
-        """``[[metric]]``: ``statistic`` (``peak``, ``max``, ``min``, ``mean``, ``rms``,
-        ``final``, ``time_of_peak``, ``time_of_max``, ``time_of_min``) of column ``of`` over
-        [``t_start``, ``t_end``] (s; default the whole run), in ``Result.metrics``;
-        ``description`` replaces the generated one in summary.json and the report."""
+        """``[[metric]]``: ``statistic`` of column ``of`` (or of several columns taken
+        together, or of the earlier ``metrics``) over [``t_start``, ``t_end``] (s; default the
+        whole run), in ``Result.metrics``. Statistics: ``peak``, ``max``, ``min``, ``mean``,
+        ``rms``, ``final``, ``time_of_peak``, ``time_of_max``, ``time_of_min``, ``change``,
+        ``drift``, ``integral``, ``onsets``, ``oscillation`` (about a running mean over
+        ``window`` s), ``spread`` (stroboscopic, every ``period`` s at ``phases`` phases) and,
+        of metrics, ``sum``. ``per`` divides by a number or an earlier metric; ``twin=True``
+        takes the column of the ideal-joint twin; ``unit`` overrides the unit; ``description``
+        replaces the generated one in summary.json and the report (docs/model-file.md)."""
         return self._add(
             "metric",
             None,
             name,
-            of=of,
+            of=of if of is None or isinstance(of, str) else list(of),
+            metrics=None if metrics is None else list(metrics),
             statistic=statistic,
             t_start=t_start,
             t_end=t_end,
+            window=window,
+            period=period,
+            phases=phases,
+            per=per,
+            twin=twin,
+            unit=unit,
             description=description,
         )
 
@@ -1377,6 +1415,7 @@ METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("measure", "distance"): "measure_distance",
     ("measure", "reaction"): "measure_reaction",
     ("measure", "contact"): "measure_contact",
+    ("measure", "combination"): "measure_combination",
     ("measure", "energy"): "measure_energy",
     ("measure", "momentum"): "measure_momentum",
     ("measure", "deviation"): "measure_deviation",

@@ -72,6 +72,46 @@ def test_deviation_from_the_ideal_twin_and_a_metric_of_it():
     assert r.metrics["B_peak"] == pytest.approx(b.metrics["peak_contact_force"], rel=1e-9)
 
 
+def test_combination_and_metrics_over_columns_and_metrics_equal_numpy():
+    """A combination of the contact columns and metrics taken of several columns, of earlier
+    metrics and per another metric, against the same numbers computed with numpy from the
+    recorded columns (trapezoidal rule, the onsets counted as 0 → 1 transitions)."""
+    from test_package import slider_crank_in_python
+
+    m = slider_crank_in_python()
+    m.output(t_end=0.02, intervals=0, every_step=True)
+    m.measure_combination(
+        "load",
+        terms=[{"of": "B.normal_force"}, {"of": "B.friction_force", "abs": True, "factor": 2.0}],
+    )
+    m.measure_combination("power", terms=[{"of": ["B.friction_force", "slider.vx"]}], unit="W")
+    m.metric("load_mean", of="load.value", statistic="mean")
+    m.metric("closings", of="B.contact", statistic="onsets")
+    m.metric("work", of="power.value", statistic="integral")
+    m.metric("peak_v", of=["slider.vx", "crank.vx"], statistic="peak")
+    m.metric("both", metrics=["load_mean", "peak_v"], statistic="max")
+    m.metric("ratio", of="B.friction_force", statistic="mean", per="load_mean")
+    r = clr_sim.simulate(m)
+    t, fn, ft = r["t"], r["B.normal_force"], r["B.friction_force"]
+    assert np.array_equal(r["load.value"], fn + 2.0 * np.abs(ft))
+    assert r.units["load.value"] == "N" and r.units["power.value"] == "W"
+
+    def mean(v):
+        return np.trapezoid(v, t) / (t[-1] - t[0])
+
+    assert r.metrics["load_mean"] == pytest.approx(mean(r["load.value"]), rel=1e-12)
+    c = r["B.contact"]
+    assert r.metrics["closings"] == np.sum((c[:-1] < 0.5) & (c[1:] >= 0.5))
+    assert r.metrics["work"] == pytest.approx(np.trapezoid(ft * r["slider.vx"], t), rel=1e-12)
+    peak = max(np.abs(r["slider.vx"]).max(), np.abs(r["crank.vx"]).max())
+    assert r.metrics["peak_v"] == peak
+    assert r.metrics["ratio"] == pytest.approx(mean(ft) / r.metrics["load_mean"], rel=1e-12)
+    assert r.metrics["closings"] > 0 and r.metrics["work"] != 0.0
+    with pytest.raises(clr_sim.ModelError, match="window"):
+        m.metric("osc", of="slider.x", statistic="oscillation")
+        clr_sim.simulate(m)
+
+
 def test_the_measures_example_of_the_docs_runs():
     """docs/python.md, section "Measures and metrics": its block runs as written on the
     slider–crank of "Build a model"."""
