@@ -649,19 +649,40 @@ fn metrics_are_refused_with_what_to_change() {
     let with = |m: &str| format!("{FREE_PAIR}\n[[metric]]\nname = \"m\"\n{m}\n");
     let cases = [
         // an oscillation without its window, a window it does not use
-        ("of = \"a.x\"\nstatistic = \"oscillation\"", "metric[0].window"),
-        ("of = \"a.x\"\nstatistic = \"peak\"\nwindow = 0.1", "only `oscillation`"),
+        (
+            "of = \"a.x\"\nstatistic = \"oscillation\"",
+            "metric[0].window",
+        ),
+        (
+            "of = \"a.x\"\nstatistic = \"peak\"\nwindow = 0.1",
+            "only `oscillation`",
+        ),
         ("of = \"a.x\"\nstatistic = \"spread\"", "metric[0].period"),
         // both sources, or a metric not defined before
-        ("of = \"a.x\"\nmetrics = [\"q\"]\nstatistic = \"max\"", "not both"),
+        (
+            "of = \"a.x\"\nmetrics = [\"q\"]\nstatistic = \"max\"",
+            "not both",
+        ),
         ("metrics = [\"q\"]\nstatistic = \"max\"", "no metric `q`"),
-        ("metrics = [\"q\"]\nstatistic = \"drift\"", "cannot combine metrics"),
-        ("of = \"a.x\"\nstatistic = \"peak\"\nper = \"q\"", "metric[0].per"),
-        ("of = [\"a.x\", \"b.x\"]\nstatistic = \"final\"", "takes one column"),
+        (
+            "metrics = [\"q\"]\nstatistic = \"drift\"",
+            "cannot combine metrics",
+        ),
+        (
+            "of = \"a.x\"\nstatistic = \"peak\"\nper = \"q\"",
+            "metric[0].per",
+        ),
+        (
+            "of = [\"a.x\", \"b.x\"]\nstatistic = \"final\"",
+            "takes one column",
+        ),
         ("of = \"a.x\"\nstatistic = \"peak\"\nunit = \"mm\"", "`mm`"),
         // the twin of a model without a clearance joint writes the same columns; a misspelt
         // column is named with the similar ones
-        ("of = \"a.xx\"\nstatistic = \"peak\"\ntwin = true", "ideal twin writes no column"),
+        (
+            "of = \"a.xx\"\nstatistic = \"peak\"\ntwin = true",
+            "ideal twin writes no column",
+        ),
     ];
     for (m, want) in cases {
         let e = compile_err(&with(m));

@@ -447,29 +447,6 @@ pub(crate) fn compile_run(
     Ok((compile(model, desc)?, opts))
 }
 
-/// Run a built-in's description as a run of its exported file does: compile, simulate, run the
-/// ideal twin when the description asks for it (`deviation` measures, metrics of the twin),
-/// then evaluate its `[[metric]]` items ([`crate::described_metrics`]). The progress callback
-/// hears the end time after the twin.
-///
-/// # Errors
-/// Build or simulation errors of the model or its twin.
-pub(crate) fn run_described(
-    model: &str,
-    desc: &ModelDesc,
-    settings: &RunSettings,
-) -> Result<(Results, Vec<Metric>), ModelsError> {
-    let (mut m, opts) = compile_run(model, desc)?;
-    let mut res = simulate(&mut m, &opts, settings, model)?;
-    let twin =
-        clr_mbd::desc::twin::run_twin(desc, &opts, &mut res).map_err(|e| sim_error(model, e))?;
-    if let Some(cb) = &settings.progress {
-        cb(opts.t_end);
-    }
-    let metrics = crate::described_metrics::evaluate(&desc.metrics, &res, twin.as_ref());
-    Ok((res, metrics))
-}
-
 /// Check run settings that apply to every model.
 pub(crate) fn check_settings(model: &str, settings: &RunSettings) -> Result<(), ModelsError> {
     settings.knobs.validate().map_err(|m| invalid(model, m))?;

@@ -4,8 +4,34 @@
 use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic};
 use clr_mbd::Results;
 
-use crate::common::{interp, located_extreme, time_mean};
+use clr_mbd::ModelDesc;
+
+use crate::common::{self, interp, located_extreme, time_mean};
 use crate::Metric;
+use crate::{ModelsError, RunSettings};
+
+/// Run a built-in's description as a run of its exported file does: compile, simulate, run the
+/// ideal twin when the description asks for it (`deviation` measures, metrics of the twin),
+/// then evaluate its `[[metric]]` items ([`crate::described_metrics`]). The progress callback
+/// hears the end time after the twin.
+///
+/// # Errors
+/// Build or simulation errors of the model or its twin.
+pub(crate) fn run_described(
+    model: &str,
+    desc: &ModelDesc,
+    settings: &RunSettings,
+) -> Result<(Results, Vec<Metric>), ModelsError> {
+    let (mut m, opts) = common::compile_run(model, desc)?;
+    let mut res = common::simulate(&mut m, &opts, settings, model)?;
+    let twin = clr_mbd::desc::twin::run_twin(desc, &opts, &mut res)
+        .map_err(|e| common::sim_error(model, e))?;
+    if let Some(cb) = &settings.progress {
+        cb(opts.t_end);
+    }
+    let metrics = evaluate(&desc.metrics, &res, twin.as_ref());
+    Ok((res, metrics))
+}
 
 /// The metrics `descs` of `res` (and of the ideal twin's results `twin`, for those with
 /// `twin = true`; NaN without them), in order. A window with no row gives NaN (a failed run's

@@ -791,7 +791,7 @@ pub fn run(model: &str, p: &FlapParams, settings: &RunSettings) -> Result<RunOut
     common::check_settings(model, settings)?;
     p.validate().map_err(|m| common::invalid(model, m))?;
     let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = common::run_described(model, &desc, settings)?;
+    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }

@@ -388,7 +388,7 @@ pub fn run(
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
     let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = common::run_described(model, &desc, settings)?;
+    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }
