@@ -64,7 +64,7 @@ use crate::body::{
 use crate::error::ContactError;
 use crate::friction::FrictionLaw;
 use crate::normal::NormalLaw;
-use crate::wear::BearingProfile;
+use crate::wear::{BearingProfile, LineContact};
 
 /// Geometry of a planar revolute clearance joint: radii, the joint centres on both bodies and,
 /// optionally, the worn profile of the bearing.
@@ -537,6 +537,29 @@ impl RevoluteContact {
         let f_n = normal.force(self.penetration, self.normal_velocity, impact_velocity);
         let f_t = friction.force(self.tangential_velocity, f_n);
         self.generalized_forces_with(f_n, f_t, application)
+    }
+}
+
+// `LineContact::for_joint` lives here, not in `wear`, so that `wear` (which the joint's bearing
+// profile comes from) does not import the joint back.
+impl LineContact {
+    /// The contact of `joint`'s radii over the length L (m) between the bearing and journal
+    /// materials.
+    ///
+    /// # Errors
+    /// As [`LineContact::new`] for L.
+    pub fn for_joint(
+        joint: &RevoluteClearance,
+        length: f64,
+        bearing: &crate::elastic::Material,
+        journal: &crate::elastic::Material,
+    ) -> Result<Self, ContactError> {
+        Self::new(
+            joint.bearing_radius(),
+            joint.journal_radius(),
+            length,
+            bearing.try_composite_modulus(journal)?,
+        )
     }
 }
 

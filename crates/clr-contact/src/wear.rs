@@ -44,9 +44,7 @@
 use std::f64::consts::{PI, TAU};
 
 use crate::body::check_finite;
-use crate::elastic::Material;
 use crate::error::{positive, ContactError};
-use crate::revolute::RevoluteClearance;
 
 /// Smallest number of profile angles N accepted by [`BearingProfile::new`].
 pub const MIN_PROFILE_ANGLES: usize = 8;
@@ -541,25 +539,6 @@ impl LineContact {
         })
     }
 
-    /// The contact of `joint`'s radii over the length L (m) between the bearing and journal
-    /// materials.
-    ///
-    /// # Errors
-    /// As [`new`](Self::new) for L.
-    pub fn for_joint(
-        joint: &RevoluteClearance,
-        length: f64,
-        bearing: &Material,
-        journal: &Material,
-    ) -> Result<Self, ContactError> {
-        Self::new(
-            joint.bearing_radius(),
-            joint.journal_radius(),
-            length,
-            bearing.try_composite_modulus(journal)?,
-        )
-    }
-
     /// Bearing radius R_i, m.
     pub fn bearing_radius(&self) -> f64 {
         self.bearing_radius
@@ -986,7 +965,7 @@ mod tests {
 
     /// Steel on steel (E = 207 GPa, ν = 0.3), R_i = 10 mm, R_j = 9.9 mm, L = 10 mm.
     fn contact() -> LineContact {
-        let steel = Material::steel();
+        let steel = crate::elastic::Material::steel();
         LineContact::new(10e-3, 9.9e-3, 10e-3, steel.composite_modulus(&steel)).unwrap()
     }
 
