@@ -281,6 +281,8 @@ fn sharded_sweep_merges_into_the_full_sweep() {
         "--vary",
         "solver.rtol=1e-8,1e-9",
         "--no-figures",
+        "--keep",
+        "series",
         "-q",
     ];
     let full = dir.join("full");
@@ -345,6 +347,91 @@ fn sharded_sweep_merges_into_the_full_sweep() {
     ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("[1, 3]"), "{}", stderr(&o));
+}
+
+/// A sweep interrupted mid-run (two point folders never written, one half-written, one of a
+/// different model) and run again with `--resume` keeps the finished point as it was, reruns
+/// the others and ends with the sweep.csv of an uninterrupted run (wall times aside); `clr
+/// merge` refuses the interrupted folder, saying to resume it.
+#[test]
+fn a_resumed_sweep_keeps_finished_points_and_equals_the_full_sweep() {
+    let dir = scratch("sweep_resume");
+    let p = data("pendulum.toml");
+    let out = dir.join("out");
+    let args = [
+        "sweep",
+        p.as_str(),
+        "--t-end",
+        "0.2",
+        "--vary",
+        "body.rod.mass=1,2,3,4",
+        "--keep",
+        "metrics",
+        "--no-figures",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    let o = clr(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let full = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    // --keep metrics: the point folder holds its record only
+    let files: Vec<_> = std::fs::read_dir(out.join("point-00000"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(files, ["point.json"]);
+    let kept = std::fs::read(out.join("point-00000/point.json")).unwrap();
+    // the interruption: no sweep.csv/json yet, points 1 and 3 absent, 3 half-written, 2 of
+    // another model
+    for f in ["sweep.csv", "sweep.json"] {
+        std::fs::remove_file(out.join(f)).unwrap();
+    }
+    for k in [1, 3] {
+        std::fs::remove_dir_all(out.join(format!("point-0000{k}"))).unwrap();
+    }
+    let half = out.join(".point-00003.partial-4242");
+    std::fs::create_dir_all(&half).unwrap();
+    std::fs::write(half.join("results.csv"), "t [s]\n0.0\n").unwrap();
+    let two = out.join("point-00002/point.json");
+    let text = std::fs::read_to_string(&two).unwrap();
+    let hash = text.split("fnv1a64:").nth(1).unwrap()[..16].to_string();
+    std::fs::write(&two, text.replace(&hash, "0123456789abcdef")).unwrap();
+    let o = clr(&[
+        "merge",
+        out.to_str().unwrap(),
+        "--out",
+        dir.join("m").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("--resume") && stderr(&o).contains(".point-00003.partial-4242"),
+        "{}",
+        stderr(&o)
+    );
+    let resume: Vec<&str> = args.iter().filter(|a| **a != "-q").copied().collect();
+    let o = clr(&[&resume[..], &["--resume"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("1 point(s) finished already, 3 to run"), "{e}");
+    assert!(e.contains("point-00002: it ran another model"), "{e}");
+    assert!(e.contains("removed 1 half-written"), "{e}");
+    assert!(!half.exists());
+    assert_eq!(
+        std::fs::read(out.join("point-00000/point.json")).unwrap(),
+        kept
+    );
+    let strip = |t: &str| -> Vec<String> {
+        t.lines()
+            .map(|l| {
+                let mut c: Vec<&str> = l.split(',').collect();
+                c.remove(4);
+                c.join(",")
+            })
+            .collect()
+    };
+    let again = std::fs::read_to_string(out.join("sweep.csv")).unwrap();
+    assert_eq!(strip(&full), strip(&again));
 }
 
 /// Shards record the model they ran: two shards of one sweep run against different contents
@@ -1259,6 +1346,8 @@ fn a_spatial_sweep_point_is_the_run_with_its_override() {
         "--vary",
         "body.top.mass=0.5,0.8",
         "--no-figures",
+        "--keep",
+        "series",
         "-q",
         "--out",
         sweep.to_str().unwrap(),

@@ -176,6 +176,8 @@ fn a_sweep_report_links_every_point_report() {
         out.to_str().unwrap(),
         "--quiet",
         "--no-figures",
+        "--keep",
+        "all",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
     let d = page_data(&std::fs::read_to_string(out.join("report.html")).unwrap());

@@ -4,6 +4,7 @@ mod animate;
 mod job;
 mod output;
 mod plot;
+mod points;
 mod progress;
 mod sweep;
 
@@ -134,6 +135,15 @@ enum Command {
         /// Run only shard I of N (I from 0 to N−1): points k with k mod N = I.
         #[arg(long, value_name = "I/N")]
         shard: Option<String>,
+        /// Keep the points already finished in --out by a run of the same sweep (same values
+        /// and model), run the others (a requeued cluster task resumes with it).
+        #[arg(long)]
+        resume: bool,
+        /// What each point folder keeps: metrics (point.json only), summary (and
+        /// summary.json), series (and results.csv, impacts.csv) or all (and figures and
+        /// report.html, as `clr run`); a failed point keeps all.
+        #[arg(long, value_enum, default_value = "summary")]
+        keep: points::Keep,
         /// Output folder.
         #[arg(long, default_value = "clr-sweep")]
         out: PathBuf,
@@ -292,8 +302,10 @@ pub(crate) fn main() -> ExitCode {
             vary,
             jobs,
             shard,
+            resume,
+            keep,
             out,
-        } => sweep::sweep_command(&args, &vary, jobs, shard.as_deref(), &out),
+        } => sweep::sweep_command(&args, &vary, jobs, (shard.as_deref(), resume, keep), &out),
         Command::Merge {
             dirs,
             out,

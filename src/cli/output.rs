@@ -310,16 +310,21 @@ pub(crate) fn write_run(
     }
     write_csv(&dir.join("results.csv"), rec)?;
     write_impacts(&dir.join("impacts.csv"), &rec.results.impacts)?;
-    let p = dir.join("summary.json");
-    let text =
-        summary_text(rec, t_end, rtol).map_err(|e| CliError::Input(format!("summary: {e}")))?;
-    std::fs::write(&p, text + "\n").map_err(|e| io(&p, e))?;
+    write_summary(dir, rec, args)?;
     if figures {
         for w in run_figures(dir, rec) {
             eprintln!("clr: warning: {w}");
         }
     }
     Ok(())
+}
+
+/// Write the run's `summary.json` into `dir`.
+pub(crate) fn write_summary(dir: &Path, rec: &Record, args: &RunArgs) -> Result<(), CliError> {
+    let p = dir.join("summary.json");
+    let text = summary_text(rec, args.t_end, args.rtol)
+        .map_err(|e| CliError::Input(format!("summary: {e}")))?;
+    std::fs::write(&p, text + "\n").map_err(|e| io(&p, e))
 }
 
 /// Write the run's `report.html` (the animated mechanism, metrics, impacts and figures; one

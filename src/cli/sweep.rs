@@ -12,7 +12,8 @@ use clr_sim::spec::sweep::{self, Axis};
 use rayon::prelude::*;
 
 use super::job::{execute, resolve, Job};
-use super::output::{write_run, Record};
+use super::output::Record;
+use super::points::{self, Keep, PointRecord};
 use super::progress::Progress;
 use super::{assignments, CliError, RunArgs};
 
@@ -20,6 +21,9 @@ use super::{assignments, CliError, RunArgs};
 const MODEL_HASH_OF: &str = "FNV-1a 64 of the canonical JSON of the resolved model before the \
 varied values: a model file's description as run (--set, --t-end, --rtol and solver options \
 applied), or a built-in's name, parameters and run description";
+
+/// A sweep point: its index, its varied values as given and its job.
+type Point = (usize, Vec<String>, Job);
 
 /// One varied parameter.
 struct Vary {
@@ -66,7 +70,7 @@ pub(crate) fn sweep_command(
     args: &RunArgs,
     vary: &[String],
     jobs: Option<usize>,
-    shard: Option<&str>,
+    (shard, resume, keep): (Option<&str>, bool, Keep),
     out: &Path,
 ) -> Result<(), CliError> {
     let base = assignments(&args.set)?;
@@ -89,18 +93,18 @@ pub(crate) fn sweep_command(
     // the target is read once; every point clones it and applies its values, so bad input
     // stops the sweep before anything runs
     let base_job = resolve(&args.target, &base, args.t_end, args.rtol)?.with_knobs(args.knobs())?;
-    let points: Vec<(usize, Vec<String>, Job)> =
-        sweep::points(&base_job, &axes, (si, sn), args.t_end, args.rtol)?
-            .into_iter()
-            .map(|p| {
-                let labels = varies
-                    .iter()
-                    .zip(&p.choice)
-                    .map(|(v, &i)| v.values[i].clone())
-                    .collect();
-                (p.index, labels, p.job)
-            })
-            .collect();
+    let points: Vec<Point> = sweep::points(&base_job, &axes, (si, sn), args.t_end, args.rtol)?
+        .into_iter()
+        .map(|p| {
+            let labels = varies
+                .iter()
+                .zip(&p.choice)
+                .map(|(v, &i)| v.values[i].clone())
+                .collect();
+            (p.index, labels, p.job)
+        })
+        .collect();
+    let hash = |job: &Job| provenance::model_hash(&job.resolved_model(args.t_end, args.rtol));
     if !args.quiet {
         if let Job::Generic(s) = &base_job {
             for n in &s.notes {
@@ -110,6 +114,19 @@ pub(crate) fn sweep_command(
     }
     std::fs::create_dir_all(out)
         .map_err(|e| CliError::Input(format!("cannot create {}: {e}", out.display())))?;
+    let removed = points::remove_partial(out);
+    if !removed.is_empty() && !args.quiet {
+        eprintln!(
+            "clr: removed {} half-written point folder(s) of an interrupted run: {}",
+            removed.len(),
+            removed.join(", ")
+        );
+    }
+    let (kept, points) = if resume {
+        resumed(out, points, &hash, args.quiet)
+    } else {
+        (Vec::new(), points)
+    };
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(jobs.unwrap_or(0))
         .build()
@@ -125,12 +142,7 @@ pub(crate) fn sweep_command(
                         CliError::Input(m) => CliError::Input(format!("sweep point {k}: {m}")),
                         other => other,
                     })?;
-                let dir = out.join(format!("point-{k:05}"));
-                write_run(&dir, &rec, args, (!args.no_report).then_some(job))?;
-                if let Some(b) = &bar {
-                    b.inc(1);
-                }
-                Ok(SweepRow {
+                let row = SweepRow {
                     point: *k,
                     values: values.clone(),
                     status: match &rec.error {
@@ -143,12 +155,20 @@ pub(crate) fn sweep_command(
                         .iter()
                         .map(|m| (m.name.clone(), m.unit.clone(), m.value))
                         .collect(),
-                })
+                };
+                let record = PointRecord::new(&row, hash(job));
+                points::write_point(out, &rec, args, job, keep, &record)?;
+                if let Some(b) = &bar {
+                    b.inc(1);
+                }
+                Ok(row)
             })
             .collect()
     });
     progress.finish();
-    let rows: Vec<SweepRow> = rows.into_iter().collect::<Result<_, _>>()?;
+    let mut rows: Vec<SweepRow> = rows.into_iter().collect::<Result<_, _>>()?;
+    rows.extend(kept);
+    rows.sort_by_key(|r| r.point);
     let table = sweep_table(&varies, &rows);
     write_text(&out.join("sweep.csv"), &table)?;
     let meta = serde_json::json!({
@@ -168,7 +188,9 @@ pub(crate) fn sweep_command(
     )?;
     compare_figures(out, &table);
     let names: Vec<String> = varies.iter().map(|v| v.name.clone()).collect();
-    let report = Report::sweep(&args.target, &names, &rows, !args.no_report);
+    // the points' reports exist with --keep all only
+    let linked = keep == Keep::All && !args.no_report;
+    let report = Report::sweep(&args.target, &names, &rows, linked);
     write_text(&out.join("report.html"), &report.html())?;
     let failed: Vec<usize> = rows
         .iter()
@@ -193,8 +215,40 @@ pub(crate) fn sweep_command(
 }
 
 fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
-    std::fs::write(path, text)
-        .map_err(|e| CliError::Input(format!("cannot write {}: {e}", path.display())))
+    points::write_atomic(path, text)
+}
+
+/// Split `points` into the rows of those finished in `out` by a run of the same sweep and those
+/// still to run, saying which folders are run again and why.
+fn resumed(
+    out: &Path,
+    points: Vec<Point>,
+    hash: &dyn Fn(&Job) -> String,
+    quiet: bool,
+) -> (Vec<SweepRow>, Vec<Point>) {
+    let (mut kept, mut todo, mut again) = (Vec::new(), Vec::new(), Vec::new());
+    for (k, values, job) in points {
+        match points::finished(out, k, &values, &hash(&job)) {
+            Ok(r) => kept.push(r.row()),
+            Err(why) => {
+                if points::folder(out, k).exists() {
+                    again.push(format!("point-{k:05}: {why}"));
+                }
+                todo.push((k, values, job));
+            }
+        }
+    }
+    if !quiet {
+        eprintln!(
+            "clr: --resume: {} point(s) finished already, {} to run",
+            kept.len(),
+            todo.len()
+        );
+        for a in &again {
+            eprintln!("clr: warning: run again, {a}");
+        }
+    }
+    (kept, todo)
 }
 
 /// sweep.csv as text: `point,folder,<varied>...,status,wall_s,<metric [unit]>...`.
@@ -343,6 +397,9 @@ pub(crate) fn merge_command(
         std::fs::read_to_string(&p)
             .map_err(|e| CliError::Input(format!("cannot read {}: {e}", p.display())))
     };
+    for d in dirs {
+        unfinished(d)?;
+    }
     let metas: Vec<serde_json::Value> = dirs
         .iter()
         .map(|d| read_meta(d))
@@ -452,6 +509,29 @@ pub(crate) fn merge_command(
             "the merge is incomplete: points {missing:?} are in no shard (rerun their shards)"
         )))
     }
+}
+
+/// Warn of the half-written point folders of shard folder `d`; refuse a shard that did not
+/// finish (no sweep.csv or sweep.json), saying how to finish it.
+fn unfinished(d: &Path) -> Result<(), CliError> {
+    let half = points::partial(d);
+    if !half.is_empty() {
+        eprintln!(
+            "clr: warning: {} holds {} half-written point folder(s) ({}), left by a task \
+             killed mid-write: they are not merged",
+            d.display(),
+            half.len(),
+            half.join(", ")
+        );
+    }
+    if !(d.join("sweep.csv").exists() && d.join("sweep.json").exists()) {
+        return Err(CliError::Input(format!(
+            "{}: no sweep.csv or sweep.json: the shard did not finish; run it again with \
+             --resume (its finished points are kept)",
+            d.display()
+        )));
+    }
+    Ok(())
 }
 
 /// Reorder the cells of `line` (written under `from`) to the columns of `to`.
