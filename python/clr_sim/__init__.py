@@ -48,6 +48,7 @@ __all__ = [
     "fmu",
     "simulate",
     "sweep",
+    "sweep_point",
     "Result",
     "SweepResult",
     "list_models",
@@ -185,6 +186,7 @@ def sweep(
     set: Optional[Mapping[str, Any]] = None,
     jobs: Optional[int] = None,
     progress: bool = True,
+    executor: Any = None,
 ) -> SweepResult:
     """Run the cartesian product of the values in ``vary`` (dotted name → values, the last
     varying fastest) over ``model``, as ``clr sweep --vary name=v1,v2 ...`` does: the same
@@ -195,6 +197,15 @@ def sweep(
     before the first runs. Ctrl-C (KeyboardInterrupt) skips the points not yet started, waits
     for those running and raises. A point whose integration fails does not stop the sweep: its
     result has ``error`` set and ``SweepResult.failed`` lists it.
+
+    ``executor`` runs the points elsewhere: any :class:`concurrent.futures.Executor` (a process
+    pool, a dask.distributed ``Client.get_executor()``, submitit's ``AutoExecutor`` on Slurm,
+    Ray's). Each point is sent as a plain description (the model file's path, a built-in's
+    name or a :class:`Model`'s TOML text, with its overrides) to :func:`sweep_point`, which
+    runs it where it lands; the results come back as the same :class:`SweepResult`, value for
+    value (docs/scaling.md). With a process pool use the ``spawn`` start method
+    (``mp_context=multiprocessing.get_context("spawn")``): forking a process that holds the
+    library's threads can hang the child. ``jobs`` does not apply then.
     """
     if not isinstance(vary, Mapping) or not vary:
         raise OverrideError(
@@ -211,6 +222,10 @@ def sweep(
         axes.append((str(name), list(values)))
     if jobs is not None and (not isinstance(jobs, int) or jobs < 1):
         raise ModelError(f"{jobs!r}: give a positive number of threads", field="jobs")
+    if executor is not None:
+        if jobs is not None:
+            raise ModelError("give either jobs (threads here) or executor", field="jobs")
+        return _sweep_on(executor, model, axes, set, t_end, rtol, progress)
     run = _native.SweepRun(_job(model, set, t_end, rtol), axes, jobs)
     bar = Progress(run.total, enabled=progress)
     try:
@@ -222,6 +237,59 @@ def sweep(
         raise
     bar.close(run.done())
     return SweepResult([a for a, _ in axes], _rows(run.results()))
+
+
+def sweep_point(
+    target: Union[str, Tuple[str, str]],
+    set: Mapping[str, Any],
+    t_end: Optional[float],
+    rtol: Optional[float],
+) -> Result:
+    """Run one sweep point where an executor put it (:func:`sweep` with ``executor``):
+    ``target`` is a model file's path or a built-in's name, or ``("toml", text)`` for a
+    :class:`Model`; ``set`` the point's overrides. A failed integration returns its result with
+    ``error`` set, as a sweep point does."""
+    model: Target = Model.from_toml(target[1]) if isinstance(target, tuple) else target
+    return simulate(model, t_end, rtol=rtol, set=dict(set), check=False)
+
+
+def _sweep_on(executor, model, axes, set, t_end, rtol, progress) -> SweepResult:
+    """:func:`sweep` on ``executor``: every point checked here, then submitted."""
+    import itertools
+
+    if isinstance(model, Model):
+        target: Union[str, Tuple[str, str]] = ("toml", model.to_toml())
+    elif isinstance(model, (str, os.PathLike)):
+        target = os.fspath(model)
+        if os.path.exists(target):
+            # the workers may start in another folder
+            target = os.path.abspath(target)
+    else:
+        _job(model, set, t_end, rtol)  # raises the ModelError naming the type
+        raise AssertionError("unreachable")
+    names = [a for a, _ in axes]
+    points = []
+    for k, values in enumerate(itertools.product(*[v for _, v in axes])):
+        overrides = {**dict(set or {}), **dict(zip(names, values))}
+        _job(model, overrides, t_end, rtol)  # a bad value stops the sweep before anything runs
+        points.append((k, list(values), overrides))
+    futures = [executor.submit(sweep_point, target, o, t_end, rtol) for _, _, o in points]
+    bar = Progress(len(points), enabled=progress)
+    results: List[Optional[Result]] = [None] * len(points)
+    try:
+        from concurrent.futures import as_completed
+
+        index = {id(f): k for k, f in enumerate(futures)}
+        for n, f in enumerate(as_completed(futures), 1):
+            results[index[id(f)]] = f.result()
+            bar.update(n)
+    except KeyboardInterrupt:
+        for f in futures:
+            f.cancel()
+        bar.close(sum(r is not None for r in results))
+        raise
+    bar.close(len(points))
+    return SweepResult(names, [(k, v, results[k]) for k, v, _ in points])
 
 
 def list_models() -> List[Tuple[str, str]]:
