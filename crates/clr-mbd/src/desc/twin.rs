@@ -24,8 +24,8 @@ impl ModelDesc {
 
     /// The ideal-joint twin of this description (module docs), with what it left as it was, in
     /// words: every revolute and translational clearance joint at clearance 0 (film, wear and
-    /// initial offset dropped), the deviation and contact measures and the metrics left out,
-    /// recorded at the
+    /// initial offset dropped), the deviation and contact measures, the combinations of
+    /// columns it lacks (a clearance joint's) and the metrics left out, recorded at the
     /// `[twin]` intervals.
     pub fn ideal_twin(&self) -> (ModelDesc, Vec<String>) {
         let mut twin = self.clone();
@@ -49,8 +49,8 @@ impl ModelDesc {
         }
         // the twin's metrics are not asked for (they would name the deviation columns)
         twin.metrics.clear();
-        twin.measures
-            .retain(|m| !matches!(m, Measure::Deviation(_) | Measure::Contact(_)));
+        let mut keeps = self.twin_keeps().into_iter();
+        twin.measures.retain(|_| keeps.next().unwrap_or(false));
         let o = &mut twin.output;
         let intervals = self.twin.as_ref().and_then(|t| t.intervals);
         o.intervals = intervals.unwrap_or(if o.intervals == 0 { 1000 } else { o.intervals });
@@ -60,6 +60,47 @@ impl ModelDesc {
 }
 
 impl ModelDesc {
+    /// Per measure, whether the ideal twin keeps it: not the deviations, not the contact
+    /// measures, and not a combination that reads a column the twin does not write (of a
+    /// clearance joint it makes ideal, or of a measure it leaves out before), such as the moment
+    /// δ·F_T of a joint's friction pair.
+    fn twin_keeps(&self) -> Vec<bool> {
+        let made_ideal: Vec<&str> = (self.clearances.iter())
+            .filter(|c| matches!(c, Clearance::Revolute(_) | Clearance::Translational(_)))
+            .filter(|c| !c.is_ideal())
+            .map(|c| c.name())
+            .collect();
+        let mut left_out: Vec<String> = Vec::new();
+        let mut keeps = Vec::with_capacity(self.measures.len());
+        for m in &self.measures {
+            let keep = match m {
+                Measure::Deviation(d) => {
+                    left_out.push(d.column());
+                    false
+                }
+                Measure::Contact(c) => {
+                    left_out.push(format!("{}.{}", c.name, c.quantity));
+                    false
+                }
+                Measure::Combination(c) => {
+                    let missing = |col: &String| {
+                        left_out.contains(col)
+                            || (made_ideal.iter())
+                                .any(|j| col.strip_prefix(j).is_some_and(|r| r.starts_with('.')))
+                    };
+                    let keep = !(c.terms.iter()).any(|t| t.of.names().iter().any(missing));
+                    if !keep {
+                        left_out.push(format!("{}.value", c.name));
+                    }
+                    keep
+                }
+                _ => true,
+            };
+            keeps.push(keep);
+        }
+        keeps
+    }
+
     /// True when a run of this description needs its ideal twin: a `deviation` measure or a
     /// `[[metric]]` with `twin = true`.
     pub fn needs_twin(&self) -> bool {
@@ -76,8 +117,9 @@ pub(crate) fn twin_columns(desc: &ModelDesc, columns: &[String]) -> Vec<String> 
         .map(|m| format!("{}.", m.name()))
         .collect();
     let dropped: Vec<String> = (desc.measures.iter())
-        .filter(|m| matches!(m, Measure::Deviation(_) | Measure::Contact(_)))
-        .map(|m| format!("{}.", m.name()))
+        .zip(desc.twin_keeps())
+        .filter(|(_, keep)| !keep)
+        .map(|(m, _)| format!("{}.", m.name()))
         .chain(
             (desc.clearances.iter())
                 .filter(|c| !c.is_ideal())
