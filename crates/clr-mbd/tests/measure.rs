@@ -460,29 +460,38 @@ fn measures_survive_the_model_file_round_trip() {
     assert_eq!(desc.measures.len(), 10);
 }
 
+/// tests/data/`file` as a table, with its `[output]` replaced by `output`.
+fn data_file(file: &str, output: &str) -> toml::Table {
+    let path = format!("{}/../../tests/data/{file}", env!("CARGO_MANIFEST_DIR"));
+    let mut doc: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
+    doc.insert(
+        "output".into(),
+        output.parse::<toml::Table>().unwrap().into(),
+    );
+    doc
+}
+
 #[test]
 fn deviation_from_the_ideal_twin_equals_the_closed_form_slider_error() {
     // tests/data/slider_crank.toml (Flores: r = 0.05 m, l = 0.3 m, 5000 rpm, c = 0.5 mm) with
     // the slider's deviation from the ideal twin; the twin is the ideal slider–crank, whose
     // slider follows x(θ) = r cos θ + √(l² − r² sin² θ), θ = ωt, in closed form
-    let text = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../tests/data/slider_crank.toml"
-    ))
-    .unwrap();
-    let mut doc: toml::Table = text.parse().unwrap();
-    doc.insert(
-        "output".into(),
-        "t_end = 0.01\nintervals = 1000\n"
-            .parse::<toml::Table>()
-            .unwrap()
-            .into(),
-    );
-    let extra: toml::Table = "[[measure]]\nname = \"slider\"\ntype = \"deviation\"\nof = [\"slider.x\"]\n\n[twin]\nintervals = 10000\n"
+    let mut doc = data_file("slider_crank.toml", "t_end = 0.01\nintervals = 1000\n");
+    // with a metric of the twin's slider.x (the deviation is named like the body: the twin
+    // still writes the body's columns)
+    let extra: toml::Table = "[[measure]]\nname = \"slider\"\ntype = \"deviation\"\nof = [\"slider.x\"]\n\n[[metric]]\nname = \"ideal_x\"\nof = \"slider.x\"\nstatistic = \"max\"\ntwin = true\n\n[twin]\nintervals = 10000\n"
         .parse()
         .unwrap();
     doc.extend(extra);
     let desc = ModelDesc::from_toml_table(doc).unwrap();
+    // the twin has no contact columns: a twin metric of one is refused
+    let mut contact = desc.clone();
+    contact.metrics[0].of = Some(clr_mbd::desc::metric::Columns::One("B.normal_force".into()));
+    let e = contact.compile().err().expect("refused").to_string();
+    assert!(
+        e.contains("ideal twin writes no column `B.normal_force`"),
+        "{e}"
+    );
     let opts = desc.sim_options().unwrap();
     let mut r = desc.compile().unwrap().simulate(&opts).unwrap();
     clr_mbd::desc::twin::run_twin(&desc, &opts, &mut r).unwrap();
@@ -508,6 +517,61 @@ fn deviation_from_the_ideal_twin_equals_the_closed_form_slider_error() {
         "{:?}",
         r.notes
     );
+}
+
+#[test]
+fn the_twin_leaves_out_combinations_of_the_clearance_columns_it_lacks() {
+    // Wan's slider–crank (Ambrósio friction in B): the moment δ·F_T of B's friction pair (a
+    // product of B's columns) and a combination of it have nothing to read in the ideal twin,
+    // where B is an ideal joint: the twin leaves both out and runs; a combination of columns
+    // the twin writes stays. In the run the product equals B.penetration · B.friction_force to
+    // the bit (one multiplication).
+    let mut doc = data_file("wan_slider_crank.toml", "t_end = 0.02\nintervals = 200\n");
+    let extra: toml::Table = r#"
+[[measure]]
+name = "offset"
+type = "combination"
+terms = [{ of = ["B.penetration", "B.friction_force"] }]
+unit = "N*m"
+
+[[measure]]
+name = "twice"
+type = "combination"
+terms = [{ of = "offset.value", factor = 2.0 }]
+
+[[measure]]
+name = "reach"
+type = "combination"
+terms = [{ of = "slider.x" }, { of = "crank.x", factor = -1.0 }]
+
+[[measure]]
+name = "slider"
+type = "deviation"
+of = ["slider.x"]
+"#
+    .parse()
+    .unwrap();
+    doc.extend(extra);
+    let desc = ModelDesc::from_toml_table(doc).unwrap();
+    let (twin, _) = desc.ideal_twin();
+    let kept: Vec<&str> = twin.measures.iter().map(|m| m.name()).collect();
+    assert_eq!(kept, ["reach"]);
+    let opts = desc.sim_options().unwrap();
+    let mut r = desc.compile().unwrap().simulate(&opts).unwrap();
+    let twin = clr_mbd::desc::twin::run_twin(&desc, &opts, &mut r)
+        .unwrap()
+        .expect("the twin ran");
+    assert!(twin.column("reach.value").is_some() && twin.column("offset.value").is_none());
+    let (d, f, m) = (
+        col(&r, "B.penetration"),
+        col(&r, "B.friction_force"),
+        col(&r, "offset.value"),
+    );
+    for k in 0..d.len() {
+        assert_eq!((d[k] * f[k]).to_bits(), m[k].to_bits(), "row {k}");
+    }
+    assert!(f.iter().any(|f| *f != 0.0), "friction acts");
+    assert!(col(&r, "slider.error").iter().all(|e| e.is_finite()));
 }
 
 #[test]

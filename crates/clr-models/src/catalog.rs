@@ -148,10 +148,10 @@ pub fn run(
 /// the catalog name and description in `[model]`. Compiling it
 /// ([`clr_mbd::ModelDesc::compile`]) and simulating with
 /// [`clr_mbd::ModelDesc::sim_options`] gives the time histories of [`run`] bit for bit (its
-/// clr-mbd columns; for the slider–cranks also the derived column and the metrics, which are
-/// `[[measure]]`, `[twin]` and `[[metric]]` items of the description; the other models' [`run`]
-/// appends derived columns and computes metrics in Rust, and `flap` and `manipulator` also
-/// simulate an ideal-joint reference, which this description is not).
+/// clr-mbd columns; for the slider–cranks and `manipulator` also the derived columns and the
+/// metrics, which are `[[measure]]`, `[twin]` and `[[metric]]` items of the description; the
+/// other models' [`run`] appends derived columns and computes metrics in Rust, and `flap` also
+/// simulates an ideal-joint reference, which this description is not).
 /// `parameters` is overlaid on [`default_parameters`] as in [`run`]; `settings.progress` is
 /// not used.
 ///

@@ -296,10 +296,10 @@ impl ManipulatorParams {
 
 const BODIES: [&str; 5] = ["base", "arm1", "arm2", "arm3", "arm4"];
 
-/// The model and run settings of the clearance run of [`run`] (the run it returns; [`run`]
-/// also simulates the same system with ideal joints as its reference):
-/// [`ManipulatorParams::desc`] with the end time and tolerance of `settings` (when given)
-/// written into `solver` and `output`.
+/// The model and run settings that [`run`] simulates: [`ManipulatorParams::desc`] with the end
+/// time and tolerance of `settings` (when given) written into `solver` and `output`, and the
+/// derived columns and metrics as data ([`derived`]), the ideal-joint reference among them as
+/// the description's `[twin]`.
 ///
 /// # Errors
 /// Invalid parameters or run settings.
@@ -308,295 +308,243 @@ pub fn run_desc(
     p: &ManipulatorParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
+    let mut d = common::run_desc(model, settings, Record::EveryStep, || p.desc(model))?;
+    derived(&mut d, p);
+    Ok(d)
 }
 
-/// Simulate one configuration and append the derived columns: end-effector positions
-/// `ee1.x ee1.y ee2.x ee2.y` (tips of links 2 and 4) and the system momentum `momentum.px
-/// momentum.py momentum.L` (angular momentum about the origin, L = Σ I_k ω_k + m_k (x_k v_yk −
-/// y_k v_xk)). `uniform` records every `reference_interval` instead of every step.
-fn simulate(
-    model: &str,
-    p: &ManipulatorParams,
-    settings: &RunSettings,
-    uniform: bool,
-) -> Result<(Results, [f64; 2]), ModelsError> {
-    // the clearance run records every step, the reference run every `reference_interval` s
-    let record = if uniform {
-        Record::Every(p.reference_interval)
-    } else {
-        Record::EveryStep
-    };
-    let desc = common::run_desc(model, settings, record, || p.desc(model))?;
-    let (mut m, opts) = common::compile_run(model, &desc)?;
-    let mut res = common::simulate(&mut m, &opts, settings, model)?;
-    let n = res.len();
-    let (mut px, mut py, mut lz) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    // momentum scales: largest Σ m|v| and Σ (|Iω| + m|r × v|) over the run
-    let (mut sp, mut sl) = (vec![0.0f64; n], vec![0.0f64; n]);
-    for name in BODIES {
-        let k = m.body_index(name).unwrap_or(0);
-        let (mass, inertia) = m.body_inertia(k);
-        let c = |s: &str| col(&res, &format!("{name}.{s}"));
-        let (x, y, vx, vy, om) = (c("x"), c("y"), c("vx"), c("vy"), c("omega"));
-        for r in 0..n {
-            px[r] += mass * vx[r];
-            py[r] += mass * vy[r];
-            let orb = mass * (x[r] * vy[r] - y[r] * vx[r]);
-            lz[r] += inertia * om[r] + orb;
-            sp[r] += mass * vx[r].hypot(vy[r]);
-            sl[r] += (inertia * om[r]).abs() + orb.abs();
-        }
+/// The derived columns as `[[measure]]` items and the ideal reference as `[twin]`: the
+/// end-effector positions `ee1.x ee1.y ee2.x ee2.y` (tips of links 2 and 4, m); the system
+/// momentum about the origin over the five bodies, `momentum.px momentum.py` (kg·m/s),
+/// `momentum.L` (kg·m²/s, L = Σ I_k ω_k + m_k (x_k v_yk − y_k v_xk)) with its scales
+/// `momentum.p_scale` = Σ m_k|v_k| and `momentum.L_scale` = Σ (|I_k ω_k| + m_k|r_k × v_k|);
+/// `base_displacement.distance` (m), the base centre's distance from the ground origin, where
+/// it starts; `friction_offset.value` (N·m), Σ δ·F_T over the clearance joints (the moment of
+/// a friction pair applied at contact points δ apart); and the deviations from the ideal-joint
+/// twin (the same system with every joint ideal, recorded every `reference_interval` s and
+/// interpolated linearly): `ee1.error`, `ee2.error` (end-effector distance from the ideal
+/// path, m), `base_position.error` (m) and `base_attitude.error` (rad).
+fn derived(d: &mut ModelDesc, p: &ManipulatorParams) {
+    use clr_mbd::measure::combination::{Columns, Combination, Term};
+    use clr_mbd::measure::deviation::{Deviation, TwinSettings};
+    use clr_mbd::measure::{distance::Distance, momentum::Momentum, point::Position};
+    use clr_mbd::{Anchor, Measure};
+    let local = |body: &str, at: [f64; 2]| Anchor::Local(body.into(), at);
+    for (ee, body) in [("ee1", "arm2"), ("ee2", "arm4")] {
+        d.measures.push(Measure::Position(Position {
+            name: ee.into(),
+            at: local(body, [0.5 * p.link_length, 0.0]),
+            frame: None,
+        }));
     }
-    let scales = [
-        sp.iter().cloned().fold(0.0, f64::max),
-        sl.iter().cloned().fold(0.0, f64::max),
+    d.measures.push(Measure::Momentum(Momentum {
+        name: "momentum".into(),
+        bodies: Some(BODIES.map(String::from).to_vec()),
+        about: None,
+        scales: true,
+    }));
+    d.measures.push(Measure::Distance(Distance {
+        name: "base_displacement".into(),
+        a: local(clr_mbd::GROUND, [0.0, 0.0]),
+        b: local("base", [0.0, 0.0]),
+    }));
+    let mut terms: Vec<Term> = (clearance_joints(p))
+        .map(|j| Term {
+            of: Columns::Many(vec![
+                format!("{j}.penetration"),
+                format!("{j}.friction_force"),
+            ]),
+            factor: 1.0,
+            abs: false,
+        })
+        .collect();
+    if terms.is_empty() {
+        // no clearance joint, no offset pair: 0 · t (t ≥ 0, so the column is +0)
+        terms.push(Term {
+            of: Columns::One("t".into()),
+            factor: 0.0,
+            abs: false,
+        });
+    }
+    d.measures.push(Measure::Combination(Combination {
+        name: "friction_offset".into(),
+        terms,
+        unit: Some("N*m".into()),
+    }));
+    let deviations = [
+        ("ee1", ["ee1.x", "ee1.y"].as_slice()),
+        ("ee2", &["ee2.x", "ee2.y"]),
+        ("base_position", &["base.x", "base.y"]),
+        ("base_attitude", &["base.theta"]),
     ];
-    let l = p.link_length;
-    let tip = |body: &str| -> (Vec<f64>, Vec<f64>) {
-        let (x, y, th) = (
-            col(&res, &format!("{body}.x")),
-            col(&res, &format!("{body}.y")),
-            col(&res, &format!("{body}.theta")),
-        );
-        let ex = (0..n).map(|r| x[r] + 0.5 * l * th[r].cos()).collect();
-        let ey = (0..n).map(|r| y[r] + 0.5 * l * th[r].sin()).collect();
-        (ex, ey)
-    };
-    let (e1x, e1y) = tip("arm2");
-    let (e2x, e2y) = tip("arm4");
-    common::append_columns(
-        &mut res,
-        vec![
-            ("ee1.x".into(), e1x),
-            ("ee1.y".into(), e1y),
-            ("ee2.x".into(), e2x),
-            ("ee2.y".into(), e2y),
-            ("momentum.px".into(), px),
-            ("momentum.py".into(), py),
-            ("momentum.L".into(), lz),
-        ],
-    );
-    Ok((res, scales))
+    for (name, of) in deviations {
+        d.measures.push(Measure::Deviation(Deviation {
+            name: name.into(),
+            of: of.iter().map(|c| c.to_string()).collect(),
+            suffix: None,
+        }));
+    }
+    let t_end = d.output.t_end.unwrap_or(p.duration);
+    // as the reference run before: a row every `reference_interval` s
+    d.twin = Some(TwinSettings {
+        intervals: Some(((t_end / p.reference_interval).round() as usize).max(1)),
+    });
+    d.metrics = metrics(p);
 }
 
-/// Metrics of a run against the ideal reference, and the path-error columns `ee1.error`,
-/// `ee2.error` (distance to the ideal end-effector position at the same time, m; the ideal
-/// path is interpolated linearly from its uniform output).
-fn compare(
-    p: &ManipulatorParams,
-    res: &mut Results,
-    scales: [f64; 2],
-    ideal: &Results,
-) -> Vec<Metric> {
-    let t = col(res, "t");
-    let ti = col(ideal, "t");
-    let mut errs = Vec::new();
-    let mut metrics = Vec::new();
-    for arm in ["ee1", "ee2"] {
-        let (x, y) = (col(res, &format!("{arm}.x")), col(res, &format!("{arm}.y")));
-        let (xi, yi) = (
-            col(ideal, &format!("{arm}.x")),
-            col(ideal, &format!("{arm}.y")),
-        );
-        let e: Vec<f64> = (0..t.len())
-            .map(|r| {
-                (x[r] - common::interp(&ti, &xi, t[r])).hypot(y[r] - common::interp(&ti, &yi, t[r]))
-            })
-            .collect();
-        errs.push((format!("{arm}.error"), e));
-    }
-    let emax = |k: usize| common::peak_abs(&t, &errs[k].1, 0.0);
-    let erms = |k: usize| common::time_rms(&t, &errs[k].1, 0.0);
-    metrics.push(Metric::new(
-        "path_error_max",
-        emax(0).max(emax(1)),
-        "m",
-        "largest end-effector distance from the ideal path (both manipulators)",
-    ));
-    metrics.push(Metric::new(
-        "path_error_rms",
-        (0.5 * (erms(0).powi(2) + erms(1).powi(2))).sqrt(),
-        "m",
-        "time RMS of the end-effector distance from the ideal path over both end effectors",
-    ));
+/// The joints J1 … J4 that have a clearance.
+fn clearance_joints(p: &ManipulatorParams) -> impl Iterator<Item = &'static str> + '_ {
+    (["J1", "J2", "J3", "J4"].into_iter())
+        .zip(p.clearances)
+        .filter(|(_, c)| *c > 0.0)
+        .map(|(j, _)| j)
+}
+
+/// The metrics of the columns of [`derived`]: path error, base motion, contact per clearance
+/// joint, momentum.
+fn metrics(p: &ManipulatorParams) -> Vec<clr_mbd::desc::metric::MetricDesc> {
+    use clr_mbd::desc::metric::{MetricDesc, Statistic};
+    let m = |name: &str, of: &[&str], stat, words: &str| {
+        MetricDesc::of_columns(name, of, stat).described(words)
+    };
+    let ee = ["ee1.error", "ee2.error"];
+    let mut out = vec![
+        m(
+            "path_error_max",
+            &ee,
+            Statistic::Peak,
+            "largest end-effector distance from the ideal path (both manipulators)",
+        ),
+        m(
+            "path_error_rms",
+            &ee,
+            Statistic::Rms,
+            "time RMS of the end-effector distance from the ideal path over both end effectors",
+        ),
+    ];
     for (k, arm) in ["1", "2"].iter().enumerate() {
-        metrics.push(Metric::new(
+        out.push(m(
             &format!("path_error_max_arm{arm}"),
-            emax(k),
-            "m",
+            &[ee[k]],
+            Statistic::Peak,
             &format!("largest end-effector path error of manipulator {arm}"),
         ));
-        metrics.push(Metric::new(
+        out.push(m(
             &format!("path_error_rms_arm{arm}"),
-            erms(k),
-            "m",
+            &[ee[k]],
+            Statistic::Rms,
             &format!("time RMS of the end-effector path error of manipulator {arm}"),
         ));
     }
-    base_metrics(res, ideal, &mut metrics);
-    contact_metrics(p, res, &mut metrics);
-    momentum_metrics(p, res, scales, &mut metrics);
-    common::append_columns(res, errs);
-    metrics
-}
-
-/// Base motion and its deviation from the ideal case.
-fn base_metrics(res: &Results, ideal: &Results, metrics: &mut Vec<Metric>) {
-    let t = col(res, "t");
-    let ti = col(ideal, "t");
-    // base position and attitude
-    let (bx, by, bth) = (
-        col(res, "base.x"),
-        col(res, "base.y"),
-        col(res, "base.theta"),
-    );
-    let (bxi, byi, bthi) = (
-        col(ideal, "base.x"),
-        col(ideal, "base.y"),
-        col(ideal, "base.theta"),
-    );
-    let last = t.len().saturating_sub(1);
-    metrics.push(Metric::new(
-        "base_displacement_max",
-        (0..t.len()).map(|r| bx[r].hypot(by[r])).fold(0.0, f64::max),
-        "m",
-        "largest displacement of the base centre from its initial position",
-    ));
-    metrics.push(Metric::new(
-        "base_attitude_max",
-        common::peak_abs(&t, &bth, 0.0),
-        "rad",
-        "largest |base attitude angle|",
-    ));
-    let dev_pos = (0..t.len())
-        .map(|r| {
-            (bx[r] - common::interp(&ti, &bxi, t[r])).hypot(by[r] - common::interp(&ti, &byi, t[r]))
-        })
-        .fold(0.0, f64::max);
-    let dev_att = (0..t.len())
-        .map(|r| (bth[r] - common::interp(&ti, &bthi, t[r])).abs())
-        .fold(0.0, f64::max);
-    metrics.push(Metric::new(
-        "base_position_deviation_max",
-        dev_pos,
-        "m",
-        "largest distance of the base centre from its ideal-case position",
-    ));
-    metrics.push(Metric::new(
-        "base_attitude_deviation_max",
-        dev_att,
-        "rad",
-        "largest |base attitude − ideal-case attitude|",
-    ));
-    metrics.push(Metric::new(
-        "base_y_final",
-        by.get(last).copied().unwrap_or(f64::NAN),
-        "m",
-        "base centre y at the end of the run",
-    ));
-}
-
-/// Peak contact force and contact time fraction of each clearance joint.
-fn contact_metrics(p: &ManipulatorParams, res: &Results, metrics: &mut Vec<Metric>) {
-    let t = col(res, "t");
-    // contact forces
-    for (k, j) in ["J1", "J2", "J3", "J4"].iter().enumerate() {
-        if p.clearances[k] > 0.0 {
-            // the located impact peaks (clr-mbd `Results::impacts`), or the rows where larger
-            let rows = common::peak_abs(&t, &col(res, &format!("{j}.normal_force")), 0.0);
-            let located = res
-                .impacts
-                .iter()
-                .filter(|i| i.joint == *j)
-                .fold(rows, |a, i| a.max(i.peak_force));
-            metrics.push(Metric::new(
-                &format!("{j}_peak_contact_force"),
-                located,
-                "N",
-                &format!(
-                    "largest normal force in clearance joint {j}, located on the dense output"
-                ),
-            ));
-            metrics.push(Metric::new(
-                &format!("{j}_contact_time_fraction"),
-                common::time_mean(&t, &col(res, &format!("{j}.contact")), 0.0),
-                "-",
-                &format!("fraction of the time with contact in {j}"),
-            ));
-        }
+    out.extend([
+        m(
+            "base_displacement_max",
+            &["base_displacement.distance"],
+            Statistic::Max,
+            "largest displacement of the base centre from its initial position",
+        ),
+        m(
+            "base_attitude_max",
+            &["base.theta"],
+            Statistic::Peak,
+            "largest |base attitude angle|",
+        ),
+        m(
+            "base_position_deviation_max",
+            &["base_position.error"],
+            Statistic::Peak,
+            "largest distance of the base centre from its ideal-case position",
+        ),
+        m(
+            "base_attitude_deviation_max",
+            &["base_attitude.error"],
+            Statistic::Peak,
+            "largest |base attitude − ideal-case attitude|",
+        ),
+        m(
+            "base_y_final",
+            &["base.y"],
+            Statistic::Final,
+            "base centre y at the end of the run",
+        ),
+    ]);
+    for j in clearance_joints(p) {
+        out.push(m(
+            &format!("{j}_peak_contact_force"),
+            &[&format!("{j}.normal_force")],
+            Statistic::Peak,
+            &format!("largest normal force in clearance joint {j}, located on the dense output"),
+        ));
+        out.push(m(
+            &format!("{j}_contact_time_fraction"),
+            &[&format!("{j}.contact")],
+            Statistic::Mean,
+            &format!("fraction of the time with contact in {j}"),
+        ));
     }
+    out.extend(momentum_metrics());
+    out
 }
 
-/// Momentum drifts against their scales, and the friction-offset angular impulse.
-fn momentum_metrics(
-    p: &ManipulatorParams,
-    res: &Results,
-    scales: [f64; 2],
-    metrics: &mut Vec<Metric>,
-) {
-    let t = col(res, "t");
-    let last = t.len().saturating_sub(1);
-    // momentum
-    let drift = |name: &str| {
-        let v = col(res, name);
-        v.iter().map(|x| (x - v[0]).abs()).fold(0.0, f64::max)
+/// Momentum scales, drifts against them, the change of L and the friction-offset impulse.
+fn momentum_metrics() -> Vec<clr_mbd::desc::metric::MetricDesc> {
+    use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic};
+    let m = |name: &str, of: &[&str], stat, words: &str| {
+        MetricDesc::of_columns(name, of, stat).described(words)
     };
-    let dp = drift("momentum.px").hypot(drift("momentum.py"));
-    metrics.push(Metric::new(
-        "linear_momentum_drift",
-        dp / scales[0].max(f64::MIN_POSITIVE),
-        "-",
-        "max |p(t) − p(0)| / max Σ m_k|v_k| (zero for exact internal forces)",
-    ));
-    metrics.push(Metric::new(
-        "angular_momentum_drift",
-        drift("momentum.L") / scales[1].max(f64::MIN_POSITIVE),
-        "-",
-        "max |L(t) − L(0)| / max Σ (|I_k ω_k| + m_k|r_k × v_k|) about the origin",
-    ));
-    // clr-contact applies the contact pair at the two contact points r_i^Q, r_j^Q, which are
-    // δ apart along n: the friction pair then has a net torque δ·F_T (n × t = 1), so the
-    // angular momentum changes by ∫ Σ δ F_T dt. Reported to compare with the drift.
-    let mut impulse = 0.0;
-    for (k, j) in ["J1", "J2", "J3", "J4"].iter().enumerate() {
-        if p.clearances[k] > 0.0 {
-            let d = col(res, &format!("{j}.penetration"));
-            let ft = col(res, &format!("{j}.friction_force"));
-            let v: Vec<f64> = d.iter().zip(&ft).map(|(d, f)| d.max(0.0) * f).collect();
-            impulse += common::time_mean(&t, &v, 0.0) * (t[last] - t[0]);
-        }
-    }
-    let lcol = col(res, "momentum.L");
-    metrics.push(Metric::new(
-        "angular_momentum_change",
-        lcol[last] - lcol[0],
-        "kg*m^2/s",
-        "L(t_end) − L(0) about the origin",
-    ));
-    metrics.push(Metric::new(
-        "friction_offset_impulse",
-        impulse,
-        "kg*m^2/s",
-        "∫ Σ δ·F_T dt over the clearance joints: the angular impulse of the friction pair \
-         applied at contact points δ apart (clr-contact convention)",
-    ));
-    metrics.push(Metric::new(
-        "linear_momentum_scale",
-        scales[0],
-        "kg*m/s",
-        "max over the run of Σ m_k|v_k|",
-    ));
-    metrics.push(Metric::new(
-        "angular_momentum_scale",
-        scales[1],
-        "kg*m^2/s",
-        "max over the run of Σ (|I_k ω_k| + m_k|r_k × v_k|)",
-    ));
+    let per = |scale: &str| Divisor::Metric(scale.into());
+    vec![
+        // the scales come first: the drifts are divided by them
+        m(
+            "linear_momentum_scale",
+            &["momentum.p_scale"],
+            Statistic::Max,
+            "max over the run of Σ m_k|v_k|",
+        ),
+        m(
+            "angular_momentum_scale",
+            &["momentum.L_scale"],
+            Statistic::Max,
+            "max over the run of Σ (|I_k ω_k| + m_k|r_k × v_k|)",
+        ),
+        m(
+            "linear_momentum_drift",
+            &["momentum.px", "momentum.py"],
+            Statistic::Drift,
+            "max over the components of max |p_i(t) − p_i(0)|, / max Σ m_k|v_k| (zero for \
+             exact internal forces)",
+        )
+        .per(per("linear_momentum_scale")),
+        m(
+            "angular_momentum_drift",
+            &["momentum.L"],
+            Statistic::Drift,
+            "max |L(t) − L(0)| / max Σ (|I_k ω_k| + m_k|r_k × v_k|) about the origin",
+        )
+        .per(per("angular_momentum_scale")),
+        m(
+            "angular_momentum_change",
+            &["momentum.L"],
+            Statistic::Change,
+            "L(t_end) − L(0) about the origin",
+        ),
+        // clr-contact's `contact_points` form applies the contact pair at the two contact
+        // points r_i^Q, r_j^Q, δ apart along n: the friction pair then has a net torque δ·F_T
+        // (n × t = 1), so L changes by ∫ Σ δ F_T dt. Reported to compare with the change.
+        m(
+            "friction_offset_impulse",
+            &["friction_offset.value"],
+            Statistic::Integral,
+            "∫ Σ δ·F_T dt over the clearance joints: the angular impulse of the friction pair \
+             applied at contact points δ apart (clr-contact convention)",
+        )
+        .in_unit("kg*m^2/s"),
+    ]
 }
 
-/// Simulate the manipulator and its ideal counterpart (same parameters, all joints ideal) and
-/// return the run with path errors, base motion, contact forces and momentum metrics.
+/// Simulate the manipulator and its ideal-joint twin (same parameters, every joint ideal) and
+/// compute the derived columns and the metrics of [`derived`] from the description, as a run
+/// of its exported file does: path errors, base motion, contact forces and momentum.
 ///
 /// # Errors
 /// Invalid parameters, build or simulation errors.
@@ -605,18 +553,8 @@ pub fn run(
     p: &ManipulatorParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    common::check_settings(model, settings)?;
-    p.validate().map_err(|m| common::invalid(model, m))?;
-    let ideal_p = ManipulatorParams {
-        clearances: [0.0; 4],
-        ..p.clone()
-    };
-    let (ideal, _) = simulate(model, &ideal_p, settings, true)?;
-    let (mut res, scales) = simulate(model, p, settings, false)?;
-    if let Some(cb) = &settings.progress {
-        cb(settings.t_end.unwrap_or(p.duration));
-    }
-    let metrics = compare(p, &mut res, scales, &ideal);
+    let desc = run_desc(model, p, settings)?;
+    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
 }

@@ -24,8 +24,8 @@ impl ModelDesc {
 
     /// The ideal-joint twin of this description (module docs), with what it left as it was, in
     /// words: every revolute and translational clearance joint at clearance 0 (film, wear and
-    /// initial offset dropped), the deviation and contact measures and the metrics left out,
-    /// recorded at the
+    /// initial offset dropped), the deviation and contact measures, the combinations of
+    /// columns it lacks (a clearance joint's) and the metrics left out, recorded at the
     /// `[twin]` intervals.
     pub fn ideal_twin(&self) -> (ModelDesc, Vec<String>) {
         let mut twin = self.clone();
@@ -49,8 +49,8 @@ impl ModelDesc {
         }
         // the twin's metrics are not asked for (they would name the deviation columns)
         twin.metrics.clear();
-        twin.measures
-            .retain(|m| !matches!(m, Measure::Deviation(_) | Measure::Contact(_)));
+        let mut keeps = self.twin_keeps().into_iter();
+        twin.measures.retain(|_| keeps.next().unwrap_or(false));
         let o = &mut twin.output;
         let intervals = self.twin.as_ref().and_then(|t| t.intervals);
         o.intervals = intervals.unwrap_or(if o.intervals == 0 { 1000 } else { o.intervals });
@@ -60,6 +60,47 @@ impl ModelDesc {
 }
 
 impl ModelDesc {
+    /// Per measure, whether the ideal twin keeps it: not the deviations, not the contact
+    /// measures, and not a combination that reads a column the twin does not write (of a
+    /// clearance joint it makes ideal, or of a measure it leaves out before), such as the moment
+    /// δ·F_T of a joint's friction pair.
+    fn twin_keeps(&self) -> Vec<bool> {
+        let made_ideal: Vec<&str> = (self.clearances.iter())
+            .filter(|c| matches!(c, Clearance::Revolute(_) | Clearance::Translational(_)))
+            .filter(|c| !c.is_ideal())
+            .map(|c| c.name())
+            .collect();
+        let mut left_out: Vec<String> = Vec::new();
+        let mut keeps = Vec::with_capacity(self.measures.len());
+        for m in &self.measures {
+            let keep = match m {
+                Measure::Deviation(d) => {
+                    left_out.push(d.column());
+                    false
+                }
+                Measure::Contact(c) => {
+                    left_out.push(format!("{}.{}", c.name, c.quantity));
+                    false
+                }
+                Measure::Combination(c) => {
+                    let missing = |col: &String| {
+                        left_out.contains(col)
+                            || (made_ideal.iter())
+                                .any(|j| col.strip_prefix(j).is_some_and(|r| r.starts_with('.')))
+                    };
+                    let keep = !(c.terms.iter()).any(|t| t.of.names().iter().any(missing));
+                    if !keep {
+                        left_out.push(format!("{}.value", c.name));
+                    }
+                    keep
+                }
+                _ => true,
+            };
+            keeps.push(keep);
+        }
+        keeps
+    }
+
     /// True when a run of this description needs its ideal twin: a `deviation` measure or a
     /// `[[metric]]` with `twin = true`.
     pub fn needs_twin(&self) -> bool {
@@ -71,25 +112,25 @@ impl ModelDesc {
 /// too: all but the deviations', the contact measures' and those of the clearance elements it
 /// makes ideal.
 pub(crate) fn twin_columns(desc: &ModelDesc, columns: &[String]) -> Vec<String> {
-    let (twin, _) = desc.ideal_twin();
-    let kept: Vec<String> = (twin.measures.iter())
-        .map(|m| format!("{}.", m.name()))
-        .collect();
-    let dropped: Vec<String> = (desc.measures.iter())
-        .filter(|m| matches!(m, Measure::Deviation(_) | Measure::Contact(_)))
-        .map(|m| format!("{}.", m.name()))
-        .chain(
-            (desc.clearances.iter())
-                .filter(|c| !c.is_ideal())
-                .map(|c| format!("{}.", c.name())),
-        )
-        .collect();
-    let deviation: Vec<String> = desc.deviations().iter().map(|d| d.column()).collect();
-    (columns.iter())
-        .filter(|c| !deviation.contains(c))
-        .filter(|c| {
-            kept.iter().any(|k| c.starts_with(k)) || !dropped.iter().any(|d| c.starts_with(d))
+    // the exact columns of the measures the twin leaves out (not every column starting with
+    // their names: a deviation may be named like a body, `slider`)
+    let left_out: Vec<String> = (desc.measures.iter())
+        .zip(desc.twin_keeps())
+        .filter(|(_, keep)| !keep)
+        .filter_map(|(m, _)| match m {
+            Measure::Deviation(d) => Some(d.column()),
+            Measure::Contact(c) => Some(format!("{}.{}", c.name, c.quantity)),
+            Measure::Combination(c) => Some(format!("{}.value", c.name)),
+            _ => None,
         })
+        .collect();
+    let ideal: Vec<String> = (desc.clearances.iter())
+        .filter(|c| matches!(c, Clearance::Revolute(_) | Clearance::Translational(_)))
+        .filter(|c| !c.is_ideal())
+        .map(|c| format!("{}.", c.name()))
+        .collect();
+    (columns.iter())
+        .filter(|c| !left_out.contains(c) && !ideal.iter().any(|p| c.starts_with(p)))
         .cloned()
         .collect()
 }

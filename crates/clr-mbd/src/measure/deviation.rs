@@ -12,8 +12,9 @@
 //! error has the unit of the sources, which must agree.
 //!
 //! What the twin leaves as it is, and says so in the run's notes: sliders on flexible guides and
-//! shape contacts (they have no ideal counterpart), and the `contact` measures (an ideal joint
-//! has no contact columns; a deviation of one is refused).
+//! shape contacts (they have no ideal counterpart). It leaves out the `contact` measures (an
+//! ideal joint has no contact columns; a deviation of one is refused) and the `combination`
+//! measures that read a column it does not write (a clearance joint's, or a left-out measure's).
 
 use serde::{Deserialize, Serialize};
 
