@@ -105,7 +105,7 @@ fn spatial_only() -> Result<(), String> {
 
 fn run_all() -> Result<(), String> {
     let chromium = ensure_chromium()?;
-    let clr = build_clr()?;
+    let clr = crate::system::build_clr()?;
     let out = target_dir().join("report-check");
     let figures = workspace_root().join("docs").join("figures");
     for case in CASES {
@@ -166,48 +166,8 @@ fn run_all() -> Result<(), String> {
 
 /// `chromium` on the PATH, installed with apt-get when missing.
 fn ensure_chromium() -> Result<PathBuf, String> {
-    let found = |name: &str| {
-        Command::new("which")
-            .arg(name)
-            .output()
-            .ok()
-            .filter(|o| o.status.success())
-            .map(|o| PathBuf::from(String::from_utf8_lossy(&o.stdout).trim()))
-    };
-    if let Some(p) = found("chromium") {
-        return Ok(p);
-    }
-    eprintln!("report-check: chromium not found; installing Debian's `chromium` with apt-get");
-    for args in [
-        &["update", "-q"][..],
-        &["install", "-y", "-q", "chromium"][..],
-    ] {
-        let ok = Command::new("apt-get")
-            .args(args)
-            .env("DEBIAN_FRONTEND", "noninteractive")
-            .status()
-            .map_err(|e| format!("apt-get: {e}; install chromium yourself"))?
-            .success();
-        if !ok {
-            return Err(
-                "apt-get could not install chromium (needs root); install it yourself".into(),
-            );
-        }
-    }
-    found("chromium").ok_or_else(|| "chromium still not on the PATH after apt-get".into())
-}
-
-fn build_clr() -> Result<PathBuf, String> {
-    let ok = Command::new(env!("CARGO"))
-        .args(["build", "--release", "--bin", "clr"])
-        .current_dir(workspace_root())
-        .status()
-        .map_err(|e| format!("cargo build: {e}"))?
-        .success();
-    if !ok {
-        return Err("cargo build --release --bin clr failed".into());
-    }
-    Ok(target_dir().join("release").join("clr"))
+    crate::system::apt_install("report-check", &["chromium"], &["chromium"])?;
+    crate::system::which("chromium").ok_or_else(|| "chromium not on the PATH".into())
 }
 
 /// `clr run ARGS --out OUT` in the workspace root (a model file is given relative to it, and

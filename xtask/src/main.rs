@@ -10,10 +10,13 @@
 //! - `cargo xtask octave`: build the MATLAB/Octave MEX gateway `matlab/clr_mex.c` with Octave
 //!   (installed with apt-get if missing), run its tests and the journal-impact example;
 //! - `cargo xtask report-check`: render run reports in headless Chromium (installed with
-//!   apt-get if missing), check them and write their screenshots to `docs/figures/`.
+//!   apt-get if missing), check them and write their screenshots to `docs/figures/`;
+//! - `cargo xtask cluster-check`: run clr's cluster workflows on a single-node Slurm cluster
+//!   brought up and torn down on this machine.
 
 mod bench;
 mod browser;
+mod cluster;
 mod figures;
 mod fuzz;
 mod minimal_slider_crank;
@@ -21,6 +24,7 @@ mod minimal_spatial_slider_crank;
 mod octave;
 mod report;
 mod study_figures;
+mod system;
 mod verify;
 
 use std::path::PathBuf;
@@ -66,7 +70,7 @@ pub fn command_without_arguments(
     }
 }
 
-const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures [NAME...] | fuzz [OPTIONS] | octave | report-check>
+const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] | figures [NAME...] | fuzz [OPTIONS] | octave | report-check | cluster-check>
   verify   run verification cases (groups: ode, contact, beam); writes target/verify/report.{json,md}
   bench    benchmarks against peers (groups: ode, mbd, beam, shapes); writes target/bench/<group>.json
   figures  regenerate docs/figures/ (all, or the makers whose name starts with NAME)
@@ -75,7 +79,10 @@ const USAGE: &str = "usage: cargo xtask <verify [ID-PREFIX...] | bench [GROUP] |
   octave   build matlab/clr_mex.c with Octave's mkoctfile (apt-get install if missing), run
            matlab/test_clr.m and matlab/journal_impact.m, compare the restitution with Rust
   report-check  render report.html of three models in headless Chromium (apt-get install if
-           missing), check for script errors and motion, write docs/figures/report_*.png";
+           missing), check for script errors and motion, write docs/figures/report_*.png
+  cluster-check  bring up a single-node Slurm cluster (apt-get install if missing), run a sweep
+           job array with a dependent merge, a sharded finding map and killed-and-requeued
+           tasks against local runs, tear it down";
 
 fn main() -> ExitCode {
     let args: Vec<String> = std::env::args().skip(1).collect();
@@ -87,6 +94,7 @@ fn main() -> ExitCode {
         Some("fuzz") => fuzz::run(rest),
         Some("octave") => octave::run(rest),
         Some("report-check") => browser::run(rest),
+        Some("cluster-check") => cluster::run(rest),
         Some("-h") | Some("--help") | Some("help") => {
             println!("{USAGE}");
             ExitCode::SUCCESS
