@@ -2,10 +2,10 @@
 //! multibody model with the run settings (a `clr_mbd::ModelDesc` as TOML), and running that
 //! file the way `clr run FILE` does gives the state of `clr run <name>` bit for bit (f64 bits
 //! of every clr-mbd column both runs record: time, coordinates, velocities, and also
-//! accelerations, contact and reaction forces; the final state; the step count). The
-//! built-ins whose derived columns and metrics are measures and metrics of their descriptions
-//! (all but [`PENDING`]) reproduce every column (with its unit) and every metric too. The
-//! shipped files `models/<name>.toml` are the current exports.
+//! accelerations, contact and reaction forces; the final state; the step count). Every
+//! built-in's derived columns and metrics are measures and metrics of its description, so its
+//! file reproduces every column (with its unit) and every metric too. The shipped files
+//! `models/<name>.toml` are the current exports.
 
 mod common;
 
@@ -137,21 +137,8 @@ fn check(name: &str, label: &str, sets: &[&str]) {
     assert_eq!(a.stats.accepted, b.stats.accepted, "{label}: steps");
     assert_eq!(a.onsets, b.onsets, "{label}: contact onsets");
     let lost = derived_lost(&builtin, &from_file);
-    if PENDING.contains(&name) {
-        // kept honest: a built-in leaves this list as soon as its file reproduces everything
-        assert!(
-            !lost.is_empty(),
-            "{label}: the file reproduces every column and metric now; remove `{name}` from PENDING"
-        );
-        eprintln!("{label}: not reproduced yet: {}", lost.join(", "));
-    } else {
-        assert!(lost.is_empty(), "{label}: {}", lost.join("; "));
-    }
+    assert!(lost.is_empty(), "{label}: {}", lost.join("; "));
 }
-
-/// Built-ins whose derived columns or metrics are not yet measures and metrics of their
-/// descriptions (issue 33, point 2).
-const PENDING: [&str; 2] = ["guide", "dual_guide"];
 
 /// What the file's run does not reproduce of the built-in's: every column of the built-in (its
 /// unit and f64 bits in every row) and every metric (value bits and unit), in words.

@@ -499,4 +499,18 @@ mod tests {
             spread(&r2)
         );
     }
+
+    #[test]
+    fn oscillation_amplitude_of_a_sine_on_a_ramp() {
+        // closed form: v = a t + A sin(2π t/T); the running mean over one period T of the sine
+        // is 0 and of the ramp is the ramp itself, so the amplitude is A (to sampling error)
+        let (a, amp, period) = (3.0, 0.25, 0.1);
+        let t: Vec<f64> = (0..=20_000).map(|k| k as f64 * 1e-4).collect();
+        let v: Vec<f64> = t
+            .iter()
+            .map(|&x| a * x + amp * (2.0 * std::f64::consts::PI * x / period).sin())
+            .collect();
+        let got = oscillation(&t, &v, period);
+        assert!((got - amp).abs() < 1e-3 * amp, "{got}");
+    }
 }

@@ -27,8 +27,7 @@ use clr_mbd::{
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, FrictionParams, Record, Solver};
-use crate::guide::oscillation_amplitude;
-use crate::{Metric, ModelsError, RunOutput, RunSettings};
+use crate::{ModelsError, RunOutput, RunSettings};
 
 /// Parameters of the dual-stage dual guide (SI units). Defaults: [`DualGuideParams::default`];
 /// every value is a reconstruction documented in docs/models/dual_guide.md. Fields that mean the
@@ -551,14 +550,6 @@ impl DualGuideParams {
     }
 }
 
-/// Number of contact onsets (0 → 1 transitions of a `*.contact` column over the rows).
-fn onsets(contact: &[f64]) -> usize {
-    contact
-        .windows(2)
-        .filter(|w| w[0] < 0.5 && w[1] >= 0.5)
-        .count()
-}
-
 /// The model and run settings that [`run`] simulates: [`DualGuideParams::desc`] with the end
 /// time and tolerance of `settings` (when given) written into `solver` and `output`.
 ///
@@ -569,7 +560,196 @@ pub fn run_desc(
     p: &DualGuideParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
+    let mut d = common::run_desc(model, settings, Record::EveryStep, || p.desc(model))?;
+    derived(&mut d, p);
+    Ok(d)
+}
+
+/// The names of `v` as `&str`.
+fn refs(v: &[String]) -> Vec<&str> {
+    v.iter().map(String::as_str).collect()
+}
+
+/// The dual guide's metrics as measures and metrics of its description, so that `clr run
+/// dual_guide` and its exported file compute them the same way: every guide's tip deflection
+/// as a recorded node (`g1<s>.node<E1>.uy` on the ground, `g2<s>.node<E2>.uy` in the stage-2
+/// guide's own frame), the normal and |friction| forces summed over the pads and Σ|actuator
+/// force| over the stages as `combination` measures; the loaded carriage's lateral displacement
+/// (largest, RMS), the largest pad force (located on the dense output), the tip oscillation of
+/// each stage about its running mean over that stage's first-mode period and the largest of
+/// them, the largest tip deflection, the mean forces, the contact onsets (total and per pad),
+/// the actuator forces and the jamming indicators (per μ_max × lateral load).
+fn derived(d: &mut ModelDesc, p: &DualGuideParams) {
+    use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic as S};
+    use clr_mbd::desc::NodeSelection;
+    use clr_mbd::measure::combination::{Columns, Combination, Term};
+    let pads: Vec<String> = d.clearances.iter().map(|c| c.name().to_string()).collect();
+    let (body, act) = p.loaded();
+    let rows: Vec<&str> = p.guide_rows().iter().map(|(s, _)| *s).collect();
+    let mut tips1 = Vec::new();
+    let mut tips2 = Vec::new();
+    for s in &rows {
+        d.output
+            .nodes
+            .insert(format!("g1{s}"), NodeSelection::Nodes(vec![p.elements1]));
+        tips1.push(format!("g1{s}.node{}.uy", p.elements1));
+        if p.dual {
+            d.output
+                .nodes
+                .insert(format!("g2{s}"), NodeSelection::Nodes(vec![p.elements2]));
+            tips2.push(format!("g2{s}.node{}.uy", p.elements2));
+        }
+    }
+    let term = |of: String, abs: bool| Term {
+        of: Columns::One(of),
+        factor: 1.0,
+        abs,
+    };
+    let sum = |name: &str, terms: Vec<Term>| {
+        clr_mbd::Measure::Combination(Combination {
+            name: name.into(),
+            terms,
+            unit: None,
+        })
+    };
+    // Σ|F_act| over the stages: the stage-1 actuator overcomes the stage-1 friction, the
+    // stage-2 actuator the stage-2 friction, so the sum is the total friction of the mechanism
+    let mut actuators = vec![term("act1.Fx".into(), true)];
+    if p.dual {
+        actuators.push(term(format!("{act}.Fx"), true));
+    }
+    d.measures.extend([
+        sum(
+            "normal_total",
+            pads.iter()
+                .map(|c| term(format!("{c}.normal_force"), false))
+                .collect(),
+        ),
+        sum(
+            "friction_total",
+            pads.iter()
+                .map(|c| term(format!("{c}.friction_force"), true))
+                .collect(),
+        ),
+        sum("actuator_sum", actuators),
+        sum("loaded_actuator", vec![term(format!("{act}.Fx"), true)]),
+    ]);
+    let strs = |v: &[String]| -> Vec<String> { v.to_vec() };
+    let cols = |v: Vec<String>, suffix: &str| -> Vec<String> {
+        v.into_iter().map(|c| format!("{c}.{suffix}")).collect()
+    };
+    let m =
+        |name: &str, of: &str, stat, words: &str| MetricDesc::new(name, of, stat).described(words);
+    let osc = |name: &str, tips: &[String], length: f64, depth: f64| MetricDesc {
+        window: Some(
+            1.0 / cantilever_frequency(length, p.guide_width, depth, p.youngs_modulus, p.density),
+        ),
+        ..MetricDesc::of_columns(name, &refs(tips), S::Oscillation).described(
+            "largest |tip deflection − its running mean over one first-mode period| of the \
+             stage's guides",
+        )
+    };
+    let sliding = p.friction.law().map_or(f64::NAN, |l| l.mu_max()) * p.lateral_load;
+    let forces = cols(strs(&pads), "normal_force");
+    let contacts = cols(strs(&pads), "contact");
+    let all_tips: Vec<String> = tips1.iter().chain(&tips2).cloned().collect();
+    let mut v =
+        vec![
+        m(
+            "max_lateral_displacement",
+            &format!("{body}.y"),
+            S::Peak,
+            "largest |y| of the loaded carriage's centre (0 = centred on undeformed guides)",
+        ),
+        m(
+            "rms_lateral_displacement",
+            &format!("{body}.y"),
+            S::Rms,
+            "time RMS of the loaded carriage's y",
+        ),
+        MetricDesc::of_columns("peak_contact_force", &refs(&forces), S::Peak).described(
+            "largest normal force of any pad (sum over that pad's points), located on the dense \
+             output",
+        ),
+        osc("tip_oscillation_stage1", &tips1, p.guide1_length, p.guide1_depth),
+    ];
+    let mut stages = vec!["tip_oscillation_stage1"];
+    if p.dual {
+        v.push(osc(
+            "tip_oscillation_stage2",
+            &tips2,
+            p.guide2_length,
+            p.guide2_depth,
+        ));
+        stages.push("tip_oscillation_stage2");
+    }
+    v.extend([
+        MetricDesc::of_metrics("tip_oscillation_amplitude", &stages, S::Max).described(
+            "largest |tip deflection − its running mean over one first-mode period| of any \
+             guide (stage-2 tips in their own frame)",
+        ),
+        MetricDesc::of_columns("max_tip_deflection", &refs(&all_tips), S::Peak)
+            .described("largest |tip deflection| of any guide"),
+        m(
+            "mean_friction_force",
+            "friction_total.value",
+            S::Mean,
+            "time average of |friction| summed over all pads",
+        ),
+        m(
+            "mean_normal_force",
+            "normal_total.value",
+            S::Mean,
+            "time average of the normal force summed over all pads",
+        ),
+        MetricDesc::of_columns("impacts", &refs(&contacts), S::Onsets)
+            .described("contact onsets of all pads (0→1 transitions over the accepted steps)"),
+        MetricDesc::of_columns(
+            "peak_actuator_force",
+            &if p.dual {
+                vec!["act1.Fx", "act2.Fx"]
+            } else {
+                vec!["act1.Fx"]
+            },
+            S::Peak,
+        )
+        .described("largest |axial actuator reaction| of any stage"),
+        m(
+            "mean_loaded_actuator_force",
+            "loaded_actuator.value",
+            S::Mean,
+            "time average of |axial reaction| of the actuator driving the loaded carriage",
+        ),
+        m(
+            "mean_actuator_force_sum",
+            "actuator_sum.value",
+            S::Mean,
+            "time average of Σ|axial actuator reaction| over the stages",
+        ),
+        m(
+            "jamming_indicator",
+            "actuator_sum.value",
+            S::Mean,
+            "time average of Σ|actuator force| over the stages / (μ_max × lateral load): ≈ 1 \
+             for a carriage sliding steadily on one face under the load; > 1 when pinching \
+             (the slider tilted between both faces, or between guides deforming differently) \
+             raises the normal and friction forces",
+        )
+        .per(Divisor::Number(sliding))
+        .in_unit("-"),
+        m(
+            "peak_jamming_ratio",
+            "actuator_sum.value",
+            S::Peak,
+            "peak of Σ|actuator force| / (μ_max × lateral load) (dominated by impacts)",
+        )
+        .per(Divisor::Number(sliding))
+        .in_unit("-"),
+        MetricDesc::of_columns("impacts_per_pad", &refs(&contacts), S::Onsets)
+            .described("contact onsets per pad (the dual guide has 8 pads, the single 2)")
+            .per(Divisor::Number(pads.len().max(1) as f64)),
+    ]);
+    d.metrics = v;
 }
 
 /// Simulate and compute the metrics (docs/models/dual_guide.md): lateral displacement of the
@@ -583,202 +763,10 @@ pub fn run(
     p: &DualGuideParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    let (mut m, opts) = common::compile_run(model, &run_desc(model, p, settings)?)?;
-    let res = common::simulate(&mut m, &opts, settings, model)?;
-    if let Some(cb) = &settings.progress {
-        cb(opts.t_end);
-    }
-    let metrics = metrics(p, &res, model)?;
+    let desc = run_desc(model, p, settings)?;
+    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
-}
-
-/// Tip deflections (m) of every guide over the rows, with each guide's first-mode period (s):
-/// stage-1 guides from their nodal column `g1<s>.n<E>.v`, stage-2 guides in their own frame
-/// from the modal coordinates, v_tip = Σ_k T[tip v, k] q_k.
-fn tip_series(
-    p: &DualGuideParams,
-    res: &Results,
-    model: &str,
-) -> Result<Vec<(Vec<f64>, f64)>, ModelsError> {
-    let n = res.len();
-    let f1 = cantilever_frequency(
-        p.guide1_length,
-        p.guide_width,
-        p.guide1_depth,
-        p.youngs_modulus,
-        p.density,
-    );
-    let mut out = Vec::new();
-    for (s, _) in p.guide_rows() {
-        let tip = res
-            .column(&format!("g1{s}.n{}.v", p.elements1))
-            .unwrap_or_else(|| vec![0.0; n]);
-        out.push((tip, 1.0 / f1));
-    }
-    if p.dual {
-        let f2 = cantilever_frequency(
-            p.guide2_length,
-            p.guide_width,
-            p.guide2_depth,
-            p.youngs_modulus,
-            p.density,
-        );
-        let (_, red) = p.stage2_guide(model)?;
-        let row = 3 * p.elements2 + 1;
-        for (s, _) in p.guide_rows() {
-            let mut tip = vec![0.0; n];
-            for k in 0..p.modes2 {
-                let q = col(res, &format!("g2{s}.q{k}"));
-                let t = red.transformation[(row, k)];
-                for (v, qk) in tip.iter_mut().zip(q) {
-                    *v += t * qk;
-                }
-            }
-            out.push((tip, 1.0 / f2));
-        }
-    }
-    Ok(out)
-}
-
-fn metrics(p: &DualGuideParams, res: &Results, model: &str) -> Result<Vec<Metric>, ModelsError> {
-    let t = col(res, "t");
-    let n = t.len();
-    let (body, act) = p.loaded();
-    let y = col(res, &format!("{body}.y"));
-    let pads: Vec<String> = res
-        .columns
-        .iter()
-        .filter_map(|c| c.strip_suffix(".normal_force").map(str::to_string))
-        .collect();
-    let (mut fn_total, mut ft_abs) = (vec![0.0; n], vec![0.0; n]);
-    let (mut peak_fn, mut impacts) = (0.0f64, 0usize);
-    for pad in &pads {
-        let f = col(res, &format!("{pad}.normal_force"));
-        peak_fn = peak_fn.max(common::peak_abs(&t, &f, 0.0));
-        for (a, v) in fn_total.iter_mut().zip(&f) {
-            *a += v;
-        }
-        for (a, v) in ft_abs
-            .iter_mut()
-            .zip(col(res, &format!("{pad}.friction_force")))
-        {
-            *a += v.abs();
-        }
-        impacts += onsets(&col(res, &format!("{pad}.contact")));
-    }
-    let (mut tip_osc, mut tip_max) = (0.0f64, 0.0f64);
-    for (tip, period) in tip_series(p, res, model)? {
-        tip_osc = tip_osc.max(oscillation_amplitude(&t, &tip, period, 0.0));
-        tip_max = tip_max.max(common::peak_abs(&t, &tip, 0.0));
-    }
-    let f_act = col(res, &format!("{act}.Fx"));
-    // Σ|F_act| over the stages: the stage-1 actuator overcomes the stage-1 friction, the
-    // stage-2 actuator the stage-2 friction, so the sum is the total friction of the mechanism
-    let mut act_sum: Vec<f64> = col(res, "act1.Fx").iter().map(|v| v.abs()).collect();
-    if p.dual {
-        for (a, v) in act_sum.iter_mut().zip(&f_act) {
-            *a += v.abs();
-        }
-    }
-    let mut peak_act = common::peak_abs(&t, &col(res, "act1.Fx"), 0.0);
-    if p.dual {
-        peak_act = peak_act.max(common::peak_abs(&t, &f_act, 0.0));
-    }
-    let abs_act: Vec<f64> = f_act.iter().map(|v| v.abs()).collect();
-    let mean_loaded = common::time_mean(&t, &abs_act, 0.0);
-    let mean_sum = common::time_mean(&t, &act_sum, 0.0);
-    let sliding = p.friction.law().map_or(f64::NAN, |l| l.mu_max()) * p.lateral_load;
-    Ok(vec![
-        Metric::new(
-            "max_lateral_displacement",
-            common::peak_abs(&t, &y, 0.0),
-            "m",
-            "largest |y| of the loaded carriage's centre (0 = centred on undeformed guides)",
-        ),
-        Metric::new(
-            "rms_lateral_displacement",
-            common::time_rms(&t, &y, 0.0),
-            "m",
-            "time RMS of the loaded carriage's y",
-        ),
-        Metric::new(
-            "peak_contact_force",
-            peak_fn,
-            "N",
-            "largest normal force of any pad (sum over that pad's points)",
-        ),
-        Metric::new(
-            "tip_oscillation_amplitude",
-            tip_osc,
-            "m",
-            "largest |tip deflection − its running mean over one first-mode period| of any \
-             guide (stage-2 tips in their own frame)",
-        ),
-        Metric::new(
-            "max_tip_deflection",
-            tip_max,
-            "m",
-            "largest |tip deflection| of any guide",
-        ),
-        Metric::new(
-            "mean_friction_force",
-            common::time_mean(&t, &ft_abs, 0.0),
-            "N",
-            "time average of |friction| summed over all pads",
-        ),
-        Metric::new(
-            "mean_normal_force",
-            common::time_mean(&t, &fn_total, 0.0),
-            "N",
-            "time average of the normal force summed over all pads",
-        ),
-        Metric::new(
-            "impacts",
-            impacts as f64,
-            "-",
-            "contact onsets of all pads (0→1 transitions over the accepted steps)",
-        ),
-        Metric::new(
-            "peak_actuator_force",
-            peak_act,
-            "N",
-            "largest |axial actuator reaction| of any stage",
-        ),
-        Metric::new(
-            "mean_loaded_actuator_force",
-            mean_loaded,
-            "N",
-            "time average of |axial reaction| of the actuator driving the loaded carriage",
-        ),
-        Metric::new(
-            "mean_actuator_force_sum",
-            mean_sum,
-            "N",
-            "time average of Σ|axial actuator reaction| over the stages",
-        ),
-        Metric::new(
-            "jamming_indicator",
-            mean_sum / sliding,
-            "-",
-            "time average of Σ|actuator force| over the stages / (μ_max × lateral load): ≈ 1 \
-             for a carriage sliding steadily on one face under the load; > 1 when pinching \
-             (the slider tilted between both faces, or between guides deforming differently) \
-             raises the normal and friction forces",
-        ),
-        Metric::new(
-            "peak_jamming_ratio",
-            common::peak_abs(&t, &act_sum, 0.0) / sliding,
-            "-",
-            "peak of Σ|actuator force| / (μ_max × lateral load) (dominated by impacts)",
-        ),
-        Metric::new(
-            "impacts_per_pad",
-            impacts as f64 / pads.len().max(1) as f64,
-            "-",
-            "contact onsets per pad (the dual guide has 8 pads, the single 2)",
-        ),
-    ])
 }
 
 /// One run of a dual-guide study.

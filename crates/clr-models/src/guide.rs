@@ -16,7 +16,7 @@ use clr_mbd::{FlexibleGuideSpec, Model, ModelBuilder, ModelDesc, Results, RigidB
 use serde::{Deserialize, Serialize};
 
 use crate::common::{self, col, FrictionParams, Record, Solver};
-use crate::{Metric, ModelsError, RunOutput, RunSettings};
+use crate::{ModelsError, RunOutput, RunSettings};
 
 /// Parameters of the single sliding guide (SI units). Defaults: [`GuideParams::default`]; every
 /// value is a reconstruction documented in docs/models/guide.md.
@@ -326,38 +326,6 @@ impl GuideParams {
     }
 }
 
-/// Oscillation amplitude of a signal about its running mean over `window` s: the largest
-/// |v − mean_window(v)| over rows with t ≥ t_from (centred window, trapezoidal means). Removes
-/// the quasi-static trend of a moving load so only the vibration is measured.
-pub fn oscillation_amplitude(t: &[f64], v: &[f64], window: f64, t_from: f64) -> f64 {
-    let n = t.len();
-    let mut out = 0.0f64;
-    let (mut lo, mut hi) = (0usize, 0usize);
-    for k in 0..n {
-        let (a, b) = (t[k] - 0.5 * window, t[k] + 0.5 * window);
-        if a < t[0] || b > t[n - 1] || t[k] < t_from {
-            continue;
-        }
-        while t[lo] < a {
-            lo += 1;
-        }
-        while hi + 1 < n && t[hi + 1] <= b {
-            hi += 1;
-        }
-        let mean = common::time_mean(&t[lo..=hi], &v[lo..=hi], f64::NEG_INFINITY);
-        out = out.max((v[k] - mean).abs());
-    }
-    out
-}
-
-/// Number of contact onsets (0 → 1 transitions of a `*.contact` column, every accepted step).
-fn onsets(contact: &[f64]) -> usize {
-    contact
-        .windows(2)
-        .filter(|w| w[0] < 0.5 && w[1] >= 0.5)
-        .count()
-}
-
 /// The model and run settings that [`run`] simulates: [`GuideParams::desc`] with the end time
 /// and tolerance of `settings` (when given) written into `solver` and `output`.
 ///
@@ -368,7 +336,143 @@ pub fn run_desc(
     p: &GuideParams,
     settings: &RunSettings,
 ) -> Result<ModelDesc, ModelsError> {
-    common::run_desc(model, settings, Record::EveryStep, || p.desc(model))
+    let mut d = common::run_desc(model, settings, Record::EveryStep, || p.desc(model))?;
+    derived(&mut d, p);
+    Ok(d)
+}
+
+/// The guide's metrics as measures and metrics of its description, so that `clr run guide` and
+/// its exported file compute them the same way: the guide tip's deflection as a recorded node
+/// (`guide.node<E>.uy`, 0 on the rigid guide), the normal and |friction| forces summed over both
+/// faces and the drive force along the motion as `combination` measures; the slider's lateral
+/// displacement (largest, RMS), the largest face force (located on the dense output), the tip
+/// oscillation about its running mean over one first-mode period and its largest deflection,
+/// the mean forces, the contact onsets, the actuator's peak, the drive force, the equivalent
+/// friction coefficient (drive force / lateral load; without a load it has no meaning and is
+/// left out) and the friction-to-normal ratio of the contact.
+fn derived(d: &mut ModelDesc, p: &GuideParams) {
+    use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic as S};
+    use clr_mbd::desc::NodeSelection;
+    use clr_mbd::measure::combination::{Columns, Combination, Term};
+    let tip = format!("guide.node{}.uy", p.elements);
+    d.output
+        .nodes
+        .insert("guide".into(), NodeSelection::Nodes(vec![p.elements]));
+    let term = |of: &str, factor: f64, abs: bool| Term {
+        of: Columns::One(of.into()),
+        factor,
+        abs,
+    };
+    let sum = |name: &str, terms: Vec<Term>| {
+        clr_mbd::Measure::Combination(Combination {
+            name: name.into(),
+            terms,
+            unit: None,
+        })
+    };
+    let faces = ["upper", "lower"];
+    // the actuator's reaction opposes the motion: its mean along the direction of motion is the
+    // drive force a test rig measures at constant speed
+    let dir = (p.end - p.start).signum();
+    d.measures.extend([
+        sum(
+            "normal_total",
+            faces
+                .map(|f| term(&format!("{f}.normal_force"), 1.0, false))
+                .to_vec(),
+        ),
+        sum(
+            "friction_total",
+            faces
+                .map(|f| term(&format!("{f}.friction_force"), 1.0, true))
+                .to_vec(),
+        ),
+        sum("drive", vec![term("actuator.Fx", dir, false)]),
+    ]);
+    let m =
+        |name: &str, of: &str, stat, words: &str| MetricDesc::new(name, of, stat).described(words);
+    let mut v =
+        vec![
+        m(
+            "max_lateral_displacement",
+            "slider.y",
+            S::Peak,
+            "largest |y| of the slider centre (0 = centred on the undeformed guide)",
+        ),
+        m(
+            "rms_lateral_displacement",
+            "slider.y",
+            S::Rms,
+            "time RMS of the slider centre's y",
+        ),
+        MetricDesc::of_columns(
+            "peak_contact_force",
+            &["upper.normal_force", "lower.normal_force"],
+            S::Peak,
+        )
+        .described(
+            "largest normal force of either face (sum over that face's points), located on the \
+             dense output",
+        ),
+        MetricDesc {
+            window: Some(1.0 / p.first_frequency()),
+            ..m(
+                "tip_oscillation_amplitude",
+                &tip,
+                S::Oscillation,
+                "largest |tip deflection − its running mean over one first-mode period|",
+            )
+        },
+        m("max_tip_deflection", &tip, S::Peak, "largest |guide-tip deflection|"),
+        m(
+            "mean_friction_force",
+            "friction_total.value",
+            S::Mean,
+            "time average of |friction| summed over both faces",
+        ),
+        m(
+            "mean_normal_force",
+            "normal_total.value",
+            S::Mean,
+            "time average of the normal force summed over both faces",
+        ),
+        MetricDesc::of_columns("impacts", &["upper.contact", "lower.contact"], S::Onsets)
+            .described("contact onsets of both faces (0→1 transitions over the accepted steps)"),
+        m(
+            "peak_actuator_force",
+            "actuator.Fx",
+            S::Peak,
+            "largest |axial actuator reaction| (jamming indicator)",
+        ),
+        m(
+            "mean_drive_force",
+            "drive.value",
+            S::Mean,
+            "time average of the actuator force along the direction of motion",
+        ),
+    ];
+    if p.lateral_load > 0.0 {
+        v.push(
+            m(
+                "equivalent_friction_coefficient",
+                "drive.value",
+                S::Mean,
+                "mean drive force / lateral load (the friction coefficient a test rig reads)",
+            )
+            .per(Divisor::Number(p.lateral_load))
+            .in_unit("-"),
+        );
+    }
+    v.push(
+        m(
+            "contact_friction_ratio",
+            "friction_total.value",
+            S::Mean,
+            "∫Σ|F_T| dt / ∫ΣF_N dt over both faces (the friction law's own ratio)",
+        )
+        .per(Divisor::Metric("mean_normal_force".into())),
+    );
+    d.metrics = v;
 }
 
 /// Simulate and compute the metrics (see docs/models/guide.md): slider lateral displacement
@@ -378,130 +482,10 @@ pub fn run_desc(
 /// # Errors
 /// Invalid parameters, build or simulation errors.
 pub fn run(model: &str, p: &GuideParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
-    let (mut m, opts) = common::compile_run(model, &run_desc(model, p, settings)?)?;
-    let res = common::simulate(&mut m, &opts, settings, model)?;
-    if let Some(cb) = &settings.progress {
-        cb(opts.t_end);
-    }
-    let metrics = metrics(p, &res);
+    let desc = run_desc(model, p, settings)?;
+    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
     let params = serde_json::to_value(p).unwrap_or_default();
     Ok(common::output(model, res, metrics, params))
-}
-
-fn metrics(p: &GuideParams, res: &Results) -> Vec<Metric> {
-    let t = col(res, "t");
-    let y = col(res, "slider.y");
-    let sum = |a: &str, b: &str| -> Vec<f64> {
-        col(res, a)
-            .iter()
-            .zip(col(res, b))
-            .map(|(x, y)| x + y)
-            .collect()
-    };
-    let fn_total = sum("upper.normal_force", "lower.normal_force");
-    let ft_abs: Vec<f64> = col(res, "upper.friction_force")
-        .iter()
-        .zip(col(res, "lower.friction_force"))
-        .map(|(a, b)| a.abs() + b.abs())
-        .collect();
-    let peak_fn = common::peak_abs(&t, &col(res, "upper.normal_force"), 0.0).max(common::peak_abs(
-        &t,
-        &col(res, "lower.normal_force"),
-        0.0,
-    ));
-    let tip = res
-        .column(&format!("guide.n{}.v", p.elements))
-        .unwrap_or_else(|| vec![0.0; t.len()]);
-    let period = 1.0 / p.first_frequency();
-    let impacts = onsets(&col(res, "upper.contact")) + onsets(&col(res, "lower.contact"));
-    let mean_fn = common::time_mean(&t, &fn_total, 0.0);
-    let mean_ft = common::time_mean(&t, &ft_abs, 0.0);
-    // the actuator's reaction opposes the motion: its mean along the direction of motion is
-    // the drive force a test rig measures at constant speed
-    let dir = (p.end - p.start).signum();
-    let mean_drive = dir * common::time_mean(&t, &col(res, "actuator.Fx"), 0.0);
-    vec![
-        Metric::new(
-            "max_lateral_displacement",
-            common::peak_abs(&t, &y, 0.0),
-            "m",
-            "largest |y| of the slider centre (0 = centred on the undeformed guide)",
-        ),
-        Metric::new(
-            "rms_lateral_displacement",
-            common::time_rms(&t, &y, 0.0),
-            "m",
-            "time RMS of the slider centre's y",
-        ),
-        Metric::new(
-            "peak_contact_force",
-            peak_fn,
-            "N",
-            "largest normal force of either face (sum over that face's points)",
-        ),
-        Metric::new(
-            "tip_oscillation_amplitude",
-            oscillation_amplitude(&t, &tip, period, 0.0),
-            "m",
-            "largest |tip deflection − its running mean over one first-mode period|",
-        ),
-        Metric::new(
-            "max_tip_deflection",
-            common::peak_abs(&t, &tip, 0.0),
-            "m",
-            "largest |guide-tip deflection|",
-        ),
-        Metric::new(
-            "mean_friction_force",
-            mean_ft,
-            "N",
-            "time average of |friction| summed over both faces",
-        ),
-        Metric::new(
-            "mean_normal_force",
-            mean_fn,
-            "N",
-            "time average of the normal force summed over both faces",
-        ),
-        Metric::new(
-            "impacts",
-            impacts as f64,
-            "-",
-            "contact onsets of both faces (0→1 transitions over the accepted steps)",
-        ),
-        Metric::new(
-            "peak_actuator_force",
-            common::peak_abs(&t, &col(res, "actuator.Fx"), 0.0),
-            "N",
-            "largest |axial actuator reaction| (jamming indicator)",
-        ),
-        Metric::new(
-            "mean_drive_force",
-            mean_drive,
-            "N",
-            "time average of the actuator force along the direction of motion",
-        ),
-        Metric::new(
-            "equivalent_friction_coefficient",
-            if p.lateral_load > 0.0 {
-                mean_drive / p.lateral_load
-            } else {
-                0.0
-            },
-            "-",
-            "mean drive force over the lateral load (what a test rig measures; 0 without load)",
-        ),
-        Metric::new(
-            "contact_friction_ratio",
-            if mean_fn > 0.0 {
-                mean_ft / mean_fn
-            } else {
-                0.0
-            },
-            "-",
-            "∫Σ|F_T| dt / ∫ΣF_N dt over both faces (the friction law's own ratio)",
-        ),
-    ]
 }
 
 /// One run of a guide study.
@@ -750,20 +734,6 @@ fn figures(dir: &Path, runs: &[StudyRun], results: &[Results]) -> Result<(), Str
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn oscillation_amplitude_of_a_sine_on_a_ramp() {
-        // closed form: v = a t + A sin(2π t/T); the running mean over one period T of the sine
-        // is 0 and of the ramp is the ramp itself, so the amplitude is A (to sampling error)
-        let (a, amp, period) = (3.0, 0.25, 0.1);
-        let t: Vec<f64> = (0..=20_000).map(|k| k as f64 * 1e-4).collect();
-        let v: Vec<f64> = t
-            .iter()
-            .map(|&x| a * x + amp * (2.0 * std::f64::consts::PI * x / period).sin())
-            .collect();
-        let got = oscillation_amplitude(&t, &v, period, 0.0);
-        assert!((got - amp).abs() < 1e-3 * amp, "{got}");
-    }
 
     #[test]
     fn first_frequency_matches_the_fe_guide() {
