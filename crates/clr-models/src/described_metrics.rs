@@ -33,6 +33,21 @@ pub(crate) fn run_described(
     Ok((res, metrics))
 }
 
+/// [`run_described`] as the built-in's [`RunOutput`], with the parameters `p`.
+///
+/// # Errors
+/// As [`run_described`].
+pub(crate) fn run_output<P: serde::Serialize>(
+    model: &str,
+    desc: &ModelDesc,
+    settings: &RunSettings,
+    p: &P,
+) -> Result<crate::RunOutput, ModelsError> {
+    let (res, metrics) = run_described(model, desc, settings)?;
+    let params = serde_json::to_value(p).unwrap_or_default();
+    Ok(common::output(model, res, metrics, params))
+}
+
 /// The metrics `descs` of `res` (and of the ideal twin's results `twin`, for those with
 /// `twin = true`; NaN without them), in order. A window with no row gives NaN (a failed run's
 /// partial rows may end before it).

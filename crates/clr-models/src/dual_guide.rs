@@ -582,7 +582,7 @@ fn refs(v: &[String]) -> Vec<&str> {
 fn derived(d: &mut ModelDesc, p: &DualGuideParams) {
     use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic as S};
     use clr_mbd::desc::NodeSelection;
-    use clr_mbd::measure::combination::{Columns, Combination, Term};
+    use clr_mbd::measure::combination::{Combination, Term};
     let pads: Vec<String> = d.clearances.iter().map(|c| c.name().to_string()).collect();
     let (body, act) = p.loaded();
     let rows: Vec<&str> = p.guide_rows().iter().map(|(s, _)| *s).collect();
@@ -600,18 +600,8 @@ fn derived(d: &mut ModelDesc, p: &DualGuideParams) {
             tips2.push(format!("g2{s}.node{}.uy", p.elements2));
         }
     }
-    let term = |of: String, abs: bool| Term {
-        of: Columns::One(of),
-        factor: 1.0,
-        abs,
-    };
-    let sum = |name: &str, terms: Vec<Term>| {
-        clr_mbd::Measure::Combination(Combination {
-            name: name.into(),
-            terms,
-            unit: None,
-        })
-    };
+    let term = |of: String, abs: bool| Term::column(&of, 1.0, abs);
+    let sum = Combination::measure;
     // Σ|F_act| over the stages: the stage-1 actuator overcomes the stage-1 friction, the
     // stage-2 actuator the stage-2 friction, so the sum is the total friction of the mechanism
     let mut actuators = vec![term("act1.Fx".into(), true)];
@@ -763,10 +753,7 @@ pub fn run(
     p: &DualGuideParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
-    let params = serde_json::to_value(p).unwrap_or_default();
-    Ok(common::output(model, res, metrics, params))
+    crate::described_metrics::run_output(model, &run_desc(model, p, settings)?, settings, p)
 }
 
 /// One run of a dual-guide study.

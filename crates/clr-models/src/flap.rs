@@ -790,10 +790,7 @@ pub(crate) fn error_metrics(t: &[f64], err: &[f64], aerr: &[f64], t0: f64) -> Ve
 pub fn run(model: &str, p: &FlapParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
     common::check_settings(model, settings)?;
     p.validate().map_err(|m| common::invalid(model, m))?;
-    let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
-    let params = serde_json::to_value(p).unwrap_or_default();
-    Ok(common::output(model, res, metrics, params))
+    crate::described_metrics::run_output(model, &run_desc(model, p, settings)?, settings, p)
 }
 
 /// One configuration of the flap studies.

@@ -353,23 +353,13 @@ pub fn run_desc(
 fn derived(d: &mut ModelDesc, p: &GuideParams) {
     use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic as S};
     use clr_mbd::desc::NodeSelection;
-    use clr_mbd::measure::combination::{Columns, Combination, Term};
+    use clr_mbd::measure::combination::{Combination, Term};
     let tip = format!("guide.node{}.uy", p.elements);
     d.output
         .nodes
         .insert("guide".into(), NodeSelection::Nodes(vec![p.elements]));
-    let term = |of: &str, factor: f64, abs: bool| Term {
-        of: Columns::One(of.into()),
-        factor,
-        abs,
-    };
-    let sum = |name: &str, terms: Vec<Term>| {
-        clr_mbd::Measure::Combination(Combination {
-            name: name.into(),
-            terms,
-            unit: None,
-        })
-    };
+    let term = |of: &str, factor: f64, abs: bool| Term::column(of, factor, abs);
+    let sum = Combination::measure;
     let faces = ["upper", "lower"];
     // the actuator's reaction opposes the motion: its mean along the direction of motion is the
     // drive force a test rig measures at constant speed
@@ -482,10 +472,7 @@ fn derived(d: &mut ModelDesc, p: &GuideParams) {
 /// # Errors
 /// Invalid parameters, build or simulation errors.
 pub fn run(model: &str, p: &GuideParams, settings: &RunSettings) -> Result<RunOutput, ModelsError> {
-    let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
-    let params = serde_json::to_value(p).unwrap_or_default();
-    Ok(common::output(model, res, metrics, params))
+    crate::described_metrics::run_output(model, &run_desc(model, p, settings)?, settings, p)
 }
 
 /// One run of a guide study.

@@ -553,10 +553,7 @@ pub fn run(
     p: &ManipulatorParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
-    let params = serde_json::to_value(p).unwrap_or_default();
-    Ok(common::output(model, res, metrics, params))
+    crate::described_metrics::run_output(model, &run_desc(model, p, settings)?, settings, p)
 }
 
 /// One case of the study: its name, metrics and wall time.

@@ -387,10 +387,7 @@ pub fn run(
     p: &SliderCrankParams,
     settings: &RunSettings,
 ) -> Result<RunOutput, ModelsError> {
-    let desc = run_desc(model, p, settings)?;
-    let (res, metrics) = crate::described_metrics::run_described(model, &desc, settings)?;
-    let params = serde_json::to_value(p).unwrap_or_default();
-    Ok(common::output(model, res, metrics, params))
+    crate::described_metrics::run_output(model, &run_desc(model, p, settings)?, settings, p)
 }
 
 #[cfg(test)]

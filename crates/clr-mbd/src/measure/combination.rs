@@ -50,6 +50,17 @@ pub struct Term {
     pub abs: bool,
 }
 
+impl Term {
+    /// `factor` · x (or · |x| with `abs`) for the single column `of`.
+    pub fn column(of: &str, factor: f64, abs: bool) -> Self {
+        Term {
+            of: Columns::One(of.into()),
+            factor,
+            abs,
+        }
+    }
+}
+
 fn one() -> f64 {
     1.0
 }
@@ -72,6 +83,15 @@ pub struct Combination {
 }
 
 impl Combination {
+    /// The `combination` measure `name` of `terms`, in the terms' common unit.
+    pub fn measure(name: &str, terms: Vec<Term>) -> super::Measure {
+        super::Measure::Combination(Combination {
+            name: name.into(),
+            terms,
+            unit: None,
+        })
+    }
+
     fn invalid(&self, field: &str, message: String) -> MbdError {
         MbdError::Invalid {
             path: format!("{}.{field}", self.name),
