@@ -84,7 +84,7 @@ def test_combination_and_metrics_over_columns_and_metrics_equal_numpy():
         "load",
         terms=[{"of": "B.normal_force"}, {"of": "B.friction_force", "abs": True, "factor": 2.0}],
     )
-    m.measure_combination("power", terms=[{"of": ["B.friction_force", "slider.vx"]}], unit="W")
+    m.measure_combination("power", terms=[{"of": ["B.normal_force", "slider.vx"]}], unit="W")
     m.metric("load_mean", of="load.value", statistic="mean")
     m.metric("closings", of="B.contact", statistic="onsets")
     m.metric("work", of="power.value", statistic="integral")
@@ -102,7 +102,7 @@ def test_combination_and_metrics_over_columns_and_metrics_equal_numpy():
     assert r.metrics["load_mean"] == pytest.approx(mean(r["load.value"]), rel=1e-12)
     c = r["B.contact"]
     assert r.metrics["closings"] == np.sum((c[:-1] < 0.5) & (c[1:] >= 0.5))
-    assert r.metrics["work"] == pytest.approx(np.trapezoid(ft * r["slider.vx"], t), rel=1e-12)
+    assert r.metrics["work"] == pytest.approx(np.trapezoid(fn * r["slider.vx"], t), rel=1e-12)
     peak = max(np.abs(r["slider.vx"]).max(), np.abs(r["crank.vx"]).max())
     assert r.metrics["peak_v"] == peak
     assert r.metrics["ratio"] == pytest.approx(mean(ft) / r.metrics["load_mean"], rel=1e-12)
