@@ -171,14 +171,9 @@ pub(crate) fn write_point(
     std::fs::rename(&tmp, &dest).map_err(|e| io(&dest, e))
 }
 
-/// Write `text` to `path` under a temporary name in the same folder and rename it into place,
-/// so that a reader finds the old file or the new one, never a part.
+/// Write `text` to `path` under a temporary name and rename it into place
+/// ([`clr_models::common::write_atomic`]).
 pub(crate) fn write_atomic(path: &Path, text: &str) -> Result<(), CliError> {
-    let name = path
-        .file_name()
-        .map_or("out".into(), |n| n.to_string_lossy());
-    let tmp = path.with_file_name(format!(".{name}.partial-{}", std::process::id()));
-    let err = |e: std::io::Error| CliError::Input(format!("cannot write {}: {e}", path.display()));
-    std::fs::write(&tmp, text).map_err(err)?;
-    std::fs::rename(&tmp, path).map_err(err)
+    clr_models::common::write_atomic(path, text)
+        .map_err(|e| CliError::Input(format!("cannot write {}: {e}", path.display())))
 }

@@ -567,6 +567,21 @@ pub fn time_rms(t: &[f64], v: &[f64], t_from: f64) -> f64 {
 
 pub use clr_mbd::measure::deviation::interp;
 
+/// Write `contents` to `path` under a temporary name in the same folder (`.<name>.partial-<pid>`)
+/// and rename it into place, so that a reader, or a run resumed after a kill, finds the old
+/// file or the new one, never a part of it.
+///
+/// # Errors
+/// The I/O error of the write or the rename.
+pub fn write_atomic(path: &Path, contents: impl AsRef<[u8]>) -> std::io::Result<()> {
+    let name = path
+        .file_name()
+        .map_or("out".into(), |n| n.to_string_lossy());
+    let tmp = path.with_file_name(format!(".{name}.partial-{}", std::process::id()));
+    std::fs::write(&tmp, contents)?;
+    std::fs::rename(&tmp, path)
+}
+
 /// Write results as CSV into `dir/name.csv` (creating `dir`).
 ///
 /// # Errors

@@ -1146,7 +1146,7 @@ impl MapResult {
             ("_summary.md", summary.to_markdown()),
         ] {
             let path = dir.join(format!("{name}{suffix}"));
-            std::fs::write(&path, text).map_err(io(&path))?;
+            crate::common::write_atomic(&path, text).map_err(io(&path))?;
             written.push(path);
         }
         for (f, spec) in self.findings.iter().enumerate() {

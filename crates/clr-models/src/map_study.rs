@@ -199,7 +199,7 @@ impl MapDef {
         result.write(dir, self.name).map_err(|e| e.to_string())?;
         let json = serde_json::to_string(result).map_err(|e| e.to_string())?;
         let path = self.result_file(dir);
-        std::fs::write(&path, json).map_err(|e| format!("{}: {e}", path.display()))
+        crate::common::write_atomic(&path, json).map_err(|e| format!("{}: {e}", path.display()))
     }
 
     /// Merge the results of shards run into `shard_dirs` and write the merged map into `out`.
@@ -314,7 +314,8 @@ impl MapDef {
         let path = self.provenance_file(dir);
         let json =
             serde_json::to_string_pretty(&self.provenance(shard)).map_err(|e| e.to_string())?;
-        std::fs::write(&path, json + "\n").map_err(|e| format!("{}: {e}", path.display()))
+        crate::common::write_atomic(&path, json + "\n")
+            .map_err(|e| format!("{}: {e}", path.display()))
     }
 
     /// What the shard folder `dir` records about its provenance: `<name>_provenance.json` of a
