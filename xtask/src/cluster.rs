@@ -223,39 +223,45 @@ impl Cluster {
 
     /// Wait until job `id` is pending again (a requeued job is first completing).
     fn until_pending(&self, id: &str) -> Result<(), String> {
-        let deadline = Instant::now() + Duration::from_secs(30);
-        loop {
-            let q =
-                run_out(self.cmd("squeue").args(["-h", "-o", "%T", "-j", id])).unwrap_or_default();
-            if q.trim() == "PENDING" {
-                return Ok(());
-            }
-            if Instant::now() > deadline {
-                return Err(format!("job {id} not pending 30 s after its requeue: {q}"));
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
+        let pending = |q: &str| q.trim() == "PENDING";
+        self.squeue_until(
+            &[id],
+            Duration::from_secs(30),
+            &pending,
+            "not pending again",
+        )
     }
 
-    /// Wait until no job of `ids` is in the queue (polling squeue), at most `limit`.
+    /// Wait until no job of `ids` is in the queue, at most `limit`.
     fn wait(&self, ids: &[&str], limit: Duration) -> Result<(), String> {
+        let gone = |q: &str| q.trim().is_empty();
+        self.squeue_until(ids, limit, &gone, "still queued")
+    }
+
+    /// Poll `squeue` (the states of `ids`) until `done` holds for its output, at most `limit`
+    /// (`sbatch --wait` polls slowly); `what` says what the jobs are at the deadline.
+    fn squeue_until(
+        &self,
+        ids: &[&str],
+        limit: Duration,
+        done: &dyn Fn(&str) -> bool,
+        what: &str,
+    ) -> Result<(), String> {
         let deadline = Instant::now() + limit;
+        let jobs = ids.join(",");
         loop {
-            let q = run_out(
-                self.cmd("squeue")
-                    .args(["-h", "-o", "%i %T", "-j", &ids.join(",")]),
-            )
-            .unwrap_or_default();
-            if q.trim().is_empty() {
+            let q = run_out(self.cmd("squeue").args(["-h", "-o", "%T", "-j", &jobs]))
+                .unwrap_or_default();
+            if done(&q) {
                 return Ok(());
             }
             if Instant::now() > deadline {
                 return Err(format!(
-                    "jobs still queued after {limit:?}: {q}{}",
+                    "jobs {jobs} {what} after {limit:?}: {q}{}",
                     self.logs()
                 ));
             }
-            std::thread::sleep(Duration::from_millis(200));
+            std::thread::sleep(Duration::from_millis(100));
         }
     }
 }

@@ -672,6 +672,7 @@ fn combinations_and_momentum_scales_equal_their_sums_of_the_body_columns() {
             p += m * vx.hypot(vy);
             l += (i * at("omega")).abs() + (m * (x * vy - y * vx)).abs();
         }
+        // the same sums in another order: rounding of terms of order 1 kg·m/s (1e-14)
         assert!(
             (ps[k] - p).abs() < 1e-14 && (ls[k] - l).abs() < 1e-14,
             "row {k}"

@@ -348,7 +348,9 @@ fn derived(d: &mut ModelDesc, p: &ManipulatorParams) {
         a: local(clr_mbd::GROUND, [0.0, 0.0]),
         b: local("base", [0.0, 0.0]),
     }));
-    let mut terms: Vec<Term> = (clearance_joints(p))
+    // the moment δ·F_T of the friction pairs, with a clearance joint only (an ideal joint has no
+    // contact columns)
+    let terms: Vec<Term> = (clearance_joints(p))
         .map(|j| Term {
             of: Columns::Many(vec![
                 format!("{j}.penetration"),
@@ -358,19 +360,13 @@ fn derived(d: &mut ModelDesc, p: &ManipulatorParams) {
             abs: false,
         })
         .collect();
-    if terms.is_empty() {
-        // no clearance joint, no offset pair: 0 · t (t ≥ 0, so the column is +0)
-        terms.push(Term {
-            of: Columns::One("t".into()),
-            factor: 0.0,
-            abs: false,
-        });
+    if !terms.is_empty() {
+        d.measures.push(Measure::Combination(Combination {
+            name: "friction_offset".into(),
+            terms,
+            unit: Some("N*m".into()),
+        }));
     }
-    d.measures.push(Measure::Combination(Combination {
-        name: "friction_offset".into(),
-        terms,
-        unit: Some("N*m".into()),
-    }));
     let deviations = [
         ("ee1", ["ee1.x", "ee1.y"].as_slice()),
         ("ee2", &["ee2.x", "ee2.y"]),
@@ -482,18 +478,19 @@ fn metrics(p: &ManipulatorParams) -> Vec<clr_mbd::desc::metric::MetricDesc> {
             &format!("fraction of the time with contact in {j}"),
         ));
     }
-    out.extend(momentum_metrics());
+    out.extend(momentum_metrics(clearance_joints(p).next().is_some()));
     out
 }
 
-/// Momentum scales, drifts against them, the change of L and the friction-offset impulse.
-fn momentum_metrics() -> Vec<clr_mbd::desc::metric::MetricDesc> {
+/// Momentum scales, drifts against them, the change of L and, with a clearance joint, the
+/// friction-offset impulse.
+fn momentum_metrics(clearance: bool) -> Vec<clr_mbd::desc::metric::MetricDesc> {
     use clr_mbd::desc::metric::{Divisor, MetricDesc, Statistic};
     let m = |name: &str, of: &[&str], stat, words: &str| {
         MetricDesc::of_columns(name, of, stat).described(words)
     };
     let per = |scale: &str| Divisor::Metric(scale.into());
-    vec![
+    let mut v = vec![
         // the scales come first: the drifts are divided by them
         m(
             "linear_momentum_scale",
@@ -528,18 +525,22 @@ fn momentum_metrics() -> Vec<clr_mbd::desc::metric::MetricDesc> {
             Statistic::Change,
             "L(t_end) − L(0) about the origin",
         ),
+    ];
+    if clearance {
         // clr-contact's `contact_points` form applies the contact pair at the two contact
         // points r_i^Q, r_j^Q, δ apart along n: the friction pair then has a net torque δ·F_T
         // (n × t = 1), so L changes by ∫ Σ δ F_T dt. Reported to compare with the change.
-        m(
+        let impulse = m(
             "friction_offset_impulse",
             &["friction_offset.value"],
             Statistic::Integral,
             "∫ Σ δ·F_T dt over the clearance joints: the angular impulse of the friction pair \
              applied at contact points δ apart (clr-contact convention)",
         )
-        .in_unit("kg*m^2/s"),
-    ]
+        .in_unit("kg*m^2/s");
+        v.push(impulse);
+    }
+    v
 }
 
 /// Simulate the manipulator and its ideal-joint twin (same parameters, every joint ideal) and
