@@ -71,10 +71,30 @@ pub fn evaluate(descs: &[MetricDesc], res: &Results, twin: Option<&Results>) -> 
             (None, Some(b)) => format!("t ≤ {b} s"),
             (Some(a), Some(b)) => format!("{a} s ≤ t ≤ {b} s"),
         };
-        let words = d.description.clone().unwrap_or_else(|| default_words(d));
+        let mut words = d.description.clone().unwrap_or_else(|| default_words(d));
+        if let Some(why) = no_rows(d, source.unwrap_or(res)) {
+            // said with the value, not left as a bare NaN (a window in ms, a run cut short)
+            words.push_str(&format!(" [no value: {why}]"));
+        }
         out.push(Metric::new(&d.name, value, &unit, &words).over(&window));
     }
     out
+}
+
+/// Why the window of a metric of columns holds no row of `res`, if it does not.
+fn no_rows(d: &MetricDesc, res: &Results) -> Option<String> {
+    if !d.metrics.is_empty() {
+        return None;
+    }
+    let t = res.column("t").unwrap_or_default();
+    let (first, last) = (*t.first()?, *t.last()?);
+    let (from, to) = (
+        d.t_start.unwrap_or(f64::NEG_INFINITY),
+        d.t_end.unwrap_or(f64::INFINITY),
+    );
+    (!t.iter().any(|&x| x >= from && x <= to)).then(|| {
+        format!("the run's rows span [{first}, {last}] s, none in the window (times in s?)")
+    })
 }
 
 fn default_words(d: &MetricDesc) -> String {
@@ -394,8 +414,14 @@ mod tests {
         // 1e-8/12·(2π)²·2/π = 2.1e-8 (measured 2.1e-8)
         let m = metric(Statistic::Mean, Some(0.5), &r);
         assert!((m + 2.0 / std::f64::consts::PI).abs() < 3e-8, "{m}");
-        // a window after the last row has no value
+        // a window after the last row has no value, and says why
         assert!(metric(Statistic::Max, Some(2.0), &r).is_nan());
+        let d = MetricDesc::new("m", "a.x", Statistic::Max).after(2.0);
+        let words = &evaluate(&[d], &r, None)[0].description;
+        assert!(
+            words.contains("no value") && words.contains("[0, 1] s"),
+            "{words}"
+        );
     }
 
     /// Results with columns `t` and `c<k>` from the closures.
