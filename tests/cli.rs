@@ -539,25 +539,37 @@ fn plot_draws_named_columns_and_rejects_unknown_ones() {
         "--t-end",
         "0.5",
         "--no-figures",
+        "--series",
+        "both",
         "-q",
         "--out",
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}", stderr(&o));
+    let plot = |table: &std::path::Path, svg: &str| {
+        let svg = out.join(svg);
+        let (t, s) = (table.to_str().unwrap(), svg.to_str().unwrap());
+        let o = clr(&[
+            "plot",
+            t,
+            "--x",
+            "time",
+            "--y",
+            "rod.theta,rod.omega",
+            "--out",
+            s,
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        std::fs::read_to_string(&svg).unwrap()
+    };
     let csv = out.join("results.csv");
-    let svg = out.join("theta.svg");
-    let o = clr(&[
-        "plot",
-        csv.to_str().unwrap(),
-        "--x",
-        "time",
-        "--y",
-        "rod.theta,rod.omega",
-        "--out",
-        svg.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
-    assert!(std::fs::read_to_string(&svg).unwrap().contains("<svg"));
+    let drawn = plot(&csv, "theta.svg");
+    assert!(drawn.contains("<svg"));
+    // results.parquet holds the same table: the same figure, its title (the file) aside
+    let parquet = out.join("results.parquet");
+    let drawn2 = plot(&parquet, "theta_parquet.svg");
+    let title = |p: &std::path::Path| p.display().to_string();
+    assert_eq!(drawn2.replace(&title(&parquet), &title(&csv)), drawn);
     let o = clr(&["plot", csv.to_str().unwrap(), "--y", "rod.thta"]);
     assert_eq!(o.status.code(), Some(2));
     assert!(

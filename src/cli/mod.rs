@@ -3,9 +3,11 @@
 mod animate;
 mod job;
 mod output;
+mod parquet;
 mod plot;
 mod points;
 mod progress;
+mod series;
 mod sweep;
 
 use std::path::PathBuf;
@@ -68,6 +70,33 @@ pub(crate) struct RunArgs {
     /// Do not write report.html (the animated report).
     #[arg(long)]
     pub no_report: bool,
+    /// The format of the time series and impacts: `csv` (results.csv, impacts.csv), `parquet`
+    /// (results.parquet, impacts.parquet: compressed, columnar, read by pandas, polars, Arrow and
+    /// MATLAB) or `both`.
+    #[arg(long, value_enum, default_value_t = SeriesFormat::Csv, value_name = "FORMAT")]
+    pub series: SeriesFormat,
+}
+
+/// `--series`: the files of the time series.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum SeriesFormat {
+    /// results.csv and impacts.csv.
+    Csv,
+    /// results.parquet and impacts.parquet.
+    Parquet,
+    /// Both.
+    Both,
+}
+
+impl SeriesFormat {
+    /// Whether the CSV files are written.
+    pub(crate) fn csv(self) -> bool {
+        self != SeriesFormat::Parquet
+    }
+    /// Whether the Parquet files are written.
+    pub(crate) fn parquet(self) -> bool {
+        self != SeriesFormat::Csv
+    }
 }
 
 /// `--jacobian`.
@@ -140,7 +169,8 @@ enum Command {
         #[arg(long)]
         resume: bool,
         /// What each point folder keeps: metrics (point.json only), summary (and
-        /// summary.json), series (and results.csv, impacts.csv) or all (and figures and
+        /// summary.json), series (and the time series and impacts, in the --series format)
+        /// or all (and figures and
         /// report.html, as `clr run`); a failed point keeps all.
         #[arg(long, value_enum, default_value = "summary")]
         keep: points::Keep,
@@ -198,9 +228,9 @@ enum Command {
     },
     /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
     Animate(animate::AnimateArgs),
-    /// Plot columns of a results.csv.
+    /// Plot columns of a results.csv or results.parquet.
     Plot {
-        /// A results.csv written by `clr run`.
+        /// A results.csv or results.parquet written by `clr run`.
         csv: PathBuf,
         /// Column on the x axis (`time` is an alias of `t`).
         #[arg(long, default_value = "t")]

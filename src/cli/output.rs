@@ -1,4 +1,4 @@
-//! What a run writes: results.csv, summary.json and figures.
+//! What a run writes: results.csv (or results.parquet), summary.json and figures.
 
 use std::io::Write;
 use std::path::Path;
@@ -6,6 +6,7 @@ use std::path::Path;
 use clr_plot::Figure;
 use clr_sim::spec::run::{Job, Outcome};
 
+use super::series::{Table, IMPACTS_HEADER};
 use super::{CliError, RunArgs};
 
 /// The outcome of one run (`clr_sim::spec::run::Outcome`, whose fields it derefs to) and its wall
@@ -63,19 +64,6 @@ pub(crate) fn write_csv(path: &Path, rec: &Record) -> Result<(), CliError> {
         w.write_all(line.as_bytes()).map_err(|e| io(path, e))?;
     }
     w.flush().map_err(|e| io(path, e))
-}
-
-/// Columns of a results.csv: names (units stripped), units and rows.
-pub(crate) struct Table {
-    pub names: Vec<String>,
-    pub units: Vec<String>,
-    pub rows: Vec<Vec<f64>>,
-}
-
-impl Table {
-    pub(crate) fn column(&self, k: usize) -> Vec<f64> {
-        self.rows.iter().map(|r| r[k]).collect()
-    }
 }
 
 /// Read a CSV written by [`write_csv`] (or any CSV of numbers with a header).
@@ -233,10 +221,6 @@ fn summary_text(
     serde_json::to_string_pretty(&summary)
 }
 
-/// Header of `impacts.csv` (units in the names; docs/cli.md).
-pub(crate) const IMPACTS_HEADER: &str = "joint,onset_s,impact_velocity_m_per_s,peak_force_N,\
-peak_force_time_s,max_penetration_m,max_penetration_time_s,separation_s,duration_s";
-
 /// Write the located impacts, one row each in onset order; an empty cell for the separation and
 /// duration of an impact still under way at the end of the run.
 pub(crate) fn write_impacts(path: &Path, impacts: &[clr_mbd::Impact]) -> Result<(), CliError> {
@@ -308,13 +292,29 @@ pub(crate) fn write_run(
             desc.as_ref().map_err(Clone::clone),
         )?;
     }
-    write_csv(&dir.join("results.csv"), rec)?;
-    write_impacts(&dir.join("impacts.csv"), &rec.results.impacts)?;
+    write_series(dir, rec, args.series)?;
     write_summary(dir, rec, args)?;
     if figures {
         for w in run_figures(dir, rec) {
             eprintln!("clr: warning: {w}");
         }
+    }
+    Ok(())
+}
+
+/// Write the time series and impacts into `dir` in the chosen format(s).
+pub(crate) fn write_series(
+    dir: &Path,
+    rec: &Record,
+    format: super::SeriesFormat,
+) -> Result<(), CliError> {
+    if format.csv() {
+        write_csv(&dir.join("results.csv"), rec)?;
+        write_impacts(&dir.join("impacts.csv"), &rec.results.impacts)?;
+    }
+    if format.parquet() {
+        super::parquet::write_results(&dir.join("results.parquet"), &rec.results, &rec.units)?;
+        super::parquet::write_impacts(&dir.join("impacts.parquet"), &rec.results.impacts)?;
     }
     Ok(())
 }

@@ -1,4 +1,4 @@
-//! `clr plot results.csv --x time --y a,b`.
+//! `clr plot results.csv --x time --y a,b` (or results.parquet).
 
 use std::path::{Path, PathBuf};
 
@@ -24,7 +24,10 @@ pub(crate) fn plot_command(
     ys: &[String],
     out: Option<&Path>,
 ) -> Result<(), CliError> {
-    let table = read_csv(csv)?;
+    let table = match csv.extension().and_then(|e| e.to_str()) {
+        Some("parquet") => super::parquet::read_table(csv)?,
+        _ => read_csv(csv)?,
+    };
     let xi = find(&table.names, x)?;
     let xs = table.column(xi);
     let label = |k: usize| {
