@@ -14,7 +14,7 @@ from __future__ import annotations
 import json
 import os
 import warnings as _warnings
-from typing import Any, Dict, List, Mapping, Optional, Sequence, Tuple, Union
+from typing import Any, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 from . import _native, contact, errors, fmu, inertia, shapes, spatial
 from .contact import FrictionLaw, JournalJoint, NormalLaw, RevoluteJoint
@@ -199,8 +199,9 @@ def sweep(
     result has ``error`` set and ``SweepResult.failed`` lists it.
 
     ``executor`` runs the points elsewhere: any :class:`concurrent.futures.Executor` (a process
-    pool, a dask.distributed ``Client.get_executor()``, submitit's ``AutoExecutor`` on Slurm,
-    Ray's). Each point is sent as a plain description (the model file's path, a built-in's
+    pool, a dask.distributed ``Client.get_executor()``, Ray's), or any object whose
+    ``submit(fn, *args)`` returns jobs with ``done()`` and ``result()``, such as submitit's
+    ``AutoExecutor`` on Slurm (one Slurm job per point; its jobs are polled every 0.25 s). Each point is sent as a plain description (the model file's path, a built-in's
     name or a :class:`Model`'s TOML text, with its overrides) to :func:`sweep_point`, which
     runs it where it lands; the results come back as the same :class:`SweepResult`, value for
     value (docs/scaling.md). With a process pool use the ``spawn`` start method
@@ -277,10 +278,8 @@ def _sweep_on(executor, model, axes, set, t_end, rtol, progress) -> SweepResult:
     bar = Progress(len(points), enabled=progress)
     results: List[Optional[Result]] = [None] * len(points)
     try:
-        from concurrent.futures import as_completed
-
         index = {id(f): k for k, f in enumerate(futures)}
-        for n, f in enumerate(as_completed(futures), 1):
+        for n, f in enumerate(_completed(futures), 1):
             results[index[id(f)]] = f.result()
             bar.update(n)
     except KeyboardInterrupt:
@@ -290,6 +289,28 @@ def _sweep_on(executor, model, axes, set, t_end, rtol, progress) -> SweepResult:
         raise
     bar.close(len(points))
     return SweepResult(names, [(k, v, results[k]) for k, v, _ in points])
+
+
+def _completed(futures: List[Any], poll_s: float = 0.25) -> Iterator[Any]:
+    """The futures as they complete: ``concurrent.futures.as_completed`` for the standard
+    library's futures (process and thread pools, dask's ``Client.get_executor()``), else by
+    polling ``done()`` every ``poll_s`` seconds (submitit's jobs have ``done()`` and
+    ``result()`` but are not ``concurrent.futures.Future``s)."""
+    from concurrent.futures import Future, as_completed
+
+    if all(isinstance(f, Future) for f in futures):
+        yield from as_completed(futures)
+        return
+    import time
+
+    pending = list(futures)
+    while pending:
+        ready = [f for f in pending if f.done()]
+        for f in ready:
+            pending.remove(f)
+            yield f
+        if not ready:
+            time.sleep(poll_s)
 
 
 def list_models() -> List[Tuple[str, str]]:

@@ -68,3 +68,38 @@ def test_a_dask_local_cluster_sweep_equals_the_threaded_sweep(threaded):
             SLIDER_CRANK, VARY, t_end=0.004, executor=client.get_executor(), progress=False
         )
     same(threaded, s)
+
+
+class _Job:
+    """A submitit-like job: ``done()`` and ``result()``, not a ``concurrent.futures.Future``;
+    done only from its second ``done()`` call, so the sweep has to poll."""
+
+    def __init__(self, value):
+        self.value, self.polls = value, 0
+
+    def done(self):
+        self.polls += 1
+        return self.polls > 1
+
+    def result(self):
+        assert self.polls > 1, "result() before done()"
+        return self.value
+
+
+class _SubmititLike:
+    """Runs each point at submit and hands back a :class:`_Job` (the shape of submitit's
+    ``AutoExecutor``, which cluster-check tests on Slurm itself)."""
+
+    def __init__(self):
+        self.jobs = []
+
+    def submit(self, fn, *args):
+        self.jobs.append(_Job(fn(*args)))
+        return self.jobs[-1]
+
+
+def test_an_executor_of_polled_jobs_equals_the_threaded_sweep(threaded):
+    ex = _SubmititLike()
+    s = clr_sim.sweep(SLIDER_CRANK, VARY, t_end=0.004, executor=ex, progress=False)
+    same(threaded, s)
+    assert len(ex.jobs) == 4 and all(j.polls >= 2 for j in ex.jobs)

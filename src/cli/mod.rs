@@ -8,6 +8,7 @@ mod plot;
 mod points;
 mod progress;
 mod series;
+mod slurm;
 mod sweep;
 
 use std::path::PathBuf;
@@ -226,6 +227,10 @@ enum Command {
         #[arg(long, requires = "merge")]
         allow_unverified: bool,
     },
+    /// Write, show and submit a Slurm job array of a sweep or finding map with a dependent
+    /// merge job: `clr slurm [--tasks N --cpus-per-task C --time T ...] sweep|study ...`
+    /// (docs/scaling.md).
+    Slurm(slurm::SlurmArgs),
     /// Export the animation of a run (its report.html) as a GIF or, through ffmpeg, an MP4.
     Animate(animate::AnimateArgs),
     /// Plot columns of a results.csv or results.parquet.
@@ -368,6 +373,7 @@ pub(crate) fn main() -> ExitCode {
                 allow_unverified,
             },
         ),
+        Command::Slurm(a) => slurm::slurm_command(&a),
         Command::Animate(a) => animate::animate_command(&a),
         Command::Plot { csv, x, y, out } => plot::plot_command(&csv, &x, &y, out.as_deref()),
         Command::Export {

@@ -66,13 +66,21 @@ pub(crate) fn parse_shard(s: &str) -> Result<(usize, usize), CliError> {
     Ok((i, n))
 }
 
-pub(crate) fn sweep_command(
-    args: &RunArgs,
-    vary: &[String],
-    jobs: Option<usize>,
-    (shard, resume, keep): (Option<&str>, bool, Keep),
-    out: &Path,
-) -> Result<(), CliError> {
+/// A sweep resolved and validated before anything runs: every point's model is built, so a bad
+/// value in any point stops it (`clr sweep`, and `clr slurm sweep` before it writes a script).
+pub(crate) struct Plan {
+    varies: Vec<Vary>,
+    /// Points of the whole product.
+    pub total: usize,
+    base_job: Job,
+    /// The points of this shard.
+    points: Vec<Point>,
+    /// (I, N) of `--shard I/N`; (0, 1) without it.
+    shard: (usize, usize),
+}
+
+/// Resolve and validate the sweep of `args` over `vary` (shard `shard` of it).
+pub(crate) fn plan(args: &RunArgs, vary: &[String], shard: Option<&str>) -> Result<Plan, CliError> {
     let base = assignments(&args.set)?;
     let varies: Vec<Vary> = vary
         .iter()
@@ -104,6 +112,29 @@ pub(crate) fn sweep_command(
             (p.index, labels, p.job)
         })
         .collect();
+    Ok(Plan {
+        varies,
+        total,
+        base_job,
+        points,
+        shard: (si, sn),
+    })
+}
+
+pub(crate) fn sweep_command(
+    args: &RunArgs,
+    vary: &[String],
+    jobs: Option<usize>,
+    (shard, resume, keep): (Option<&str>, bool, Keep),
+    out: &Path,
+) -> Result<(), CliError> {
+    let Plan {
+        varies,
+        total,
+        base_job,
+        points,
+        shard: (si, sn),
+    } = plan(args, vary, shard)?;
     let hash = |job: &Job| provenance::model_hash(&job.resolved_model(args.t_end, args.rtol));
     if !args.quiet {
         if let Job::Generic(s) = &base_job {

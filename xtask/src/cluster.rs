@@ -9,7 +9,11 @@
 //! - a task killed mid-run, once by `scontrol requeue` (Slurm kills and requeues it, eligible
 //!   again 2 min later unless, as here, `scontrol update StartTime=now`) and once by `scancel
 //!   --signal=KILL` and resubmitted: it resumes (`--resume`) without redoing finished points,
-//!   and the final sweep equals the local one.
+//!   and the final sweep equals the local one;
+//! - `clr_sim.sweep(..., executor=submitit.AutoExecutor)` (xtask/cluster/submitit_sweep.py)
+//!   equals the threaded sweep bit for bit.
+//!
+//! The arrays and merge jobs are the scripts `clr slurm` writes and submits.
 //!
 //! Daemons are started by hand (there is no systemd here), with configuration, munge key, state
 //! and logs under one temporary folder; `proctrack/linuxproc` and `task/none` avoid cgroups,
@@ -23,8 +27,9 @@ use std::time::{Duration, Instant};
 
 const HELP: &str = "cargo xtask cluster-check: bring up a single-node Slurm cluster (apt-get \
 install slurmctld slurmd slurm-client munge if missing; needs root), run a sweep as a job \
-array with a dependent merge, a sharded finding map, and a killed-and-requeued task, compare \
-with local runs, tear the cluster down";
+array with a dependent merge (clr slurm), a sharded finding map, a killed-and-requeued task and \
+a submitit sweep from Python ($CLR_PYTHON or target/ci-pyenv), compare with local runs, tear the \
+cluster down";
 
 /// `cargo xtask cluster-check`.
 pub fn run(args: &[String]) -> ExitCode {
@@ -36,6 +41,7 @@ pub fn run(args: &[String]) -> ExitCode {
             &["slurmctld", "slurmd", "sbatch", "munged"],
         )?;
         let clr = crate::system::build_clr()?;
+        let python = python();
         let mut cluster = Cluster::start()?;
         eprintln!(
             "cluster-check: cluster up in {:.1} s ({})",
@@ -43,6 +49,7 @@ pub fn run(args: &[String]) -> ExitCode {
         );
         let checks = Checks {
             clr: &clr,
+            python: python.as_deref(),
             cluster: &cluster,
             work: cluster.dir.join("work"),
         };
@@ -61,6 +68,21 @@ pub fn run(args: &[String]) -> ExitCode {
         );
         Ok(())
     })
+}
+
+/// The Python of the submitit check: `$CLR_PYTHON`, else .ci/run's `target/ci-pyenv`, if it
+/// imports clr_sim and submitit.
+fn python() -> Option<PathBuf> {
+    let candidate = std::env::var_os("CLR_PYTHON")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| crate::target_dir().join("ci-pyenv/bin/python"));
+    let ok = Command::new(&candidate)
+        .args(["-c", "import clr_sim, submitit"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status()
+        .is_ok_and(|s| s.success());
+    ok.then_some(candidate)
 }
 
 /// A running single-node cluster; dropping it stops every daemon and job and removes its
@@ -343,6 +365,8 @@ fn run_out(c: &mut Command) -> Result<String, String> {
 /// The workflows run on the cluster.
 struct Checks<'a> {
     clr: &'a Path,
+    /// A Python that imports clr_sim and submitit.
+    python: Option<&'a Path>,
     cluster: &'a Cluster,
     work: PathBuf,
 }
@@ -368,37 +392,77 @@ impl Checks<'_> {
         );
         self.array_and_merge(&local)?;
         self.killed_and_resumed(&local)?;
-        self.finding_map()
+        self.finding_map()?;
+        self.submitit()
     }
 
-    /// The sweep as a 4-task array with a dependent merge job.
-    fn array_and_merge(&self, local: &Path) -> Result<(), String> {
+    /// `clr_sim.sweep(..., executor=submitit.AutoExecutor)` on this cluster equals the threaded
+    /// sweep, bit for bit (xtask/cluster/submitit_sweep.py).
+    fn submitit(&self) -> Result<(), String> {
         let t = Instant::now();
-        let out = self.work.join("array");
-        let clr = self.clr.display();
-        let script = format!(
-            "#!/bin/bash\n#SBATCH --array=0-3\n#SBATCH --output={o}/log-%A_%a.out\nset -euo pipefail\n\
-             {clr} sweep {SWEEP} --jobs 1 --resume --shard \"$SLURM_ARRAY_TASK_ID/4\" --out \
-             {o}/shard-$SLURM_ARRAY_TASK_ID\n",
-            o = out.display()
-        );
-        std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
-        let jid = self.cluster.sbatch(&script, &[])?;
-        let merge = format!(
-            "#!/bin/bash\n#SBATCH --output={o}/merge.out\nset -euo pipefail\n{clr} merge {o}/shard-0 \
-             {o}/shard-1 {o}/shard-2 {o}/shard-3 --out {o}/all\n",
-            o = out.display()
-        );
-        let mid = self
-            .cluster
-            .sbatch(&merge, &[&format!("--dependency=afterany:{jid}")])?;
-        self.cluster.wait(&[&jid, &mid], Duration::from_secs(120))?;
-        same_sweep(local, &out.join("all"))?;
+        let python = self.python.ok_or_else(|| {
+            "no Python with clr_sim and submitit for the submitit check: set CLR_PYTHON, or \
+             create target/ci-pyenv as .ci/run does (pip install ./python submitit)"
+                .to_string()
+        })?;
+        let script = crate::workspace_root().join("xtask/cluster/submitit_sweep.py");
+        let folder = self.work.join("submitit");
+        let printed = run_out(
+            self.cluster
+                .cmd(&python.display().to_string())
+                .arg(&script)
+                .arg(&folder)
+                .current_dir(&self.work),
+        )?;
         eprintln!(
-            "cluster-check: job array of 4 shards + dependent merge = local sweep ({:.1} s)",
+            "cluster-check: submitit: {} ({:.1} s)",
+            printed.trim(),
             t.elapsed().as_secs_f64()
         );
         Ok(())
+    }
+
+    /// The sweep as a 4-task array with a dependent merge job, both written and submitted by
+    /// `clr slurm sweep`.
+    fn array_and_merge(&self, local: &Path) -> Result<(), String> {
+        let t = Instant::now();
+        let out = self.work.join("array");
+        let (jid, mid) = self.clr_slurm(&["--tasks", "4", "sweep"], SWEEP, &out)?;
+        self.cluster.wait(&[&jid, &mid], Duration::from_secs(120))?;
+        same_sweep(local, &out.join("all"))?;
+        eprintln!(
+            "cluster-check: clr slurm sweep: job array of 4 shards + dependent merge = local \
+             sweep ({:.1} s)",
+            t.elapsed().as_secs_f64()
+        );
+        Ok(())
+    }
+
+    /// Run `clr slurm <slurm> <args> --out <out>` (which writes and submits the array and the
+    /// merge job); their job ids.
+    fn clr_slurm(
+        &self,
+        slurm: &[&str],
+        args: &str,
+        out: &Path,
+    ) -> Result<(String, String), String> {
+        let printed = run_out(
+            self.cluster
+                .cmd(&self.clr.display().to_string())
+                .arg("slurm")
+                .args(slurm)
+                .args(args.split(' '))
+                .arg("--out")
+                .arg(out)
+                .current_dir(&self.work),
+        )?;
+        let id = |what: &str| {
+            (printed.lines())
+                .find_map(|l| l.strip_prefix(what))
+                .map(|j| j.trim().to_string())
+                .ok_or_else(|| format!("clr slurm printed no `{what}<id>` line:\n{printed}"))
+        };
+        Ok((id("array job ")?, id("merge job ")?))
     }
 
     /// One shard task killed twice mid-run (requeued by Slurm, then SIGKILLed and resubmitted):
@@ -406,17 +470,20 @@ impl Checks<'_> {
     fn killed_and_resumed(&self, local: &Path) -> Result<(), String> {
         let t = Instant::now();
         let out = self.work.join("killed");
-        let clr = self.clr.display();
-        let script = format!(
-            "#!/bin/bash\n#SBATCH --requeue\n#SBATCH --open-mode=append\n\
-             #SBATCH --output={o}/log.out\nset -euo pipefail\n\
-             {clr} sweep {sweep_args} --jobs 1 --resume --out {o}/sweep\n",
-            // not --quiet: the log says what --resume kept
-            sweep_args = SWEEP.replace(" --quiet", ""),
-            o = out.display()
-        );
-        std::fs::create_dir_all(&out).map_err(|e| e.to_string())?;
-        let sweep = out.join("sweep");
+        // the array script of `clr slurm --tasks 1 --dry-run`, submitted here; not --quiet: the
+        // log says what --resume kept
+        run_out(
+            self.cluster
+                .cmd(&self.clr.display().to_string())
+                .args(["slurm", "--tasks", "1", "--dry-run", "sweep"])
+                .args(SWEEP.replace(" --quiet", "").split(' '))
+                .arg("--out")
+                .arg(&out)
+                .current_dir(&self.work),
+        )?;
+        let script = std::fs::read_to_string(out.join("slurm/array.sbatch"))
+            .map_err(|e| format!("clr slurm --dry-run wrote no array.sbatch: {e}"))?;
+        let sweep = out.join("shard-0");
         // kill `jid` once `n` point folders are finished; the bytes of the first
         let kill_after = |jid: &str, n: usize, how: &[&str]| -> Result<Vec<u8>, String> {
             let deadline = Instant::now() + Duration::from_secs(60);
@@ -443,7 +510,8 @@ impl Checks<'_> {
             "StartTime=now",
         ]))?;
         self.cluster.wait(&[&jid], Duration::from_secs(120))?;
-        let log = std::fs::read_to_string(out.join("log.out")).unwrap_or_default();
+        let log = std::fs::read_to_string(out.join(format!("slurm/logs/clr-sweep-{jid}_0.out")))
+            .unwrap_or_default();
         if !log.contains("finished already") {
             return Err(format!("the requeued task did not resume:\n{log}"));
         }
@@ -477,7 +545,6 @@ impl Checks<'_> {
     fn finding_map(&self) -> Result<(), String> {
         let t = Instant::now();
         let out = self.work.join("map");
-        let clr = self.clr.display();
         let name = "dual_guide_findings_map";
         let local = out.join("local");
         run_ok(
@@ -485,27 +552,20 @@ impl Checks<'_> {
                 .args(["study", name, "--points", "4", "--out"])
                 .arg(&local),
         )?;
-        let script = format!(
-            "#!/bin/bash\n#SBATCH --array=0-1\n#SBATCH --output={o}/log-%A_%a.out\nset -euo pipefail\n\
-             {clr} study {name} --points 4 --shard \"$SLURM_ARRAY_TASK_ID/2\" --out \
-             {o}/shard-$SLURM_ARRAY_TASK_ID\n",
-            o = out.display()
-        );
-        let jid = self.cluster.sbatch(&script, &[])?;
-        let merge = format!(
-            "#!/bin/bash\n#SBATCH --output={o}/merge.out\nset -euo pipefail\n{clr} study {name} \
-             --merge {o}/shard-0 {o}/shard-1 --out {o}/all\n",
-            o = out.display()
-        );
-        let mid = self
-            .cluster
-            .sbatch(&merge, &[&format!("--dependency=afterany:{jid}")])?;
+        let (jid, mid) = self.clr_slurm(
+            &["--tasks", "2", "study"],
+            &format!("{name} --points 4"),
+            &out,
+        )?;
         self.cluster.wait(&[&jid, &mid], Duration::from_secs(300))?;
         let csv = format!("{name}.csv");
         let (a, b) = (
             std::fs::read_to_string(local.join(&csv)).map_err(|e| format!("local {csv}: {e}"))?,
             std::fs::read_to_string(out.join("all").join(&csv)).map_err(|e| {
-                let log = std::fs::read_to_string(out.join("merge.out")).unwrap_or_default();
+                let log = std::fs::read_to_string(
+                    out.join(format!("slurm/logs/clr-{name}-merge-{mid}.out")),
+                )
+                .unwrap_or_default();
                 format!("merged {csv}: {e}; the merge job wrote:\n{log}")
             })?,
         );
