@@ -434,6 +434,80 @@ fn a_resumed_sweep_keeps_finished_points_and_equals_the_full_sweep() {
     assert_eq!(strip(&full), strip(&again));
 }
 
+/// `clr merge` checks each shard's point folders against its sweep.csv and sweep.json: a
+/// folder holding another point or another model's point is refused by name; a folder the
+/// shard does not list is named and not merged.
+#[test]
+fn merge_refuses_foreign_point_folders_and_names_stray_ones() {
+    let dir = scratch("merge_points");
+    let p = data("pendulum.toml");
+    let shard = |i: usize| {
+        let out = dir.join(format!("shard-{i}"));
+        let shard = format!("{i}/2");
+        let o = clr(&[
+            "sweep",
+            &p,
+            "--t-end",
+            "0.1",
+            "--vary",
+            "body.rod.mass=1,2,3,4",
+            "--keep",
+            "metrics",
+            "--no-figures",
+            "-q",
+            "--shard",
+            &shard,
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        out
+    };
+    let (s0, s1) = (shard(0), shard(1));
+    let merge = || {
+        let (a, b, m) = (s0.to_str().unwrap(), s1.to_str().unwrap(), dir.join("all"));
+        clr(&["merge", a, b, "--out", m.to_str().unwrap()])
+    };
+    let o = merge();
+    assert!(o.status.success(), "{}", stderr(&o));
+    // a folder the shard does not list: named, merged without it
+    std::fs::create_dir_all(s1.join("point-00099")).unwrap();
+    let o = merge();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("does not list") && stderr(&o).contains("point-00099"));
+    // point 1's folder copied over point 0's: another point
+    let (zero, one) = (
+        s0.join("point-00000/point.json"),
+        s1.join("point-00001/point.json"),
+    );
+    let original = std::fs::read_to_string(&zero).unwrap();
+    std::fs::copy(&one, &zero).unwrap();
+    let o = merge();
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("point-00000: point 1 with values [\"2\"]") && e.contains("--resume"),
+        "{e}"
+    );
+    // the same point of another model (its hash changed)
+    let hash = original.split("fnv1a64:").nth(1).unwrap()[..16].to_string();
+    std::fs::write(&zero, original.replace(&hash, "0123456789abcdef")).unwrap();
+    let e = stderr(&merge());
+    assert!(
+        e.contains("point-00000: model hash fnv1a64:0123456789abcdef (sweep.json: \"fnv1a64:"),
+        "{e}"
+    );
+    // ... or of another clr
+    let other = original.replace(
+        &format!("\"clr_version\": \"{}\"", env!("CARGO_PKG_VERSION")),
+        "\"clr_version\": \"0.0.1\"",
+    );
+    assert_ne!(other, original);
+    std::fs::write(&zero, other).unwrap();
+    let e = stderr(&merge());
+    assert!(e.contains("point-00000: clr 0.0.1 (sweep.json: \""), "{e}");
+}
+
 /// Shards record the model they ran: two shards of one sweep run against different contents
 /// of the same model file are refused by `clr merge` (exit 2, naming the shard, both hashes and
 /// that shard's rerun); the same contents merge. A shard without provenance (sweep.json of an

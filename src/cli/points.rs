@@ -98,6 +98,13 @@ pub(crate) fn finished(
             r.point, r.values, values
         ));
     }
+    if r.clr_version != clr_models::provenance::CLR_VERSION {
+        return Err(format!(
+            "it ran with clr {}, this is clr {}",
+            r.clr_version,
+            clr_models::provenance::CLR_VERSION
+        ));
+    }
     if r.model_hash != model_hash {
         return Err(format!(
             "it ran another model (hash {} against {model_hash}): the model file or --set \
@@ -176,4 +183,82 @@ pub(crate) fn write_point(
 pub(crate) fn write_atomic(path: &Path, text: &str) -> Result<(), CliError> {
     clr_models::common::write_atomic(path, text)
         .map_err(|e| CliError::Input(format!("cannot write {}: {e}", path.display())))
+}
+
+/// What `clr merge` found among the point folders of one shard folder.
+#[derive(Debug, Default)]
+pub(crate) struct Audit {
+    /// Folders `point-k` whose k the shard's sweep.csv does not list (another sweep's, or
+    /// copied in): not merged.
+    pub stray: Vec<String>,
+    /// Listed points whose folder has no point.json (written before clr wrote one).
+    pub unrecorded: Vec<String>,
+    /// Listed points whose folder is missing (removed since the sweep ran).
+    pub missing: Vec<String>,
+    /// Listed points whose point.json disagrees with the shard's sweep.csv or sweep.json:
+    /// what differs.
+    pub foreign: Vec<String>,
+}
+
+/// Check the point folders of shard folder `dir` against the points its sweep.csv lists,
+/// `listed[k] = (varied values, status)`, and its sweep.json `meta` (clr version, and each
+/// point's model hash when recorded).
+pub(crate) fn audit(
+    dir: &Path,
+    listed: &std::collections::BTreeMap<usize, (Vec<String>, String)>,
+    meta: &serde_json::Value,
+) -> Audit {
+    let mut a = Audit::default();
+    let folders: Vec<String> = (std::fs::read_dir(dir).into_iter().flatten().flatten())
+        .map(|e| e.file_name().to_string_lossy().to_string())
+        .filter(|n| n.starts_with("point-"))
+        .collect();
+    for name in &folders {
+        let k = name.trim_start_matches("point-").parse::<usize>();
+        if !k.is_ok_and(|k| listed.contains_key(&k)) {
+            a.stray.push(name.clone());
+        }
+    }
+    for (&k, (values, status)) in listed {
+        let name = format!("point-{k:05}");
+        if !folders.contains(&name) {
+            a.missing.push(name);
+            continue;
+        }
+        let Ok(text) = std::fs::read_to_string(folder(dir, k).join("point.json")) else {
+            a.unrecorded.push(name);
+            continue;
+        };
+        let Ok(r) = serde_json::from_str::<PointRecord>(&text) else {
+            a.foreign.push(format!("{name}: point.json unreadable"));
+            continue;
+        };
+        let mut why = Vec::new();
+        if r.point != k || &r.values != values || &r.status != status {
+            why.push(format!(
+                "point {} with values {:?}, {} (sweep.csv: point {k} with {values:?}, {status})",
+                r.point, r.values, r.status
+            ));
+        }
+        if meta["clr_version"]
+            .as_str()
+            .is_some_and(|v| v != r.clr_version)
+        {
+            why.push(format!(
+                "clr {} (sweep.json: {})",
+                r.clr_version, meta["clr_version"]
+            ));
+        }
+        let recorded = &meta["point_model_hashes"][k.to_string()];
+        if recorded.as_str().is_some_and(|h| h != r.model_hash) {
+            why.push(format!(
+                "model hash {} (sweep.json: {recorded})",
+                r.model_hash
+            ));
+        }
+        if !why.is_empty() {
+            a.foreign.push(format!("{name}: {}", why.join("; ")));
+        }
+    }
+    a
 }

@@ -153,8 +153,16 @@ pub(crate) fn sweep_command(
             removed.join(", ")
         );
     }
+    // each point's model (its values applied), for clr merge's check of the point folders
+    let point_hashes: serde_json::Map<String, serde_json::Value> = (points.iter())
+        .map(|(k, _, job)| (k.to_string(), serde_json::Value::String(hash(job))))
+        .collect();
+    let hash_of = |k: usize| {
+        let h = point_hashes.get(&k.to_string()).and_then(|h| h.as_str());
+        h.unwrap_or_default().to_string()
+    };
     let (kept, points) = if resume {
-        resumed(out, points, &hash, args.quiet)
+        resumed(out, points, &hash_of, args.quiet)
     } else {
         (Vec::new(), points)
     };
@@ -187,7 +195,7 @@ pub(crate) fn sweep_command(
                         .map(|m| (m.name.clone(), m.unit.clone(), m.value))
                         .collect(),
                 };
-                let record = PointRecord::new(&row, hash(job));
+                let record = PointRecord::new(&row, hash_of(*k));
                 points::write_point(out, &rec, args, job, keep, &record)?;
                 if let Some(b) = &bar {
                     b.inc(1);
@@ -212,6 +220,7 @@ pub(crate) fn sweep_command(
         "clr_version": provenance::CLR_VERSION,
         "shard": [si, sn],
         "points": rows.iter().map(|r| r.point).collect::<Vec<_>>(),
+        "point_model_hashes": point_hashes,
     });
     write_text(
         &out.join("sweep.json"),
@@ -254,12 +263,12 @@ fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
 fn resumed(
     out: &Path,
     points: Vec<Point>,
-    hash: &dyn Fn(&Job) -> String,
+    hash_of: &dyn Fn(usize) -> String,
     quiet: bool,
 ) -> (Vec<SweepRow>, Vec<Point>) {
     let (mut kept, mut todo, mut again) = (Vec::new(), Vec::new(), Vec::new());
     for (k, values, job) in points {
-        match points::finished(out, k, &values, &hash(&job)) {
+        match points::finished(out, k, &values, &hash_of(k)) {
             Ok(r) => kept.push(r.row()),
             Err(why) => {
                 if points::folder(out, k).exists() {
@@ -444,6 +453,7 @@ pub(crate) fn merge_command(
     let mut header: Option<String> = None;
     let mut meta0: Option<serde_json::Value> = None;
     let mut rows: BTreeMap<usize, (String, PathBuf)> = BTreeMap::new();
+    let mut hashes = serde_json::Map::new();
     for (d, meta) in dirs.iter().zip(metas) {
         match &meta0 {
             None => meta0 = Some(meta.clone()),
@@ -460,6 +470,10 @@ pub(crate) fn merge_command(
             }
         }
         let text = read(d.join("sweep.csv"))?;
+        audit_points(d, &text, &meta)?;
+        if let Some(h) = meta["point_model_hashes"].as_object() {
+            hashes.extend(h.clone());
+        }
         let mut lines = text.lines();
         let h = lines.next().unwrap_or("").to_string();
         for l in lines.filter(|l| !l.trim().is_empty()) {
@@ -517,6 +531,7 @@ pub(crate) fn merge_command(
     }
     meta["shard"] = serde_json::json!([0, 1]);
     meta["points"] = serde_json::json!(rows.keys().collect::<Vec<_>>());
+    meta["point_model_hashes"] = serde_json::Value::Object(hashes);
     meta["merged_from"] = serde_json::json!(dirs
         .iter()
         .map(|d| d.display().to_string())
@@ -540,6 +555,52 @@ pub(crate) fn merge_command(
             "the merge is incomplete: points {missing:?} are in no shard (rerun their shards)"
         )))
     }
+}
+
+/// Check the point folders of shard folder `d` against its sweep.csv (`csv`) and sweep.json
+/// (`meta`): refuse the shard when a point folder holds another point, model or clr version than
+/// the shard lists; name the folders it does not list, those without a record and those missing.
+fn audit_points(d: &Path, csv: &str, meta: &serde_json::Value) -> Result<(), CliError> {
+    let varied = meta["vary"].as_array().map_or(0, Vec::len);
+    let mut listed = BTreeMap::new();
+    for l in csv.lines().skip(1).filter(|l| !l.trim().is_empty()) {
+        let cells: Vec<&str> = l.split(',').collect();
+        if let (Some(k), Some(status)) = (cells[0].parse::<usize>().ok(), cells.get(2 + varied)) {
+            let values = cells[2..2 + varied].iter().map(|v| v.to_string()).collect();
+            listed.insert(k, (values, status.to_string()));
+        }
+    }
+    let a = points::audit(d, &listed, meta);
+    let warn = |what: &str, names: &[String]| {
+        if !names.is_empty() {
+            eprintln!(
+                "clr: warning: {}: {} point folder(s) {what}: {}",
+                d.display(),
+                names.len(),
+                names.join(", ")
+            );
+        }
+    };
+    warn(
+        "that its sweep.csv does not list (left by another sweep or copied in; not merged)",
+        &a.stray,
+    );
+    warn(
+        "without point.json (written by an older clr; not checked)",
+        &a.unrecorded,
+    );
+    warn("listed in its sweep.csv but removed since", &a.missing);
+    if a.foreign.is_empty() {
+        return Ok(());
+    }
+    Err(CliError::Input(format!(
+        "{}: {} point folder(s) do not hold the point its sweep.csv lists, so they are not this \
+         sweep's results (copied from another sweep, or changed since):\n  {}\nrun the shard \
+         again with --resume (those points run again), then merge",
+        d.display(),
+        a.foreign.len(),
+        a.foreign.join("\n  ")
+    )))
 }
 
 /// Warn of the half-written point folders of shard folder `d`; refuse a shard that did not
