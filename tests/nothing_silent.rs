@@ -447,3 +447,30 @@ fn unused_builtin_parameter_is_refused() {
     );
     assert!(!text.contains("\naxial_length ="), "{text}");
 }
+
+/// `--series parquet` on a sweep whose points keep no series (`--keep summary`) is not dropped
+/// in silence: a note says that only failed points keep series, and what to give instead.
+#[test]
+fn series_format_without_kept_series_is_noted() {
+    let dir = scratch("series_note");
+    let file = slider_crank_file(&dir, |t| t);
+    let out = dir.join("sweep");
+    let o = clr(&[
+        "sweep",
+        &file,
+        "--vary",
+        "solver.rtol=1e-6",
+        "--series",
+        "parquet",
+        "--no-figures",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    let e = String::from_utf8_lossy(&o.stderr).to_string();
+    assert!(o.status.success(), "{e}");
+    assert!(
+        e.contains("--series parquet: with --keep summary only the failed points keep"),
+        "{e}"
+    );
+    assert!(!out.join("point-00000/results.parquet").exists());
+}

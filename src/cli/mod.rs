@@ -73,9 +73,9 @@ pub(crate) struct RunArgs {
     pub no_report: bool,
     /// The format of the time series and impacts: `csv` (results.csv, impacts.csv), `parquet`
     /// (results.parquet, impacts.parquet: compressed, columnar, read by pandas, polars, Arrow and
-    /// MATLAB) or `both`.
-    #[arg(long, value_enum, default_value_t = SeriesFormat::Csv, value_name = "FORMAT")]
-    pub series: SeriesFormat,
+    /// MATLAB) or `both` [default: csv].
+    #[arg(long, value_enum, value_name = "FORMAT")]
+    pub series: Option<SeriesFormat>,
 }
 
 /// `--series`: the files of the time series.
@@ -110,6 +110,11 @@ pub(crate) enum JacobianArg {
 }
 
 impl RunArgs {
+    /// The format of the time series: `--series`, CSV by default.
+    pub(crate) fn series_format(&self) -> SeriesFormat {
+        self.series.unwrap_or(SeriesFormat::Csv)
+    }
+
     /// The integrator knobs given on the command line.
     pub(crate) fn knobs(&self) -> clr_models::SolverKnobs {
         clr_models::SolverKnobs {

@@ -292,7 +292,7 @@ pub(crate) fn write_run(
             desc.as_ref().map_err(Clone::clone),
         )?;
     }
-    write_series(dir, rec, args.series)?;
+    write_series(dir, rec, args.series_format())?;
     write_summary(dir, rec, args)?;
     if figures {
         for w in run_figures(dir, rec) {

@@ -153,6 +153,14 @@ pub(crate) fn sweep_command(
             removed.join(", ")
         );
     }
+    if let (Some(f), true, false) = (args.series, keep < Keep::Series, args.quiet) {
+        eprintln!(
+            "clr: note: --series {}: with --keep {} only the failed points keep their time \
+             series (to diagnose them); give --keep series or all to keep every point's",
+            format!("{f:?}").to_lowercase(),
+            format!("{keep:?}").to_lowercase()
+        );
+    }
     // each point's model (its values applied), for clr merge's check of the point folders
     let point_hashes: serde_json::Map<String, serde_json::Value> = (points.iter())
         .map(|(k, _, job)| (k.to_string(), serde_json::Value::String(hash(job))))
