@@ -1345,9 +1345,11 @@ _PLANAR_ONLY = {
             "measure_position", "measure_velocity", "measure_acceleration", "measure_angle",
             "measure_angular_velocity", "measure_angular_acceleration", "measure_distance",
             "measure_reaction", "measure_contact", "measure_energy", "measure_momentum",
-            "measure_deviation", "metric", "twin",
+            "measure_deviation", "measure_combination",
         )
     },
+    "twin": "spatial models have no ideal-joint twin yet",
+    "input": "spatial models have no [[input]] yet; drive them with time functions",
 }
 
 #: The spatial builder's methods a planar model refuses, with what to use instead.
@@ -1452,6 +1454,7 @@ SPATIAL_METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("clearance", "cylindrical"): "cylindrical_clearance",
     ("shape", None): "shape",
     ("clearance", "contact"): "contact",
+    ("metric", None): "metric",
 }
 
 #: The table of element methods of each kind of builder.

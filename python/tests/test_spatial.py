@@ -221,6 +221,8 @@ def every_kind() -> clr_sim.Model:
     m.contact("drop_contact", shapes=["floor", "bead"],
               normal=clr_sim.normal("hertz", 0.9, stiffness=1e10, damping="flores"),
               friction=clr_sim.friction("coulomb", mu=0.1, v_reg=1e-4))
+    # a [[metric]] of a spatial column
+    m.metric("drop_peak_speed", of="drop.vz", statistic="peak")
     m.solver(rtol=1e-6)
     m.output(t_end=0.01, intervals=10)
     return m
@@ -229,8 +231,8 @@ def every_kind() -> clr_sim.Model:
 def test_every_spatial_element_kind_is_reachable_and_runs():
     m = every_kind()
     doc = m.to_dict()
-    used = {(s, i.get("type")) for s in ("joint", "driver", "force", "clearance", "shape")
-            for i in doc.get(s, [])}
+    used = {(s, i.get("type")) for s in ("joint", "driver", "force", "clearance", "shape",
+                                         "metric") for i in doc.get(s, [])}
     assert used | {("model", None), ("solver", None), ("output", None), ("body", None)} == \
         set(SPATIAL_METHODS)
     text = m.to_toml()
@@ -256,6 +258,7 @@ def test_every_spatial_element_kind_is_reachable_and_runs():
     # (the contact lasts less than an output interval: its rebound shows in the velocity, up
     # at 0.01 s where a free fall would be at −g·0.01 s)
     assert r["drop.vz"][-1] > 0
+    assert r.metrics["drop_peak_speed"] == np.max(np.abs(r["drop.vz"]))
 
 
 def _line_of(marker: str) -> str:
@@ -413,3 +416,28 @@ def test_a_lubricated_journal_writes_its_film_columns():
     assert 0.0 < r["J.film_thickness"][-1] <= 5e-4
     with pytest.raises(clr_sim.FieldError, match="overlap"):
         clr_sim.simulate(lubricated_journal(dict(film, length=0.02)))
+
+
+def test_spatial_metrics_against_free_fall_and_the_columns():
+    """``SpatialModel.metric``: a body thrown up at v0 under gravity g, no joint. The final
+    velocity and the rise against the closed form v0 − g·T and v0·T − g·T²/2 (1e-8 relative,
+    the integrator at rtol 1e-10), and the peak height against numpy on the recorded column
+    (exactly: the same rows)."""
+    g, v0, t_end = 9.81, 2.0, 0.5
+    m = clr_sim.Model("throw", space="spatial", gravity=(0.0, 0.0, -g))
+    m.body("ball", mass=0.2, principal_inertia=(1e-4, 1e-4, 1e-4), velocity=(0.0, 0.0, v0),
+           velocity_frame="world")
+    m.metric("vz_end", of="ball.vz", statistic="final")
+    m.metric("rise", of="ball.z", statistic="change")
+    m.metric("top", of="ball.z", statistic="max", t_start=0.1)
+    m.solver(rtol=1e-10)
+    m.output(t_end=t_end, intervals=500)
+    r = clr_sim.simulate(m)
+    assert r.metrics["vz_end"] == pytest.approx(v0 - g * t_end, rel=1e-8)
+    assert r.metrics["rise"] == pytest.approx(v0 * t_end - g * t_end**2 / 2, rel=1e-8)
+    z, t = r["ball.z"], r["t"]
+    assert r.metrics["top"] == np.max(z[t >= 0.1])
+    with pytest.raises(clr_sim.FieldError, match="twin"):
+        m.twin(reference_interval=1e-3)
+    with pytest.raises(clr_sim.ModelError, match="ball.vz"):
+        m.metric("typo", of="ball.vzz", statistic="peak").check()

@@ -668,7 +668,8 @@ pub fn execute(
                 });
             match run {
                 Ok(res) => {
-                    let metrics = file_metrics(&res, twin.as_ref(), s);
+                    let metrics =
+                        file_metrics(&res, twin.as_ref(), &s.desc().metrics, s.as_ref().into());
                     Ok(Outcome::from_results(s.as_ref().into(), res, metrics, None)
                         .with_flexible(flexible))
                 }
@@ -681,7 +682,12 @@ pub fn execute(
                         "{source} (in the model file these are [solver] max_steps, rtol, atol, \
                          method){cause}"
                     );
-                    let metrics = file_metrics(&partial, twin.as_ref(), s);
+                    let metrics = file_metrics(
+                        &partial,
+                        twin.as_ref(),
+                        &s.desc().metrics,
+                        s.as_ref().into(),
+                    );
                     Ok(
                         Outcome::from_results(s.as_ref().into(), *partial, metrics, Some(msg))
                             .with_flexible(flexible),
@@ -695,7 +701,12 @@ pub fn execute(
                 ) => {
                     let msg = e.to_string();
                     let partial = e.into_partial().unwrap_or_default();
-                    let metrics = file_metrics(&partial, twin.as_ref(), s);
+                    let metrics = file_metrics(
+                        &partial,
+                        twin.as_ref(),
+                        &s.desc().metrics,
+                        s.as_ref().into(),
+                    );
                     Ok(
                         Outcome::from_results(s.as_ref().into(), partial, metrics, Some(msg))
                             .with_flexible(flexible),
@@ -742,7 +753,7 @@ fn execute_spatial(
         }
         Err(e) => return Err(s.model_error(&e).into()),
     };
-    let metrics = generic_metrics(&res, s.into());
+    let metrics = file_metrics(&res, None, &s.desc().metrics, s.into());
     Ok(Outcome::from_results(s.into(), res, metrics, msg))
 }
 
@@ -765,16 +776,17 @@ fn max_abs(v: &[f64]) -> f64 {
     v.iter().fold(0.0f64, |a, x| a.max(x.abs()))
 }
 
-/// The metrics of a planar model file's run: its `[[metric]]` items, then the generic ones
+/// The metrics of a model file's run (planar or spatial): its `[[metric]]` items, then the generic ones
 /// ([`generic_metrics`]) whose names the file does not take: a `[[metric]]` may redefine one
 /// (docs/model-file.md).
-fn file_metrics(
+fn file_metrics<'a>(
     r: &clr_mbd::Results,
     twin: Option<&clr_mbd::Results>,
-    s: &super::ModelSpec,
+    descs: &[clr_mbd::desc::metric::MetricDesc],
+    meta: Meta<'a>,
 ) -> Vec<Metric> {
-    let mut out = clr_models::described_metrics::evaluate(&s.desc().metrics, r, twin);
-    for m in generic_metrics(r, s.into()) {
+    let mut out = clr_models::described_metrics::evaluate(descs, r, twin);
+    for m in generic_metrics(r, meta) {
         if !out.iter().any(|o| o.name == m.name) {
             out.push(m);
         }

@@ -700,6 +700,10 @@ pub struct SpatialDesc {
     /// Time span and output times (as planar models).
     #[serde(default)]
     pub output: OutputSettings,
+    /// Numbers taken of columns over time windows, as in planar files
+    /// ([`MetricDesc`](crate::desc::metric::MetricDesc); `twin` is refused).
+    #[serde(default, rename = "metric", skip_serializing_if = "Vec::is_empty")]
+    pub metrics: Vec<crate::desc::metric::MetricDesc>,
 }
 
 impl SpatialDesc {

@@ -61,6 +61,22 @@ impl SpatialDesc {
     /// # Errors
     /// A typed [`MbdError`](crate::MbdError) naming the item and field.
     pub fn compile(&self) -> Result<SpatialModel, crate::MbdError> {
-        compile::compile(self)
+        let model = compile::compile(self)?;
+        self.check_metrics(&model.columns())?;
+        Ok(model)
+    }
+
+    /// Check the `[[metric]]` items against the columns the model writes, as a planar file's
+    /// (`crate::desc::metric`); `twin` is refused: a spatial file has no ideal-joint twin.
+    fn check_metrics(&self, columns: &[String]) -> Result<(), crate::MbdError> {
+        if let Some(k) = self.metrics.iter().position(|m| m.twin) {
+            return Err(crate::MbdError::Invalid {
+                path: format!("metric[{k}].twin"),
+                message: "a spatial model file has no ideal-joint twin ([twin] is planar only): \
+                          take the metric of this run's columns (remove `twin`)"
+                    .into(),
+            });
+        }
+        crate::desc::metric::check(&self.metrics, columns, &[])
     }
 }
