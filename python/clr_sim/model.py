@@ -817,20 +817,22 @@ class Model:
     # ----- [[measure]]: named outputs (docs/model-file.md "Measures") --------------------
 
     def measure_position(self, name: str, *, at: Anchor, frame: Optional[str] = None) -> "Model":
-        """Columns ``<name>.x``, ``<name>.y`` (m): the point ``at`` in the world, or its
-        coordinates in the frame of body ``frame``."""
+        """Columns ``<name>.x``, ``<name>.y`` (m; and ``<name>.z`` in a spatial model, ``at``
+        then a :func:`clr_sim.spatial.at`): the point ``at`` in the world, or its coordinates in
+        the frame of body ``frame``."""
         return self._add("measure", "position", name, at=at, frame=frame)
 
     def measure_velocity(self, name: str, *, at: Anchor, frame: Optional[str] = None) -> "Model":
-        """Columns ``<name>.vx``, ``<name>.vy`` (m/s): the velocity of the point ``at``, or the
-        rate of its coordinates in the frame of body ``frame``."""
+        """Columns ``<name>.vx``, ``<name>.vy`` (m/s; and ``.vz`` in a spatial model): the
+        velocity of the point ``at``, or the rate of its coordinates in the frame of body
+        ``frame``."""
         return self._add("measure", "velocity", name, at=at, frame=frame)
 
     def measure_acceleration(
         self, name: str, *, at: Anchor, frame: Optional[str] = None
     ) -> "Model":
-        """Columns ``<name>.ax``, ``<name>.ay`` (m/s²): as :meth:`measure_velocity`, once more
-        differentiated."""
+        """Columns ``<name>.ax``, ``<name>.ay`` (m/s²; and ``.az`` in a spatial model): as
+        :meth:`measure_velocity`, once more differentiated."""
         return self._add("measure", "acceleration", name, at=at, frame=frame)
 
     def measure_angle(
@@ -863,7 +865,7 @@ class Model:
 
     def measure_distance(self, name: str, *, a: Anchor, b: Anchor) -> "Model":
         """Columns ``<name>.distance`` (m) and ``<name>.distance_rate`` (m/s) between two
-        points."""
+        points (planar or spatial)."""
         return self._add("measure", "distance", name, a=a, b=b)
 
     def measure_reaction(self, name: str, *, joint: str, frame: Optional[str] = None) -> "Model":
@@ -1340,10 +1342,11 @@ _PLANAR_ONLY = {
     "translational_clearance": "spatial models have no translational clearance joint yet",
     "slider_on_beam": "spatial models have no flexible beams yet",
     **{
-        m: "spatial models have no [[measure]] yet; use the columns every spatial run writes"
+        m: "a spatial [[measure]] is a point's position, velocity or acceleration, or a "
+        "distance (measure_position, measure_velocity, measure_acceleration, measure_distance); "
+        "the other quantities are columns every spatial run writes"
         for m in (
-            "measure_position", "measure_velocity", "measure_acceleration", "measure_angle",
-            "measure_angular_velocity", "measure_angular_acceleration", "measure_distance",
+            "measure_angle", "measure_angular_velocity", "measure_angular_acceleration",
             "measure_reaction", "measure_contact", "measure_energy", "measure_momentum",
             "measure_deviation", "measure_combination",
         )
@@ -1454,6 +1457,10 @@ SPATIAL_METHODS: Dict[Tuple[str, Optional[str]], str] = {
     ("clearance", "cylindrical"): "cylindrical_clearance",
     ("shape", None): "shape",
     ("clearance", "contact"): "contact",
+    ("measure", "position"): "measure_position",
+    ("measure", "velocity"): "measure_velocity",
+    ("measure", "acceleration"): "measure_acceleration",
+    ("measure", "distance"): "measure_distance",
     ("metric", None): "metric",
 }
 

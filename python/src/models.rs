@@ -694,7 +694,7 @@ fn spatial_element_kinds() -> PyResult<Vec<(String, Vec<String>)>> {
     let sections = probe("", "sections")?;
     let mut out = Vec::new();
     for s in sections {
-        let kinds = if ["joint", "driver", "force", "clearance"].contains(&s.as_str()) {
+        let kinds = if ["joint", "driver", "force", "clearance", "measure"].contains(&s.as_str()) {
             let message = probe_message(&format!("{SPATIAL_HEADER}[[{s}]]\ntype = \"{PROBE}\"\n"));
             expected_names(&message).ok_or_else(|| {
                 pyo3::exceptions::PyValueError::new_err(format!("no kinds of [[{s}]]: {message}"))

@@ -221,7 +221,12 @@ def every_kind() -> clr_sim.Model:
     m.contact("drop_contact", shapes=["floor", "bead"],
               normal=clr_sim.normal("hertz", 0.9, stiffness=1e10, damping="flores"),
               friction=clr_sim.friction("coulomb", mu=0.1, v_reg=1e-4))
-    # a [[metric]] of a spatial column
+    # a [[measure]] of each kind and a [[metric]] of a spatial column
+    m.measure_position("bead_top", at=spatial.at("drop", 0.0, 0.0, 0.01))
+    m.measure_velocity("bead_top", at=spatial.at("drop", 0.0, 0.0, 0.01), frame="b1")
+    m.measure_acceleration("bead_top", at=spatial.at("drop", 0.0, 0.0, 0.01))
+    m.measure_distance("bead_floor", a=spatial.at("ground", 0.0, -8.0, 0.0),
+                       b=spatial.at("drop"))
     m.metric("drop_peak_speed", of="drop.vz", statistic="peak")
     m.solver(rtol=1e-6)
     m.output(t_end=0.01, intervals=10)
@@ -232,7 +237,7 @@ def test_every_spatial_element_kind_is_reachable_and_runs():
     m = every_kind()
     doc = m.to_dict()
     used = {(s, i.get("type")) for s in ("joint", "driver", "force", "clearance", "shape",
-                                         "metric") for i in doc.get(s, [])}
+                                         "measure", "metric") for i in doc.get(s, [])}
     assert used | {("model", None), ("solver", None), ("output", None), ("body", None)} == \
         set(SPATIAL_METHODS)
     text = m.to_toml()
@@ -259,6 +264,11 @@ def test_every_spatial_element_kind_is_reachable_and_runs():
     # at 0.01 s where a free fall would be at −g·0.01 s)
     assert r["drop.vz"][-1] > 0
     assert r.metrics["drop_peak_speed"] == np.max(np.abs(r["drop.vz"]))
+    # the ball does not turn before it lands, and its landing turns it by less than 1e-7 rad:
+    # its top stays 10 mm above its centre; before it lands, its distance from the floor point
+    # below it is its height
+    np.testing.assert_allclose(r["bead_top.z"], r["drop.z"] + 0.01, rtol=0, atol=1e-9)
+    np.testing.assert_allclose(r["bead_floor.distance"][:3], r["drop.z"][:3], rtol=0, atol=1e-12)
 
 
 def _line_of(marker: str) -> str:
@@ -441,3 +451,31 @@ def test_spatial_metrics_against_free_fall_and_the_columns():
         m.twin(reference_interval=1e-3)
     with pytest.raises(clr_sim.ModelError, match="ball.vz"):
         m.metric("typo", of="ball.vzz", statistic="peak").check()
+
+
+def test_spatial_measures_of_a_spinning_rotor():
+    """``SpatialModel.measure_position`` / ``measure_velocity`` / ``measure_distance``: a rotor
+    spinning freely at ω about its symmetry axis; the point L along its x axis moves on the
+    circle (L cos ωt, L sin ωt, 0) at speed L·ω, and its distance from the ground point
+    (0, 0, 1) is √(L² + 1), constant (1e-7: rtol 1e-10)."""
+    w, l = 10.0, 0.5
+    m = clr_sim.Model("rotor", space="spatial")
+    m.body("rotor", mass=1.0, principal_inertia=(1e-3, 1e-3, 2e-3),
+           velocity=(0.0, 0.0, 0.0), velocity_frame="world",
+           angular_velocity=(0.0, 0.0, w), angular_velocity_frame="world")
+    m.measure_position("tip", at=spatial.at("rotor", l, 0.0, 0.0))
+    m.measure_velocity("tip", at=spatial.at("rotor", l, 0.0, 0.0))
+    m.measure_distance("gap", a=spatial.at("ground", 0.0, 0.0, 1.0),
+                       b=spatial.at("rotor", l, 0.0, 0.0))
+    m.solver(rtol=1e-10)
+    m.output(t_end=0.5, intervals=100)
+    r = clr_sim.simulate(m)
+    t = r["t"]
+    np.testing.assert_allclose(r["tip.x"], l * np.cos(w * t), rtol=0, atol=1e-7)
+    np.testing.assert_allclose(r["tip.y"], l * np.sin(w * t), rtol=0, atol=1e-7)
+    np.testing.assert_allclose(np.hypot(r["tip.vx"], r["tip.vy"]), l * w, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(r["gap.distance"], np.sqrt(l * l + 1.0), rtol=0, atol=1e-7)
+    np.testing.assert_allclose(r["gap.distance_rate"], 0.0, rtol=0, atol=1e-6)
+    assert r.units["tip.vz"] == "m/s"
+    with pytest.raises(clr_sim.FieldError, match="measure_position"):
+        m.measure_angle("a", body="rotor")

@@ -730,13 +730,13 @@ fn execute_spatial(
         }
     };
     let (res, msg) = match model.simulate_with(&options, &hook) {
-        Ok(res) => (res, None),
+        Ok(res) => (s.desc().with_measures(res), None),
         Err(clr_mbd::MbdError::Failed {
             source,
             partial,
             cause,
         }) => (
-            *partial,
+            s.desc().with_measures(*partial),
             Some(format!(
                 "{source} (in the model file these are [solver] max_steps, rtol, atol, \
                  method){cause}"
@@ -749,7 +749,10 @@ fn execute_spatial(
             | clr_mbd::MbdError::Stopped { .. }),
         ) => {
             let msg = e.to_string();
-            (e.into_partial().unwrap_or_default(), Some(msg))
+            (
+                s.desc().with_measures(e.into_partial().unwrap_or_default()),
+                Some(msg),
+            )
         }
         Err(e) => return Err(s.model_error(&e).into()),
     };

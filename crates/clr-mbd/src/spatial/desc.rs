@@ -700,6 +700,10 @@ pub struct SpatialDesc {
     /// Time span and output times (as planar models).
     #[serde(default)]
     pub output: OutputSettings,
+    /// Named outputs: points' positions, velocities and accelerations, distances
+    /// ([`SpatialMeasure`]).
+    #[serde(default, rename = "measure", skip_serializing_if = "Vec::is_empty")]
+    pub measures: Vec<SpatialMeasure>,
     /// Numbers taken of columns over time windows, as in planar files
     /// ([`MetricDesc`](crate::desc::metric::MetricDesc); `twin` is refused).
     #[serde(default, rename = "metric", skip_serializing_if = "Vec::is_empty")]
@@ -747,3 +751,75 @@ const _: () = {
     const fn assert_plain_data<T: Clone + Send + Sync + 'static>() {}
     assert_plain_data::<SpatialDesc>();
 };
+
+/// `[[measure]]` of a spatial file (`type` is the kind; computed by `super::measure`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum SpatialMeasure {
+    /// Position of a point, m: `<name>.x .y .z`.
+    Position(PointMeasure),
+    /// Velocity of a point, m/s: `<name>.vx .vy .vz`.
+    Velocity(PointMeasure),
+    /// Acceleration of a point, m/s²: `<name>.ax .ay .az`.
+    Acceleration(PointMeasure),
+    /// Distance between two points, m, and its rate, m/s: `<name>.distance .distance_rate`.
+    Distance(DistanceMeasure),
+}
+
+/// A point of a body, in the world frame or in the frame of `frame`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PointMeasure {
+    /// Name: the columns' prefix.
+    pub name: String,
+    /// The body and the point in its frame, m (`axis` is refused).
+    pub at: End,
+    /// A body whose frame the coordinates are taken in (default: the world).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub frame: Option<String>,
+}
+
+/// Two points of bodies.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DistanceMeasure {
+    /// Name: the columns' prefix.
+    pub name: String,
+    /// First point (body and point in its frame, m).
+    pub a: End,
+    /// Second point.
+    pub b: End,
+}
+
+impl SpatialMeasure {
+    /// Its name.
+    pub fn name(&self) -> &str {
+        match self {
+            SpatialMeasure::Position(p)
+            | SpatialMeasure::Velocity(p)
+            | SpatialMeasure::Acceleration(p) => &p.name,
+            SpatialMeasure::Distance(d) => &d.name,
+        }
+    }
+
+    /// The columns it writes.
+    pub fn columns(&self) -> Vec<String> {
+        let suffixes: &[&str] = match self {
+            SpatialMeasure::Position(_) => &["x", "y", "z"],
+            SpatialMeasure::Velocity(_) => &["vx", "vy", "vz"],
+            SpatialMeasure::Acceleration(_) => &["ax", "ay", "az"],
+            SpatialMeasure::Distance(_) => &["distance", "distance_rate"],
+        };
+        let n = self.name();
+        suffixes.iter().map(|s| format!("{n}.{s}")).collect()
+    }
+
+    pub(crate) fn ends(&self) -> Vec<(&'static str, &End)> {
+        match self {
+            SpatialMeasure::Position(p)
+            | SpatialMeasure::Velocity(p)
+            | SpatialMeasure::Acceleration(p) => vec![("at", &p.at)],
+            SpatialMeasure::Distance(d) => vec![("a", &d.a), ("b", &d.b)],
+        }
+    }
+}

@@ -31,6 +31,7 @@ mod init;
 mod jacobian;
 mod journal;
 mod kin;
+pub mod measure;
 mod model;
 mod newton;
 mod newton_ws;
@@ -44,10 +45,10 @@ mod system;
 
 pub use compile::ShapeSurface;
 pub use desc::{
-    ClearanceKind, DriverKind, End, Geometry3, JointKind, JournalClearanceDesc,
-    JournalLubricationDesc, Orientation, Part3, ShapeContactDesc3, Space, SpatialBody,
-    SpatialClearance, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo, SpatialJoint,
-    SpatialShape, SphericalClearance, VectorFrame,
+    ClearanceKind, DistanceMeasure, DriverKind, End, Geometry3, JointKind, JournalClearanceDesc,
+    JournalLubricationDesc, Orientation, Part3, PointMeasure, ShapeContactDesc3, Space,
+    SpatialBody, SpatialClearance, SpatialDesc, SpatialDriver, SpatialForce, SpatialInfo,
+    SpatialJoint, SpatialMeasure, SpatialShape, SphericalClearance, VectorFrame,
 };
 pub use journal::JournalReport;
 pub use model::SpatialModel;
@@ -62,8 +63,20 @@ impl SpatialDesc {
     /// A typed [`MbdError`](crate::MbdError) naming the item and field.
     pub fn compile(&self) -> Result<SpatialModel, crate::MbdError> {
         let model = compile::compile(self)?;
-        self.check_metrics(&model.columns())?;
+        let mut columns = model.columns();
+        measure::check(self, &columns)?;
+        columns.extend(self.measures.iter().flat_map(SpatialMeasure::columns));
+        self.check_metrics(&columns)?;
         Ok(model)
+    }
+
+    /// `res` with the columns of the `[[measure]]` items appended ([`measure`]: computed from
+    /// the recorded body columns, row by row), as a run of the model file writes it.
+    pub fn with_measures(&self, mut res: crate::Results) -> crate::Results {
+        if !self.measures.is_empty() {
+            res.append_columns(measure::evaluate(self, &res));
+        }
+        res
     }
 
     /// Check the `[[metric]]` items against the columns the model writes, as a planar file's
