@@ -47,10 +47,15 @@ def test_a_measure_with_a_misspelt_body_names_its_field():
 
 
 def test_a_spatial_model_refuses_measures_with_what_to_use():
+    # the planar-only kinds name the spatial ones; a spatial point measure reads its `at` as a
+    # spatial end and refuses anything else at its field
     m = clr_sim.Model("top", space="spatial")
     with pytest.raises(clr_sim.errors.ModelError) as e:
+        m.measure_angle("a", body="top")
+    assert "spatial" in str(e.value) and "measure_position" in str(e.value)
+    with pytest.raises(clr_sim.FieldError) as e:
         m.measure_position("p", at="x")
-    assert "spatial" in str(e.value)
+    assert "measure[0]" in str(e.value)
 
 
 def test_deviation_from_the_ideal_twin_and_a_metric_of_it():
