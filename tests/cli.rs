@@ -1464,3 +1464,14 @@ fn a_spatial_sweep_point_is_the_run_with_its_override() {
     }
     assert!(points[0] != points[1], "the mass override was not used");
 }
+
+/// `clr slurm sweep <args> --help` shows the options of the sweep it forwards, without writing
+/// or submitting anything.
+#[test]
+fn slurm_sweep_help_shows_the_sweep_options() {
+    let o = clr(&["slurm", "sweep", "slider_crank", "--help"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(out.contains("--vary") && out.contains("--keep"), "{out}");
+    assert!(!std::path::Path::new("clr-sweep/slurm").exists());
+}

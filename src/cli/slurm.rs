@@ -162,6 +162,14 @@ pub(crate) fn slurm_command(a: &SlurmArgs) -> Result<(), CliError> {
     let (opts, scripts) = match &a.what {
         SlurmWhat::Sweep { args } => {
             let (opts, tokens) = a.opts.with_trailing(args)?;
+            if tokens.iter().any(|t| t == "--help" || t == "-h") {
+                // the sweep's own options, which `clr slurm sweep` forwards
+                let mut cmd = <super::Cli as clap::CommandFactory>::command();
+                if let Some(sweep) = cmd.find_subcommand_mut("sweep") {
+                    let _ = sweep.print_help();
+                }
+                return Ok(());
+            }
             let scripts = sweep_scripts(&opts, &tokens, &cwd, &clr)?;
             (opts, scripts)
         }
