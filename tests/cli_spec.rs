@@ -564,6 +564,7 @@ fn spatial_measures_against_rotation_and_translation() {
          [[measure]]\ntype = \"velocity\"\nname = \"seen\"\nat = {{ body = \"cart\" }}\nframe = \"rotor\"\n\n\
          [[measure]]\ntype = \"acceleration\"\nname = \"seen\"\nat = {{ body = \"cart\" }}\nframe = \"rotor\"\n\n\
          [[measure]]\ntype = \"distance\"\nname = \"gap\"\na = {{ body = \"rotor\", at = [{l}, 0.0, 0.0] }}\nb = {{ body = \"cart\" }}\n\n\
+         [[measure]]\ntype = \"distance\"\nname = \"same\"\na = {{ body = \"cart\" }}\nb = {{ body = \"cart\" }}\n\n\
          [[metric]]\nname = \"gap_max\"\nof = \"gap.distance\"\nstatistic = \"max\"\n\n\
          [solver]\nrtol = 1e-10\n\n[output]\nt_end = 0.5\nintervals = 200\n"
     );
@@ -619,6 +620,10 @@ fn spatial_measures_against_rotation_and_translation() {
         (dx * (u + l * w * s(t)) + dy * (-l * w * c(t))) / gap(t)
     });
     assert!(worst > 0.0, "the columns are not all exact");
+    // a point's distance from itself: 0, and its rate 0 (not 0/0), as the planar measure
+    for c in ["same.distance", "same.distance_rate"] {
+        assert!(col(c).iter().all(|v| *v == 0.0), "{c}");
+    }
     let m = o.metrics.iter().find(|m| m.name == "gap_max").unwrap();
     assert_eq!(
         m.value,

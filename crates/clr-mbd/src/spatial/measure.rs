@@ -15,7 +15,8 @@
 //! - in the frame of body F (origin o, rotation R_F, ω_F and α_F in F's frame), with u = p − o:
 //!   x = R_Fᵀ u, ẋ = R_Fᵀ u̇ − ω_F × x, ẍ = R_Fᵀ ü − ω_F × (R_Fᵀ u̇) − α_F × x − ω_F × ẋ
 //!   (what a sensor fixed to F reads: the time derivatives of the coordinates in F's frame);
-//! - distance ‖p_b − p_a‖ and its rate (p_b − p_a)·(v_b − v_a)/‖p_b − p_a‖.
+//! - distance ‖p_b − p_a‖ and its rate (p_b − p_a)·(v_b − v_a)/‖p_b − p_a‖ (0 where the points
+//!   coincide, as in the planar distance measure).
 //!
 //! Columns: `<name>.x .y .z` (m), `<name>.vx .vy .vz` (m/s), `<name>.ax .ay .az` (m/s²),
 //! `<name>.distance` (m) and `<name>.distance_rate` (m/s).
@@ -230,7 +231,13 @@ pub fn evaluate(d: &SpatialDesc, res: &Results) -> Vec<(String, Vec<f64>)> {
                     let [pb, vb, _] = body(&dm.b.body).point(&dm.b.at);
                     let u = pb - pa;
                     let dist = u.norm();
-                    vec![dist, u.dot(&(vb - va)) / dist]
+                    // coincident points: rate 0, as the planar distance measure
+                    let rate = if dist > 0.0 {
+                        u.dot(&(vb - va)) / dist
+                    } else {
+                        0.0
+                    };
+                    vec![dist, rate]
                 }
             };
             for v in values {
