@@ -265,8 +265,8 @@ def test_every_spatial_element_kind_is_reachable_and_runs():
     assert r["drop.vz"][-1] > 0
     assert r.metrics["drop_peak_speed"] == np.max(np.abs(r["drop.vz"]))
     # the ball does not turn before it lands, and its landing turns it by less than 1e-7 rad:
-    # its top stays 10 mm above its centre; before it lands, its distance from the floor point
-    # below it is its height
+    # its top stays 10 mm above its centre (1e-9 m = 10 mm × 1e-7); before it lands, its
+    # distance from the floor point below it is its height (1e-12 m: rounding of the subtraction)
     np.testing.assert_allclose(r["bead_top.z"], r["drop.z"] + 0.01, rtol=0, atol=1e-9)
     np.testing.assert_allclose(r["bead_floor.distance"][:3], r["drop.z"][:3], rtol=0, atol=1e-12)
 
@@ -457,7 +457,9 @@ def test_spatial_measures_of_a_spinning_rotor():
     """``SpatialModel.measure_position`` / ``measure_velocity`` / ``measure_distance``: a rotor
     spinning freely at ω about its symmetry axis; the point L along its x axis moves on the
     circle (L cos ωt, L sin ωt, 0) at speed L·ω, and its distance from the ground point
-    (0, 0, 1) is √(L² + 1), constant (1e-7: rtol 1e-10)."""
+    (0, 0, 1) is √(L² + 1), constant. Tolerances: 1e-7 m on positions (the integrator at rtol
+    1e-10 over 5 rad of rotation, as the Rust closed-form test), and ω times that, 1e-6 m/s, on the
+    velocities and the distance rate."""
     w, l = 10.0, 0.5
     m = clr_sim.Model("rotor", space="spatial")
     m.body("rotor", mass=1.0, principal_inertia=(1e-3, 1e-3, 2e-3),

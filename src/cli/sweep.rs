@@ -217,7 +217,7 @@ pub(crate) fn sweep_command(
     rows.extend(kept);
     rows.sort_by_key(|r| r.point);
     let table = sweep_table(&varies, &rows);
-    write_text(&out.join("sweep.csv"), &table)?;
+    points::write_atomic(&out.join("sweep.csv"), &table)?;
     let meta = serde_json::json!({
         "target": args.target,
         "set": args.set,
@@ -230,7 +230,7 @@ pub(crate) fn sweep_command(
         "points": rows.iter().map(|r| r.point).collect::<Vec<_>>(),
         "point_model_hashes": point_hashes,
     });
-    write_text(
+    points::write_atomic(
         &out.join("sweep.json"),
         &(serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n"),
     )?;
@@ -239,7 +239,7 @@ pub(crate) fn sweep_command(
     // the points' reports exist with --keep all only
     let linked = keep == Keep::All && !args.no_report;
     let report = Report::sweep(&args.target, &names, &rows, linked);
-    write_text(&out.join("report.html"), &report.html())?;
+    points::write_atomic(&out.join("report.html"), &report.html())?;
     let failed: Vec<usize> = rows
         .iter()
         .filter(|r| r.status != "ok")
@@ -260,10 +260,6 @@ pub(crate) fn sweep_command(
             failed.len()
         )))
     }
-}
-
-fn write_text(path: &Path, text: &str) -> Result<(), CliError> {
-    points::write_atomic(path, text)
 }
 
 /// Split `points` into the rows of those finished in `out` by a run of the same sweep and those
@@ -478,18 +474,21 @@ pub(crate) fn merge_command(
             }
         }
         let text = read(d.join("sweep.csv"))?;
-        audit_points(d, &text, &meta)?;
         if let Some(h) = meta["point_model_hashes"].as_object() {
             hashes.extend(h.clone());
         }
+        // each listed point's varied values and status, for the check of its folder
+        let varied = meta["vary"].as_array().map_or(0, Vec::len);
+        let mut listed = BTreeMap::new();
         let mut lines = text.lines();
         let h = lines.next().unwrap_or("").to_string();
         for l in lines.filter(|l| !l.trim().is_empty()) {
-            let k: usize = l
-                .split(',')
-                .next()
-                .and_then(|s| s.parse().ok())
-                .ok_or_else(|| CliError::Input(format!("{}: bad row `{l}`", d.display())))?;
+            let cells: Vec<&str> = l.split(',').collect();
+            let bad = || CliError::Input(format!("{}: bad row `{l}`", d.display()));
+            let k: usize = cells[0].parse().map_err(|_| bad())?;
+            let status = cells.get(2 + varied).ok_or_else(bad)?;
+            let values = cells[2..2 + varied].iter().map(|v| v.to_string()).collect();
+            listed.insert(k, (values, status.to_string()));
             let total = meta["total_points"].as_u64().unwrap_or(0) as usize;
             if k >= total {
                 return Err(CliError::Input(format!(
@@ -511,6 +510,7 @@ pub(crate) fn merge_command(
             };
             rows.insert(k, (line, d.clone()));
         }
+        audit_points(d, &listed, &meta)?;
         if header.is_none() {
             header = Some(h);
         }
@@ -526,7 +526,7 @@ pub(crate) fn merge_command(
     }
     std::fs::create_dir_all(out)
         .map_err(|e| CliError::Input(format!("cannot create {}: {e}", out.display())))?;
-    write_text(&out.join("sweep.csv"), &text)?;
+    points::write_atomic(&out.join("sweep.csv"), &text)?;
     let mut meta = meta0.clone();
     if !unverified.is_empty() {
         eprintln!(
@@ -544,7 +544,7 @@ pub(crate) fn merge_command(
         .iter()
         .map(|d| d.display().to_string())
         .collect::<Vec<_>>());
-    write_text(
+    points::write_atomic(
         &out.join("sweep.json"),
         &(serde_json::to_string_pretty(&meta).unwrap_or_default() + "\n"),
     )?;
@@ -565,20 +565,16 @@ pub(crate) fn merge_command(
     }
 }
 
-/// Check the point folders of shard folder `d` against its sweep.csv (`csv`) and sweep.json
-/// (`meta`): refuse the shard when a point folder holds another point, model or clr version than
-/// the shard lists; name the folders it does not list, those without a record and those missing.
-fn audit_points(d: &Path, csv: &str, meta: &serde_json::Value) -> Result<(), CliError> {
-    let varied = meta["vary"].as_array().map_or(0, Vec::len);
-    let mut listed = BTreeMap::new();
-    for l in csv.lines().skip(1).filter(|l| !l.trim().is_empty()) {
-        let cells: Vec<&str> = l.split(',').collect();
-        if let (Some(k), Some(status)) = (cells[0].parse::<usize>().ok(), cells.get(2 + varied)) {
-            let values = cells[2..2 + varied].iter().map(|v| v.to_string()).collect();
-            listed.insert(k, (values, status.to_string()));
-        }
-    }
-    let a = points::audit(d, &listed, meta);
+/// Check the point folders of shard folder `d` against the points its sweep.csv lists
+/// (`listed[k]` = varied values, status) and its sweep.json (`meta`): refuse the shard when a
+/// point folder holds another point, model or clr version than the shard lists; name the folders
+/// it does not list, those without a record and those missing.
+fn audit_points(
+    d: &Path,
+    listed: &BTreeMap<usize, (Vec<String>, String)>,
+    meta: &serde_json::Value,
+) -> Result<(), CliError> {
+    let a = points::audit(d, listed, meta);
     let warn = |what: &str, names: &[String]| {
         if !names.is_empty() {
             eprintln!(

@@ -70,6 +70,20 @@ pub fn run(args: &[String]) -> ExitCode {
     })
 }
 
+/// Call `probe` every 20 ms until it returns `Ok`, at most `limit`; at the deadline, what the
+/// last call returned as `Err` (what it saw). 20 ms: the kill check must act while the short
+/// sweep of the killed task is still running.
+fn poll(limit: Duration, mut probe: impl FnMut() -> Result<(), String>) -> Result<(), String> {
+    let deadline = Instant::now() + limit;
+    loop {
+        match probe() {
+            Ok(()) => return Ok(()),
+            Err(seen) if Instant::now() > deadline => return Err(seen),
+            Err(_) => std::thread::sleep(Duration::from_millis(20)),
+        }
+    }
+}
+
 /// The Python of the submitit check: `$CLR_PYTHON`, else .ci/run's `target/ci-pyenv`, if it
 /// imports clr_sim and submitit.
 fn python() -> Option<PathBuf> {
@@ -197,21 +211,14 @@ impl Cluster {
     fn daemons(&self) -> Result<(), String> {
         run_ok(self.cmd("slurmctld").arg("-i"))?;
         run_ok(&mut self.cmd("slurmd"))?;
-        let deadline = Instant::now() + Duration::from_secs(30);
-        loop {
+        poll(Duration::from_secs(30), || {
             let node = run_out(self.cmd("scontrol").args(["show", "node"])).unwrap_or_default();
             let registered = node.contains("Version=") && !node.contains("Version=(null)");
-            if registered && node.contains("State=IDLE") {
-                return Ok(());
-            }
-            if Instant::now() > deadline {
-                return Err(format!(
-                    "the node did not come up in 30 s:\n{node}{}",
-                    self.logs()
-                ));
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
+            (registered && node.contains("State=IDLE"))
+                .then_some(())
+                .ok_or(node)
+        })
+        .map_err(|node| format!("the node did not come up in 30 s:\n{node}{}", self.logs()))
     }
 
     fn logs(&self) -> String {
@@ -227,19 +234,9 @@ impl Cluster {
         )
     }
 
-    /// Submit `script` (its text), return the job id.
-    fn sbatch(&self, script: &str, extra: &[&str]) -> Result<String, String> {
-        static JOBS: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
-        let k = JOBS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-        let file = self.dir.join(format!("work/job-{k}.sh"));
-        std::fs::write(&file, script).map_err(|e| e.to_string())?;
-        let out = run_out(
-            self.cmd("sbatch")
-                .arg("--parsable")
-                .args(extra)
-                .arg(&file)
-                .current_dir(self.dir.join("work")),
-        )?;
+    /// Submit the script `file`, return the job id.
+    fn sbatch(&self, file: &Path) -> Result<String, String> {
+        let out = run_out(self.cmd("sbatch").arg("--parsable").arg(file))?;
         Ok(out.trim().split(';').next().unwrap_or("").to_string())
     }
 
@@ -269,22 +266,13 @@ impl Cluster {
         done: &dyn Fn(&str) -> bool,
         what: &str,
     ) -> Result<(), String> {
-        let deadline = Instant::now() + limit;
         let jobs = ids.join(",");
-        loop {
+        poll(limit, || {
             let q = run_out(self.cmd("squeue").args(["-h", "-o", "%T", "-j", &jobs]))
                 .unwrap_or_default();
-            if done(&q) {
-                return Ok(());
-            }
-            if Instant::now() > deadline {
-                return Err(format!(
-                    "jobs {jobs} {what} after {limit:?}: {q}{}",
-                    self.logs()
-                ));
-            }
-            std::thread::sleep(Duration::from_millis(100));
-        }
+            done(&q).then_some(()).ok_or(q)
+        })
+        .map_err(|q| format!("jobs {jobs} {what} after {limit:?}: {q}{}", self.logs()))
     }
 }
 
@@ -438,15 +426,9 @@ impl Checks<'_> {
         Ok(())
     }
 
-    /// Run `clr slurm <slurm> <args> --out <out>` (which writes and submits the array and the
-    /// merge job); their job ids.
-    fn clr_slurm(
-        &self,
-        slurm: &[&str],
-        args: &str,
-        out: &Path,
-    ) -> Result<(String, String), String> {
-        let printed = run_out(
+    /// Run `clr slurm <slurm> <args> --out <out>` in the work folder; what it printed.
+    fn run_clr_slurm(&self, slurm: &[&str], args: &str, out: &Path) -> Result<String, String> {
+        run_out(
             self.cluster
                 .cmd(&self.clr.display().to_string())
                 .arg("slurm")
@@ -455,7 +437,18 @@ impl Checks<'_> {
                 .arg("--out")
                 .arg(out)
                 .current_dir(&self.work),
-        )?;
+        )
+    }
+
+    /// Run `clr slurm <slurm> <args> --out <out>` (which writes and submits the array and the
+    /// merge job); their job ids.
+    fn clr_slurm(
+        &self,
+        slurm: &[&str],
+        args: &str,
+        out: &Path,
+    ) -> Result<(String, String), String> {
+        let printed = self.run_clr_slurm(slurm, args, out)?;
         let id = |what: &str| {
             (printed.lines())
                 .find_map(|l| l.strip_prefix(what))
@@ -472,34 +465,26 @@ impl Checks<'_> {
         let out = self.work.join("killed");
         // the array script of `clr slurm --tasks 1 --dry-run`, submitted here; not --quiet: the
         // log says what --resume kept
-        run_out(
-            self.cluster
-                .cmd(&self.clr.display().to_string())
-                .args(["slurm", "--tasks", "1", "--dry-run", "sweep"])
-                .args(SWEEP.replace(" --quiet", "").split(' '))
-                .arg("--out")
-                .arg(&out)
-                .current_dir(&self.work),
-        )?;
-        let script = std::fs::read_to_string(out.join("slurm/array.sbatch"))
-            .map_err(|e| format!("clr slurm --dry-run wrote no array.sbatch: {e}"))?;
+        let slurm = ["--tasks", "1", "--dry-run", "sweep"];
+        self.run_clr_slurm(&slurm, &SWEEP.replace(" --quiet", ""), &out)?;
+        let script = out.join("slurm/array.sbatch");
         let sweep = out.join("shard-0");
         // kill `jid` once `n` point folders are finished; the bytes of the first
         let kill_after = |jid: &str, n: usize, how: &[&str]| -> Result<Vec<u8>, String> {
-            let deadline = Instant::now() + Duration::from_secs(60);
-            while finished(&sweep) < n {
-                if Instant::now() > deadline {
-                    return Err(format!(
-                        "no {n} finished points in 60 s{}",
-                        self.cluster.logs()
-                    ));
-                }
-                std::thread::sleep(Duration::from_millis(20));
-            }
+            poll(Duration::from_secs(60), || {
+                let done = finished(&sweep);
+                (done >= n).then_some(()).ok_or(format!("{done}"))
+            })
+            .map_err(|done| {
+                format!(
+                    "{done} of {n} points finished in 60 s{}",
+                    self.cluster.logs()
+                )
+            })?;
             run_ok(self.cluster.cmd(how[0]).args(&how[1..]).arg(jid))?;
             std::fs::read(sweep.join("point-00000/point.json")).map_err(|e| e.to_string())
         };
-        let jid = self.cluster.sbatch(&script, &[])?;
+        let jid = self.cluster.sbatch(&script)?;
         let first = kill_after(&jid, 1, &["scontrol", "requeue"])?;
         // requeued: Slurm makes it eligible 2 min later; the administrator's `StartTime=now`
         // lets it run again at once
@@ -523,10 +508,10 @@ impl Checks<'_> {
         same_sweep(local, &sweep)?;
         // again from scratch, killed by SIGKILL and resubmitted by hand
         std::fs::remove_dir_all(&sweep).map_err(|e| e.to_string())?;
-        let jid = self.cluster.sbatch(&script, &[])?;
+        let jid = self.cluster.sbatch(&script)?;
         let first2 = kill_after(&jid, 2, &["scancel", "--signal=KILL", "--full"])?;
         self.cluster.wait(&[&jid], Duration::from_secs(60))?;
-        let again = self.cluster.sbatch(&script, &[])?;
+        let again = self.cluster.sbatch(&script)?;
         self.cluster.wait(&[&again], Duration::from_secs(120))?;
         let kept =
             std::fs::read(sweep.join("point-00000/point.json")).map_err(|e| e.to_string())?;

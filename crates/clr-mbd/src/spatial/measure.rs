@@ -115,20 +115,6 @@ struct Body {
 }
 
 impl Body {
-    /// A body whose columns are missing: every value NaN.
-    fn nan() -> Self {
-        let n = Vector3::repeat(f64::NAN);
-        Body {
-            r: n,
-            rot: Matrix3::repeat(f64::NAN),
-            v: n,
-            w: n,
-            a: n,
-            alpha: n,
-            com: n,
-        }
-    }
-
     /// The ground: the world frame at rest.
     fn ground() -> Self {
         let z = Vector3::zeros();
@@ -179,45 +165,42 @@ const SUFFIXES: [&str; 19] = [
     "alphax", "alphay", "alphaz",
 ];
 
-/// A body's column indices in a result ([`SUFFIXES`]; `None` when one is missing) and its centre
-/// of mass in its frame, m.
+/// A body's column indices in a result ([`SUFFIXES`]) and its centre of mass in its frame, m.
 struct BodyColumns<'a> {
     name: &'a str,
-    index: Option<[usize; 19]>,
+    index: [usize; 19],
     com: [f64; 3],
 }
 
 /// The measures' columns for every row of `res` (name, values), in the order of
-/// [`SpatialMeasure::columns`]. A body whose columns `res` lacks reads as NaN.
+/// [`SpatialMeasure::columns`]; NaN throughout when `res` lacks a body's columns (a run that
+/// failed before its first row).
 pub fn evaluate(d: &SpatialDesc, res: &Results) -> Vec<(String, Vec<f64>)> {
+    let names = d.measures.iter().flat_map(SpatialMeasure::columns);
     // per body: its column indices (looked up once) and centre of mass in its frame
     let index = |c: &str| res.columns.iter().position(|n| n == c);
-    let bodies: Vec<BodyColumns<'_>> = (d.bodies.iter())
+    let bodies: Option<Vec<BodyColumns<'_>>> = (d.bodies.iter())
         .map(|b| {
             let k: Option<Vec<usize>> = SUFFIXES
                 .iter()
                 .map(|s| index(&format!("{}.{s}", b.name)))
                 .collect();
-            BodyColumns {
+            Some(BodyColumns {
                 name: &b.name,
-                index: k.and_then(|k| <[usize; 19]>::try_from(k).ok()),
+                index: <[usize; 19]>::try_from(k?).ok()?,
                 com: b.centre_of_mass,
-            }
+            })
         })
         .collect();
-    let mut out: Vec<(String, Vec<f64>)> = (d.measures.iter())
-        .flat_map(SpatialMeasure::columns)
-        .map(|c| (c, Vec::with_capacity(res.len())))
-        .collect();
+    let Some(bodies) = bodies else {
+        return names.map(|c| (c, vec![f64::NAN; res.len()])).collect();
+    };
+    let mut out: Vec<(String, Vec<f64>)> =
+        names.map(|c| (c, Vec::with_capacity(res.len()))).collect();
     for r in 0..res.len() {
         let row = res.row(r);
         let body = |name: &str| match bodies.iter().find(|b| b.name == name) {
-            Some(BodyColumns {
-                index: Some(k),
-                com,
-                ..
-            }) => Body::at_row(k, *com, row),
-            Some(_) => Body::nan(),
+            Some(b) => Body::at_row(&b.index, b.com, row),
             None => Body::ground(),
         };
         let mut k = 0;
