@@ -630,6 +630,22 @@ fn spatial_measures_against_rotation_and_translation() {
         col("gap.distance").iter().fold(f64::MIN, |a, v| a.max(*v))
     );
 
+    // a point given in millimetres (500 for 0.5 m) runs, with a warning at its field; the
+    // point in metres raises none (the reach is 30 times the mechanism's size, as planar)
+    let far = |o: &clr_sim::spec::run::Outcome| {
+        (o.results.warnings.iter().map(ToString::to_string))
+            .find(|w| w.contains("lengths are in metres"))
+    };
+    assert_eq!(far(&o), None);
+    let mm = text.replacen(
+        &format!("at = [{l}, 0.0, 0.0]"),
+        "at = [500.0, 0.0, 0.0]",
+        1,
+    );
+    let job = resolve_text("kin.toml", &mm, &[], None, None).unwrap();
+    let w = far(&execute(&job, None, None, None).unwrap()).expect("no warning for 500 m");
+    assert!(w.contains("tip.at") && w.contains("5.000e2 m"), "{w}");
+
     // refusals at their line: an unknown body, a frame that is no body, an axis, a name
     // whose column the run writes already
     for (from, to, want) in [

@@ -602,7 +602,7 @@ pub(crate) fn tip_speed(field: String, symbol: &str, w: f64, ext: f64) -> Option
 /// How far a measured point may lie from its body, in units of the larger of the mechanism's
 /// size and the body's radius of gyration, before it is flagged (a point in mm is 1000 times
 /// too far; a sensor on a long boom is still well inside).
-const MAX_MEASURE_REACH: f64 = 30.0;
+pub(crate) const MAX_MEASURE_REACH: f64 = 30.0;
 
 /// A radius of gyration `gyration` (m; `what` says which) above [`MAX_GYRATION`] times the
 /// body's extent `ext` (m).

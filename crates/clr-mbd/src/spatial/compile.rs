@@ -494,6 +494,7 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
         events_on: d.solver.contact_events,
         notes: Vec::new(),
         input_warnings: input_warnings(d),
+        measure_points: measure_points(d, &cx.names),
         m,
         n_bristle,
         norm_rate: super::model::NORM_RATE,
@@ -502,6 +503,28 @@ pub(crate) fn compile(d: &SpatialDesc) -> Result<SpatialModel, MbdError> {
 }
 
 /// The description's value findings (crate::desc::checks), on every clearance joint.
+/// The bodies' points of the `[[measure]]` items (the ground's left out): (field, body index,
+/// point relative to the centre of mass, m).
+fn measure_points(
+    d: &SpatialDesc,
+    names: &HashMap<String, usize>,
+) -> Vec<(String, usize, Vector3<f64>)> {
+    let mut out = Vec::new();
+    for m in &d.measures {
+        for (field, end) in m.ends() {
+            if let Some(&k) = names.get(&end.body) {
+                let com = Vector3::from(d.bodies[k].centre_of_mass);
+                out.push((
+                    format!("{}.{field}", m.name()),
+                    k,
+                    Vector3::from(end.at) - com,
+                ));
+            }
+        }
+    }
+    out
+}
+
 fn input_warnings(d: &SpatialDesc) -> Vec<crate::initial_data::Warning> {
     let mut out = Vec::new();
     for c in &d.clearances {

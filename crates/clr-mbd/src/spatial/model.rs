@@ -93,6 +93,9 @@ pub struct SpatialModel {
     /// Findings on the description's values (Young's moduli out of range), reported with the
     /// run's other plausibility warnings.
     pub(crate) input_warnings: Vec<crate::initial_data::Warning>,
+    /// The points of the `[[measure]]` items, for the plausibility check of their lengths:
+    /// (field, body index, point relative to the centre of mass in the body frame, m).
+    pub(crate) measure_points: Vec<(String, usize, Vector3<f64>)>,
     pub(crate) m: usize,
     pub(crate) n_bristle: usize,
     /// Rate k (1/s) of the norm-restoring term k(1 − ‖p‖²)p added to ṗ.

@@ -16,8 +16,8 @@ use crate::desc::laws::ContactFriction;
 use crate::error::MbdError;
 use crate::plausible::{
     check_energy, deep, friction, gyration_radius, joint_radii, peak_force, restitution, tip_speed,
-    warn, Warning, CLEARANCE_FRACTION, MAX_SHAPE_TO_GYRATION, PENETRATION_FRACTION,
-    REFUSE_PENETRATION, SHAPE_PENETRATION_FRACTION, SHAPE_START_FRACTION,
+    warn, Warning, CLEARANCE_FRACTION, MAX_MEASURE_REACH, MAX_SHAPE_TO_GYRATION,
+    PENETRATION_FRACTION, REFUSE_PENETRATION, SHAPE_PENETRATION_FRACTION, SHAPE_START_FRACTION,
 };
 use crate::results::Results;
 
@@ -110,7 +110,31 @@ impl SpatialModel {
         self.check_initial_depths(t0, y0)?;
         self.check_shape_starts(&mut out);
         self.check_shape_sizes(&mut out);
+        self.check_measure_points(&sc, &mut out);
         Ok(out)
+    }
+
+    /// A measured point far outside its body and the mechanism ([`MAX_MEASURE_REACH`] times the
+    /// larger of the mechanism's size and the body's radius of gyration) is most likely given in
+    /// millimetres: the measure is still written, with a warning at its field (as planar
+    /// measures, `crate::plausible`).
+    fn check_measure_points(&self, sc: &Scales3, out: &mut Vec<Warning>) {
+        for (field, k, s) in &self.measure_points {
+            let reach = MAX_MEASURE_REACH * sc.size.max(self.bodies[*k].gyration_radius());
+            if s.norm() > reach {
+                out.push(warn(
+                    field.clone(),
+                    format!(
+                        "the point is {:.3e} m from the centre of mass of `{}`, more than \
+                         {MAX_MEASURE_REACH} times the mechanism's size ({:.3e} m) and the body's \
+                         radius of gyration: lengths are in metres",
+                        s.norm(),
+                        self.names[*k],
+                        sc.size
+                    ),
+                ));
+            }
+        }
     }
 
     /// A contact shape far larger than the body that carries it ([`MAX_SHAPE_TO_GYRATION`]): a
